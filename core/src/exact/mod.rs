@@ -1,0 +1,1 @@
+//! Exact and analytic reference solutions (STUB).

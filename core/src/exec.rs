@@ -1,0 +1,83 @@
+//! How the per-particle loops of a step are executed.
+//!
+//! Every loop in a step is a *gather*: particle `i` reads its neighbours and writes only
+//! its own outputs. The loop body is handed a chunk of the outputs (anything that
+//! implements [`Split`]) together with the index of the chunk's first particle, so the
+//! same physics runs serially here ([`Serial`]) and in parallel in the host (rayon splits
+//! the outputs recursively). Because each particle's result depends only on its own
+//! neighbour list (kept sorted), results are bitwise identical for any number of threads.
+
+/// Something that can be cut at a particle index into two disjoint halves.
+pub trait Split: Sized + Send {
+    /// Number of particles covered.
+    fn len(&self) -> usize;
+    /// True when no particle is covered.
+    fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+    /// Splits into `[0, mid)` and `[mid, len)`.
+    fn split_at(self, mid: usize) -> (Self, Self);
+}
+
+impl<T: Send> Split for &mut [T] {
+    #[inline]
+    fn len(&self) -> usize {
+        <[T]>::len(self)
+    }
+    #[inline]
+    fn split_at(self, mid: usize) -> (Self, Self) {
+        self.split_at_mut(mid)
+    }
+}
+
+impl<T: Sync> Split for &[T] {
+    #[inline]
+    fn len(&self) -> usize {
+        <[T]>::len(self)
+    }
+    #[inline]
+    fn split_at(self, mid: usize) -> (Self, Self) {
+        <[T]>::split_at(self, mid)
+    }
+}
+
+impl<A: Split, B: Split> Split for (A, B) {
+    #[inline]
+    fn len(&self) -> usize {
+        self.0.len()
+    }
+    #[inline]
+    fn split_at(self, mid: usize) -> (Self, Self) {
+        let (a0, a1) = self.0.split_at(mid);
+        let (b0, b1) = self.1.split_at(mid);
+        ((a0, b0), (a1, b1))
+    }
+}
+
+/// Splits an optional per-particle slice: an empty slice (absent effect) stays empty on
+/// both sides.
+#[inline]
+pub fn split_opt<T>(s: &mut [T], mid: usize) -> (&mut [T], &mut [T]) {
+    if s.is_empty() {
+        (&mut [], &mut [])
+    } else {
+        s.split_at_mut(mid)
+    }
+}
+
+/// Runs a loop body over chunks of particles.
+pub trait Executor: Sync {
+    /// Calls `f(first_index, chunk)` on disjoint chunks that together cover `data`.
+    fn run<S: Split, F: Fn(usize, S) + Sync>(&self, data: S, f: F);
+}
+
+/// Runs everything on the calling thread, as one chunk.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Serial;
+
+impl Executor for Serial {
+    #[inline]
+    fn run<S: Split, F: Fn(usize, S) + Sync>(&self, data: S, f: F) {
+        f(0, data)
+    }
+}

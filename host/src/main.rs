@@ -1,0 +1,2 @@
+//! The `gsph` command.
+fn main() {}

@@ -1,0 +1,1 @@
+//! Validation tests of gsph live in `tests/tests/`.
