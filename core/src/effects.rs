@@ -100,11 +100,17 @@ impl EffectSet {
     }
     /// Looks an effect up by name.
     pub fn from_name(name: &str) -> Option<EffectSet> {
-        Self::NAMED.iter().find(|(n, _)| *n == name).map(|(_, e)| *e)
+        Self::NAMED
+            .iter()
+            .find(|(n, _)| *n == name)
+            .map(|(_, e)| *e)
     }
     /// Iterates over the names of the effects present.
     pub fn names(self) -> impl Iterator<Item = &'static str> {
-        Self::NAMED.into_iter().filter(move |(_, e)| self.contains(*e)).map(|(n, _)| n)
+        Self::NAMED
+            .into_iter()
+            .filter(move |(_, e)| self.contains(*e))
+            .map(|(n, _)| n)
     }
 }
 

@@ -12,6 +12,10 @@
 #![no_std]
 #![deny(missing_docs)]
 
+#[cfg(test)]
+extern crate std;
+
+pub mod dispatch;
 pub mod effects;
 pub mod exact;
 pub mod exec;
@@ -21,6 +25,8 @@ pub mod material;
 pub mod math;
 pub mod neighbors;
 pub mod riemann;
+pub mod schemes;
+pub mod state;
 
 pub use effects::{EffectSet, Effects};
 pub use math::{Real, Sym3, Vector};

@@ -38,46 +38,82 @@ pub mod real {
     mod imp {
         use super::Real;
         #[inline(always)]
-        pub fn sqrt(x: Real) -> Real { libm::sqrt(x) }
+        pub fn sqrt(x: Real) -> Real {
+            libm::sqrt(x)
+        }
         #[inline(always)]
-        pub fn exp(x: Real) -> Real { libm::exp(x) }
+        pub fn exp(x: Real) -> Real {
+            libm::exp(x)
+        }
         #[inline(always)]
-        pub fn ln(x: Real) -> Real { libm::log(x) }
+        pub fn ln(x: Real) -> Real {
+            libm::log(x)
+        }
         #[inline(always)]
-        pub fn powf(x: Real, y: Real) -> Real { libm::pow(x, y) }
+        pub fn powf(x: Real, y: Real) -> Real {
+            libm::pow(x, y)
+        }
         #[inline(always)]
-        pub fn erf(x: Real) -> Real { libm::erf(x) }
+        pub fn erf(x: Real) -> Real {
+            libm::erf(x)
+        }
         #[inline(always)]
-        pub fn cbrt(x: Real) -> Real { libm::cbrt(x) }
+        pub fn cbrt(x: Real) -> Real {
+            libm::cbrt(x)
+        }
         #[inline(always)]
-        pub fn sin(x: Real) -> Real { libm::sin(x) }
+        pub fn sin(x: Real) -> Real {
+            libm::sin(x)
+        }
         #[inline(always)]
-        pub fn cos(x: Real) -> Real { libm::cos(x) }
+        pub fn cos(x: Real) -> Real {
+            libm::cos(x)
+        }
         #[inline(always)]
-        pub fn atan2(y: Real, x: Real) -> Real { libm::atan2(y, x) }
+        pub fn atan2(y: Real, x: Real) -> Real {
+            libm::atan2(y, x)
+        }
     }
 
     #[cfg(all(feature = "f32", not(feature = "fast-math")))]
     mod imp {
         use super::Real;
         #[inline(always)]
-        pub fn sqrt(x: Real) -> Real { libm::sqrtf(x) }
+        pub fn sqrt(x: Real) -> Real {
+            libm::sqrtf(x)
+        }
         #[inline(always)]
-        pub fn exp(x: Real) -> Real { libm::expf(x) }
+        pub fn exp(x: Real) -> Real {
+            libm::expf(x)
+        }
         #[inline(always)]
-        pub fn ln(x: Real) -> Real { libm::logf(x) }
+        pub fn ln(x: Real) -> Real {
+            libm::logf(x)
+        }
         #[inline(always)]
-        pub fn powf(x: Real, y: Real) -> Real { libm::powf(x, y) }
+        pub fn powf(x: Real, y: Real) -> Real {
+            libm::powf(x, y)
+        }
         #[inline(always)]
-        pub fn erf(x: Real) -> Real { libm::erff(x) }
+        pub fn erf(x: Real) -> Real {
+            libm::erff(x)
+        }
         #[inline(always)]
-        pub fn cbrt(x: Real) -> Real { libm::cbrtf(x) }
+        pub fn cbrt(x: Real) -> Real {
+            libm::cbrtf(x)
+        }
         #[inline(always)]
-        pub fn sin(x: Real) -> Real { libm::sinf(x) }
+        pub fn sin(x: Real) -> Real {
+            libm::sinf(x)
+        }
         #[inline(always)]
-        pub fn cos(x: Real) -> Real { libm::cosf(x) }
+        pub fn cos(x: Real) -> Real {
+            libm::cosf(x)
+        }
         #[inline(always)]
-        pub fn atan2(y: Real, x: Real) -> Real { libm::atan2f(y, x) }
+        pub fn atan2(y: Real, x: Real) -> Real {
+            libm::atan2f(y, x)
+        }
     }
 
     #[cfg(feature = "fast-math")]
@@ -85,23 +121,41 @@ pub mod real {
         use super::Real;
         use micromath::F32Ext;
         #[inline(always)]
-        pub fn sqrt(x: Real) -> Real { F32Ext::sqrt(x) }
+        pub fn sqrt(x: Real) -> Real {
+            F32Ext::sqrt(x)
+        }
         #[inline(always)]
-        pub fn exp(x: Real) -> Real { F32Ext::exp(x) }
+        pub fn exp(x: Real) -> Real {
+            F32Ext::exp(x)
+        }
         #[inline(always)]
-        pub fn ln(x: Real) -> Real { F32Ext::ln(x) }
+        pub fn ln(x: Real) -> Real {
+            F32Ext::ln(x)
+        }
         #[inline(always)]
-        pub fn powf(x: Real, y: Real) -> Real { F32Ext::powf(x, y) }
+        pub fn powf(x: Real, y: Real) -> Real {
+            F32Ext::powf(x, y)
+        }
         #[inline(always)]
-        pub fn erf(x: Real) -> Real { libm::erff(x) }
+        pub fn erf(x: Real) -> Real {
+            libm::erff(x)
+        }
         #[inline(always)]
-        pub fn cbrt(x: Real) -> Real { F32Ext::cbrt(x) }
+        pub fn cbrt(x: Real) -> Real {
+            F32Ext::cbrt(x)
+        }
         #[inline(always)]
-        pub fn sin(x: Real) -> Real { F32Ext::sin(x) }
+        pub fn sin(x: Real) -> Real {
+            F32Ext::sin(x)
+        }
         #[inline(always)]
-        pub fn cos(x: Real) -> Real { F32Ext::cos(x) }
+        pub fn cos(x: Real) -> Real {
+            F32Ext::cos(x)
+        }
         #[inline(always)]
-        pub fn atan2(y: Real, x: Real) -> Real { F32Ext::atan2(y, x) }
+        pub fn atan2(y: Real, x: Real) -> Real {
+            F32Ext::atan2(y, x)
+        }
     }
 
     pub use imp::*;
@@ -173,18 +227,39 @@ pub struct Sym3 {
 
 impl Sym3 {
     /// The zero tensor.
-    pub const ZERO: Sym3 = Sym3 { xx: 0.0, yy: 0.0, zz: 0.0, xy: 0.0, xz: 0.0, yz: 0.0 };
+    pub const ZERO: Sym3 = Sym3 {
+        xx: 0.0,
+        yy: 0.0,
+        zz: 0.0,
+        xy: 0.0,
+        xz: 0.0,
+        yz: 0.0,
+    };
 
     /// Builds a tensor from its six Voigt components.
     #[inline]
     pub const fn new(xx: Real, yy: Real, zz: Real, xy: Real, xz: Real, yz: Real) -> Self {
-        Sym3 { xx, yy, zz, xy, xz, yz }
+        Sym3 {
+            xx,
+            yy,
+            zz,
+            xy,
+            xz,
+            yz,
+        }
     }
 
     /// `s * I`.
     #[inline]
     pub const fn isotropic(s: Real) -> Self {
-        Sym3 { xx: s, yy: s, zz: s, xy: 0.0, xz: 0.0, yz: 0.0 }
+        Sym3 {
+            xx: s,
+            yy: s,
+            zz: s,
+            xy: 0.0,
+            xz: 0.0,
+            yz: 0.0,
+        }
     }
 
     /// Component `(a, b)`, indices 0..3.
@@ -209,7 +284,14 @@ impl Sym3 {
     /// From six components in Voigt order.
     #[inline]
     pub const fn from_array(a: [Real; 6]) -> Self {
-        Sym3 { xx: a[0], yy: a[1], zz: a[2], xy: a[3], xz: a[4], yz: a[5] }
+        Sym3 {
+            xx: a[0],
+            yy: a[1],
+            zz: a[2],
+            xy: a[3],
+            xz: a[4],
+            yz: a[5],
+        }
     }
 
     /// Trace.
@@ -222,7 +304,12 @@ impl Sym3 {
     #[inline]
     pub fn deviator(&self) -> Self {
         let m = self.trace() / 3.0;
-        Sym3 { xx: self.xx - m, yy: self.yy - m, zz: self.zz - m, ..*self }
+        Sym3 {
+            xx: self.xx - m,
+            yy: self.yy - m,
+            zz: self.zz - m,
+            ..*self
+        }
     }
 
     /// Double contraction `A : B`.
@@ -243,8 +330,21 @@ impl Sym3 {
     /// The symmetric part of a `D x D` matrix, embedded in 3x3 (missing rows/columns zero).
     #[inline]
     pub fn sym_of<const D: usize>(m: &Matrix<D>) -> Self {
-        let g = |a: usize, b: usize| if a < D && b < D { 0.5 * (m[(a, b)] + m[(b, a)]) } else { 0.0 };
-        Sym3 { xx: g(0, 0), yy: g(1, 1), zz: g(2, 2), xy: g(0, 1), xz: g(0, 2), yz: g(1, 2) }
+        let g = |a: usize, b: usize| {
+            if a < D && b < D {
+                0.5 * (m[(a, b)] + m[(b, a)])
+            } else {
+                0.0
+            }
+        };
+        Sym3 {
+            xx: g(0, 0),
+            yy: g(1, 1),
+            zz: g(2, 2),
+            xy: g(0, 1),
+            xz: g(0, 2),
+            yz: g(1, 2),
+        }
     }
 
     /// The in-plane block as a `D x D` matrix.
@@ -410,5 +510,64 @@ mod tests {
         assert!(r.xx.abs() < 1e-14 && r.yy.abs() < 1e-14);
         // the spin term preserves the von Mises norm to first order
         assert!(s.ddot(&r).abs() < 1e-14);
+    }
+}
+
+/// Determinant of a `D x D` matrix (D <= 3), closed form.
+pub fn det<const D: usize>(m: &Matrix<D>) -> Real {
+    match D {
+        1 => m[(0, 0)],
+        2 => m[(0, 0)] * m[(1, 1)] - m[(0, 1)] * m[(1, 0)],
+        _ => {
+            m[(0, 0)] * (m[(1, 1)] * m[(2, 2)] - m[(1, 2)] * m[(2, 1)])
+                - m[(0, 1)] * (m[(1, 0)] * m[(2, 2)] - m[(1, 2)] * m[(2, 0)])
+                + m[(0, 2)] * (m[(1, 0)] * m[(2, 1)] - m[(1, 1)] * m[(2, 0)])
+        }
+    }
+}
+
+/// Inverse of a `D x D` matrix (D <= 3) by the adjugate; `None` if the determinant is zero
+/// or not finite.
+pub fn inverse<const D: usize>(m: &Matrix<D>) -> Option<Matrix<D>> {
+    let d = det(m);
+    if d == 0.0 || !d.is_finite() {
+        return None;
+    }
+    let inv_d = 1.0 / d;
+    Some(match D {
+        1 => Matrix::<D>::from_fn(|_, _| inv_d),
+        2 => Matrix::<D>::from_fn(|a, b| {
+            let v = match (a, b) {
+                (0, 0) => m[(1, 1)],
+                (1, 1) => m[(0, 0)],
+                (0, 1) => -m[(0, 1)],
+                _ => -m[(1, 0)],
+            };
+            v * inv_d
+        }),
+        _ => Matrix::<D>::from_fn(|a, b| {
+            // cofactor of (b, a)
+            let (r0, r1) = ((b + 1) % 3, (b + 2) % 3);
+            let (c0, c1) = ((a + 1) % 3, (a + 2) % 3);
+            (m[(r0, c0)] * m[(r1, c1)] - m[(r0, c1)] * m[(r1, c0)]) * inv_d
+        }),
+    })
+}
+
+#[cfg(test)]
+mod det_tests {
+    use super::*;
+
+    #[test]
+    fn inverse_times_matrix_is_identity() {
+        let m3 = Matrix::<3>::new(2.0, 1.0, 0.5, -1.0, 3.0, 0.2, 0.1, 0.4, 1.5);
+        let i3 = inverse(&m3).unwrap() * m3;
+        assert!((i3 - Matrix::<3>::identity()).norm() < 1e-14);
+        let m2 = Matrix::<2>::new(2.0, 1.0, -1.0, 3.0);
+        assert!((inverse(&m2).unwrap() * m2 - Matrix::<2>::identity()).norm() < 1e-14);
+        assert!((det(&m2) - 7.0).abs() < 1e-14);
+        let m1 = Matrix::<1>::new(4.0);
+        assert_eq!(inverse(&m1).unwrap()[(0, 0)], 0.25);
+        assert!(inverse(&Matrix::<2>::zeros()).is_none());
     }
 }

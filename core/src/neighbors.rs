@@ -24,7 +24,11 @@ pub struct Periodic<const D: usize> {
 impl<const D: usize> Periodic<D> {
     /// No periodic axis.
     pub fn none() -> Self {
-        Periodic { lo: Vector::<D>::zeros(), len: Vector::<D>::zeros(), axes: [false; D] }
+        Periodic {
+            lo: Vector::<D>::zeros(),
+            len: Vector::<D>::zeros(),
+            axes: [false; D],
+        }
     }
     /// True if some axis is periodic.
     pub fn any(&self) -> bool {
@@ -105,11 +109,19 @@ pub struct NeighborList<'a> {
 
 impl<'a> NeighborList<'a> {
     /// Wraps storage for `count.len()` particles; `index` must hold `count.len() * capacity`.
-    pub fn new(capacity: usize, index: &'a mut [u32], count: &'a mut [u32]) -> Result<Self, NeighborError> {
+    pub fn new(
+        capacity: usize,
+        index: &'a mut [u32],
+        count: &'a mut [u32],
+    ) -> Result<Self, NeighborError> {
         if index.len() != count.len() * capacity {
             return Err(NeighborError::BadStorage);
         }
-        Ok(NeighborList { capacity, index, count })
+        Ok(NeighborList {
+            capacity,
+            index,
+            count,
+        })
     }
     /// Number of particles.
     #[inline]
@@ -129,7 +141,11 @@ impl<'a> NeighborList<'a> {
     }
     /// Read-only view.
     pub fn view(&self) -> Neighbors<'_> {
-        Neighbors { capacity: self.capacity, index: self.index, count: self.count }
+        Neighbors {
+            capacity: self.capacity,
+            index: self.index,
+            count: self.count,
+        }
     }
 }
 
@@ -198,7 +214,11 @@ pub fn build_naive<const D: usize>(
             }
         }
         if found > cap {
-            return Err(NeighborError::Overflow { particle: i, found, capacity: cap });
+            return Err(NeighborError::Overflow {
+                particle: i,
+                found,
+                capacity: cap,
+            });
         }
         list.count[i] = c as u32;
     }
@@ -242,7 +262,14 @@ mod tests {
         assert_eq!(list.of(0), &[1]);
         assert_eq!(list.of(2), &[1, 3]);
         let err = build_naive(&x, &Periodic::none(), |_, _| 2.5, &mut list).unwrap_err();
-        assert_eq!(err, NeighborError::Overflow { particle: 1, found: 3, capacity: 2 });
+        assert_eq!(
+            err,
+            NeighborError::Overflow {
+                particle: 1,
+                found: 3,
+                capacity: 2
+            }
+        );
     }
 
     #[test]

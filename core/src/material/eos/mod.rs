@@ -1,39 +1,259 @@
-//! Equations of state (STUB: to be implemented; API fixed).
-use crate::math::Real;
+//! Equations of state `P(rho, e)` and the isentropic bulk sound speed (DESIGN §4).
+//!
+//! Units: density `rho` in kg/m³, specific internal energy `e` in J/kg, pressure `P` in Pa
+//! (positive in compression, DESIGN §2), `c²` in m²/s².
+//!
+//! Every model returns the squared isentropic bulk sound speed
+//! `c² = dP/drho|_s = dP/drho|_e + P/rho² dP/de|_rho` (from `de = P/rho² drho` along an
+//! isentrope), computed analytically; unit tests check it against a finite difference of
+//! `P` along `de = P/rho² drho`.
+//!
+//! One file per model: [`linear`], [`logarithmic`], [`mie_gruneisen`], [`hugoniot`],
+//! [`two_curve`], [`polynomial`].
+//!
+//! ## Sound-speed floor
+//! Where a model can reach `c² <= 0` (the linear EOS with `gamma != 1`, Mie–Grüneisen,
+//! two-curve Mie–Grüneisen, polynomial) the state is mechanically unstable: it lies past
+//! the spinodal in deep tension (or, for the polynomial, at compressions where a negative
+//! `k3` makes the fit meaningless), where a real solid would already have spalled. The
+//! Riemann solvers need a real, positive impedance `rho c`, so there, and only there,
+//! `c²` is floored at [`C2_FLOOR_FRACTION`] times the model's reference `c0²`. The
+//! logarithmic and Hugoniot models have `c² > 0` everywhere and are not floored.
+//!
+//! ## Compression guard
+//! The linear `Us = c0 + s up` Hugoniot, `P_H = rho0 c0² y / (1 - s y)²` with
+//! `y = 1 - rho0/rho = up/Us`, diverges at `y = 1/s` (`rho/rho0 = s/(s-1)`), and on the
+//! Hugoniot `1 - s y = c0/Us`. Models built on it (Mie–Grüneisen, Hugoniot, two-curve)
+//! evaluate their reference curves only up to the guard density [`guard_density`], where
+//! `1 - s y = `[`HUGONIOT_GUARD`] (shock speed `Us = 10 c0`, far beyond the validity of
+//! any linear `Us`–`up` fit), and continue them beyond it by their tangent lines in
+//! `rho` (value and slope continuous). Outputs stay finite for every finite positive
+//! `rho`.
+
+pub mod hugoniot;
+pub mod linear;
+pub mod logarithmic;
+pub mod mie_gruneisen;
+pub mod polynomial;
+pub mod two_curve;
+
+pub use hugoniot::Hugoniot;
+pub use linear::Linear;
+pub use logarithmic::Logarithmic;
+pub use mie_gruneisen::MieGruneisen;
+pub use polynomial::Polynomial;
+pub use two_curve::TwoCurve;
+
+use crate::math::{real, Real};
 
 /// Pressure and squared bulk sound speed at one state.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct EosState {
     /// Pressure, Pa, positive in compression.
     pub p: Real,
-    /// Squared isentropic bulk sound speed dP/drho|_s, m²/s².
+    /// Squared isentropic bulk sound speed `dP/drho|_s = dP/drho|_e + P/rho² dP/de|_rho`,
+    /// m²/s² (floored where documented in the module doc).
     pub c2: Real,
 }
 
-/// An equation of state.
+/// Lower bound of `c²` as a fraction of the model's reference `c0²` (dimensionless), used
+/// only in states where the model itself gives `c² <= 0` (module doc, "Sound-speed
+/// floor"): the floored sound speed is 1 % of `c0`.
+pub const C2_FLOOR_FRACTION: Real = 1e-4;
+
+/// Value of `1 - s y` (dimensionless; `= c0/Us` on the Hugoniot) at which the linear
+/// `Us`–`up` reference curves stop and are continued linearly in `rho` (module doc,
+/// "Compression guard").
+pub const HUGONIOT_GUARD: Real = 0.1;
+
+/// Guard density (kg/m³) of a linear `Us = c0 + s up` Hugoniot: the density where
+/// `1 - s y = HUGONIOT_GUARD`, `y = 1 - rho0/rho`, i.e. `rho0 / (1 - (1 - HUGONIOT_GUARD)/s)`.
+/// Infinite when the curve has no pole at finite density (`s <= 1 - HUGONIOT_GUARD`).
+#[inline]
+pub fn guard_density(rho0: Real, s: Real) -> Real {
+    let y_g = (1.0 - HUGONIOT_GUARD) / s;
+    if s > 0.0 && y_g < 1.0 {
+        rho0 / (1.0 - y_g)
+    } else {
+        Real::INFINITY
+    }
+}
+
+/// `max(c2, C2_FLOOR_FRACTION c_ref2)` (m²/s²), see the module doc.
+#[inline(always)]
+pub(crate) fn floor_c2(c2: Real, c_ref2: Real) -> Real {
+    real::max(c2, C2_FLOOR_FRACTION * c_ref2)
+}
+
+/// An equation of state. Each variant holds the parameters of one model.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Eos {
-    /// p = c0² (rho - rho0) + (gamma - 1) rho e
-    Linear {
-        /// reference density
-        rho0: Real,
-        /// sound speed
-        c0: Real,
-        /// gamma (1 for none)
-        gamma: Real,
-    },
+    /// `P = c0² (rho - rho0) + (gamma - 1) rho e` (seed 004).
+    Linear(Linear),
+    /// `P = B ln(rho/rho0)` (seed 004 eq 24).
+    Logarithmic(Logarithmic),
+    /// Mie–Grüneisen on a linear `Us`–`up` Hugoniot with `rho Gamma = rho0 Gamma0`
+    /// (seed 000 eq 37).
+    MieGruneisen(MieGruneisen),
+    /// The shock Hugoniot of `Us = c0 + s1 up` as a barotropic EOS ("isothermal
+    /// Mie–Grüneisen", Gamma = 0; seed 000 eq 36, corrected).
+    Hugoniot(Hugoniot),
+    /// Mie–Grüneisen with two reference curves (seed 004 eqs 6–7, corrected).
+    TwoCurve(TwoCurve),
+    /// `P = k1 z + k2 z² + k3 z³`, `z = rho/rho0 - 1` (seed 000 eq 39).
+    Polynomial(Polynomial),
 }
 
 impl Eos {
-    /// Evaluates P and c² at density `rho` and specific internal energy `e`.
+    /// Evaluates P (Pa) and c² (m²/s²) at density `rho` (kg/m³) and specific internal
+    /// energy `e` (J/kg).
+    #[inline]
     pub fn eval(&self, rho: Real, e: Real) -> EosState {
-        let _ = (rho, e);
-        todo!()
+        match self {
+            Eos::Linear(m) => m.eval(rho, e),
+            Eos::Logarithmic(m) => m.eval(rho, e),
+            Eos::MieGruneisen(m) => m.eval(rho, e),
+            Eos::Hugoniot(m) => m.eval(rho, e),
+            Eos::TwoCurve(m) => m.eval(rho, e),
+            Eos::Polynomial(m) => m.eval(rho, e),
+        }
     }
-    /// Reference density.
+
+    /// Slope `s` of the linear shock-speed relation `Us = c0 + s up` behind this EOS
+    /// (0 where the model has none); used by the two-shock Riemann solver.
+    pub fn hugoniot_slope(&self) -> Real {
+        match self {
+            Eos::MieGruneisen(m) => m.s1,
+            Eos::Hugoniot(m) => m.s1,
+            Eos::TwoCurve(m) => m.s_a,
+            Eos::Linear(_) | Eos::Logarithmic(_) | Eos::Polynomial(_) => 0.0,
+        }
+    }
+
+    /// Reference density, kg/m³.
+    #[inline]
     pub fn rho0(&self) -> Real {
         match *self {
-            Eos::Linear { rho0, .. } => rho0,
+            Eos::Linear(m) => m.rho0,
+            Eos::Logarithmic(m) => m.rho0,
+            Eos::MieGruneisen(m) => m.rho0,
+            Eos::Hugoniot(m) => m.rho0,
+            Eos::TwoCurve(m) => m.rho0,
+            Eos::Polynomial(m) => m.rho0,
         }
+    }
+}
+
+macro_rules! impl_from {
+    ($($t:ident),*) => {$(
+        impl From<$t> for Eos {
+            #[inline]
+            fn from(m: $t) -> Eos {
+                Eos::$t(m)
+            }
+        }
+    )*};
+}
+impl_from!(
+    Linear,
+    Logarithmic,
+    MieGruneisen,
+    Hugoniot,
+    TwoCurve,
+    Polynomial
+);
+
+/// Helpers shared by the models' unit tests.
+// Tolerances are for f64: the accuracy targets apply to f64 (DESIGN §1).
+#[cfg(all(test, not(feature = "f32")))]
+pub(crate) mod test_util {
+    use super::{EosState, Real};
+
+    /// `|a - b| <= tol |b|`, with a message.
+    pub fn assert_rel(a: Real, b: Real, tol: Real, what: &str) {
+        assert!(
+            (a - b).abs() <= tol * b.abs(),
+            "{what}: {a} vs {b} (rel {})",
+            (a - b) / b
+        );
+    }
+
+    /// Central finite difference of `P` along the isentrope `de = P/rho² drho` through
+    /// `(rho, e)`; the second-order drift of `e` cancels in the central difference.
+    pub fn isentrope_c2(f: impl Fn(Real, Real) -> EosState, rho: Real, e: Real) -> Real {
+        let p = f(rho, e).p;
+        let d = 1e-5 * rho;
+        let de = p / (rho * rho) * d;
+        (f(rho + d, e + de).p - f(rho - d, e - de).p) / (2.0 * d)
+    }
+
+    /// Checks `c²` against [`isentrope_c2`] to 1e-5 relative at each `(rho, e)`.
+    pub fn check_c2(f: impl Fn(Real, Real) -> EosState + Copy, states: &[(Real, Real)]) {
+        for &(rho, e) in states {
+            let c2 = f(rho, e).c2;
+            assert!(c2 > 0.0, "c2 = {c2} at rho {rho}, e {e}");
+            assert_rel(isentrope_c2(f, rho, e), c2, 1e-5, "isentropic c2");
+        }
+    }
+
+    /// `P` finite and `c² > 0` finite for `rho` from 1e-3 rho0 to 1e3 rho0 (covering
+    /// [0.5, 2.5] rho0 finely) and a range of energies.
+    pub fn check_finite(f: impl Fn(Real, Real) -> EosState, rho0: Real, e_scale: Real) {
+        let mut etas = [0.0; 212];
+        for (i, x) in etas.iter_mut().take(201).enumerate() {
+            *x = 0.5 + 2.0 * i as Real / 200.0;
+        }
+        let extra = [
+            1e-3, 0.01, 0.1, 0.3, 3.0, 5.0, 6.0, 10.0, 100.0, 1e3, 0.999_999,
+        ];
+        etas[201..].copy_from_slice(&extra);
+        for eta in etas {
+            for e in [0.0, 0.1 * e_scale, e_scale, -0.1 * e_scale] {
+                let s = f(eta * rho0, e);
+                assert!(s.p.is_finite(), "P = {} at eta {eta}, e {e}", s.p);
+                assert!(
+                    s.c2.is_finite() && s.c2 > 0.0,
+                    "c2 = {} at eta {eta}, e {e}",
+                    s.c2
+                );
+            }
+        }
+    }
+}
+
+// Tolerances are for f64: the accuracy targets apply to f64 (DESIGN §1).
+#[cfg(all(test, not(feature = "f32")))]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn enum_dispatch_and_rho0() {
+        let lin = Linear {
+            rho0: 8960.0,
+            c0: 4148.0,
+            gamma: 1.0,
+        };
+        let eos: Eos = lin.into();
+        assert_eq!(eos.rho0(), 8960.0);
+        assert_eq!(eos.eval(9000.0, 5.0), lin.eval(9000.0, 5.0));
+        let pol = Eos::Polynomial(Polynomial {
+            rho0: 3215.0,
+            k1: 2.2e11,
+            k2: 3.61e11,
+            k3: 0.0,
+        });
+        assert_eq!(pol.rho0(), 3215.0);
+        assert_eq!(pol.eval(3215.0, 0.0).p, 0.0);
+    }
+
+    #[test]
+    fn guard_density_matches_shock_speed_of_ten_c0() {
+        // on the Hugoniot 1 - s y = c0/Us; Us = 10 c0 -> up = 9 c0 / s
+        let (rho0, c0, s) = (6100.0, 5077.0, 1.201);
+        let up = 9.0 * c0 / s;
+        let us = c0 + s * up;
+        let rho_shock = rho0 * us / (us - up);
+        test_util::assert_rel(guard_density(rho0, s), rho_shock, 1e-12, "guard");
+        assert_eq!(guard_density(rho0, 0.5), Real::INFINITY);
     }
 }

@@ -1,5 +1,19 @@
-//! Strength models (STUB: to be implemented; API fixed).
+//! Strength models: the plastic correction of the trial deviator.
+//!
+//! Conventions (DESIGN §2): Cauchy stress `sigma = S - P I`, tension positive; the deviator
+//! `S` is always the full symmetric 3x3 tensor ([`Sym3`]), also in 1D (uniaxial strain) and
+//! 2D (plane strain), because the out-of-plane components enter the von Mises invariant
+//! `sigma_vm = sqrt(3/2 S:S)`. A return mapping takes the elastic trial deviator of one time
+//! step and brings it back onto the yield surface, reporting the plastic strain and the
+//! plastic work of that step ([`ReturnMap`]).
+//!
+//! * [`von_mises`]: radial return for elastic–perfectly plastic (and, with the current flow
+//!   stress as `yield_stress`, Johnson–Cook) von Mises plasticity.
 use crate::math::{Real, Sym3};
+
+pub mod von_mises;
+
+pub use von_mises::radial_return;
 
 /// Result of the plastic return mapping.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -12,8 +26,14 @@ pub struct ReturnMap {
     pub plastic_work: Real,
 }
 
-/// Von Mises radial return of a trial deviator onto the yield surface `sigma_vm = yield_stress`.
-pub fn radial_return(s_trial: Sym3, yield_stress: Real, shear_modulus: Real) -> ReturnMap {
-    let _ = (s_trial, yield_stress, shear_modulus);
-    todo!()
+impl ReturnMap {
+    /// The unchanged (elastic) result: deviator `s`, no plastic strain, no plastic work.
+    #[inline]
+    pub const fn elastic(s: Sym3) -> Self {
+        ReturnMap {
+            s,
+            d_eps_p: 0.0,
+            plastic_work: 0.0,
+        }
+    }
 }

@@ -1,0 +1,155 @@
+//! `av`: standard SPH with Monaghan artificial viscosity (seed 000 §4; Monaghan & Gingold
+//! 1983), integrated with the leap-frog (kick–drift–kick with a predictor for the rates).
+//!
+//! Rates of particle i (`sigma = S - P I`, `grad_i W_ij = (x_i - x_j)/r dW/dr`):
+//!
+//! ```text
+//! dv_i/dt   = sum_j m_j [ (sigma_i + sigma_j)/(rho_i rho_j) - Pi_ij I ] . grad_i W_ij
+//! de_i/dt   = 1/2 sum_j m_j (v_j - v_i) . [ (sigma_i + sigma_j)/(rho_i rho_j) - Pi_ij I ] . grad_i W_ij
+//! drho_i/dt = rho_i sum_j m_j/rho_j (v_i - v_j) . grad_i W_ij               (seed 000 eq 12)
+//! Pi_ij     = (-alpha c_ij mu_ij + beta mu_ij²)/rho_ij  if (v_i - v_j).(x_i - x_j) < 0, else 0
+//! mu_ij     = h_ij (v_i - v_j).(x_i - x_j) / (r² + 0.01 h_ij²)
+//! ```
+//!
+//! The pair force is antisymmetric, so momentum is conserved to round-off; the energy
+//! rate is the exact counterpart of the force, so total energy is conserved up to the
+//! time-integration error (leap-frog, second order).
+
+use super::common::{cauchy, deviator_rate, for_each_pair, outer, refresh_eos, return_map};
+use super::SchemeFamily;
+use crate::effects::{EffectSet, Effects};
+use crate::exec::Executor;
+use crate::math::{Matrix, Real, Sym3, Vector};
+use crate::state::{AvRates, Family, StepError, StepParams, System, Workspace};
+
+/// The artificial-viscosity family.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Av;
+
+/// Evaluates the rates of every particle at the current state into `rates`.
+fn rates<const D: usize, E: Effects, X: Executor>(
+    sys: &System<'_, D>,
+    rates: &mut [AvRates<D>],
+    params: &StepParams<'_, D>,
+    exec: &X,
+) {
+    let alpha = params.options.av_alpha;
+    let beta = params.options.av_beta;
+    exec.run(rates, |off, chunk: &mut [AvRates<D>]| {
+        for (k, out) in chunk.iter_mut().enumerate() {
+            let i = off + k;
+            let sig_i = cauchy::<D, E>(sys, i);
+            let (vi, rhoi) = (sys.v[i], sys.rho[i]);
+            let mut acc = Vector::<D>::zeros();
+            let mut de: Real = 0.0;
+            let mut div: Real = 0.0;
+            let mut grad_v = Matrix::<D>::zeros();
+            for_each_pair::<D, E>(sys.x, sys.h, params, i, |pr| {
+                let j = pr.j;
+                let rhoj = sys.rho[j];
+                let vij = vi - sys.v[j];
+                // (v_i - v_j).(x_i - x_j) = -r (v_ij . n)
+                let vr = -pr.r * vij.dot(&pr.n);
+                let mut pi_ij = 0.0;
+                if vr < 0.0 {
+                    let hij = 0.5 * (sys.h[i] + sys.h[j]);
+                    let mu = hij * vr / (pr.r * pr.r + 0.01 * hij * hij);
+                    let cij = 0.5 * (sys.cl[i] + sys.cl[j]);
+                    pi_ij = (-alpha * cij * mu + beta * mu * mu) / (0.5 * (rhoi + rhoj));
+                }
+                let sig = sig_i + cauchy::<D, E>(sys, j);
+                let t = sig.dot_vec(&pr.grad) / (rhoi * rhoj) - pr.grad * pi_ij;
+                let mj = sys.m[j];
+                acc += t * mj;
+                de -= 0.5 * mj * vij.dot(&t);
+                let vol_j = mj / rhoj;
+                div -= vol_j * vij.dot(&pr.grad);
+                if E::STRENGTH {
+                    grad_v -= outer(&vij, &pr.grad) * vol_j;
+                }
+            });
+            out.acc = acc;
+            out.de = de;
+            out.drho = -rhoi * div;
+            out.ds = if E::STRENGTH {
+                deviator_rate(&sys.s[i], &params.materials[sys.mat[i] as usize], &grad_v)
+            } else {
+                Sym3::ZERO
+            };
+        }
+    });
+}
+
+impl SchemeFamily for Av {
+    const FAMILY: Family = Family::Av;
+    const SUPPORTED: EffectSet = EffectSet::STRENGTH
+        .union(EffectSet::PLASTICITY)
+        .union(EffectSet::DAMAGE)
+        .union(EffectSet::HEAT)
+        .union(EffectSet::PERIODIC);
+
+    fn step<const D: usize, E: Effects, X: Executor>(
+        sys: &mut System<'_, D>,
+        ws: &mut Workspace<'_, D>,
+        params: &StepParams<'_, D>,
+        exec: &X,
+    ) -> Result<(), StepError> {
+        let dt = params.dt;
+        let hdt = 0.5 * dt;
+        if ws.av.len() != sys.len() {
+            return Err(StepError::Storage { field: "av" });
+        }
+        if !ws.primed {
+            rates::<D, E, X>(sys, ws.av, params, exec);
+            ws.primed = true;
+        }
+        // Kick, drift, and predict the state at the end of the step.
+        exec.run(
+            (sys.reborrow(), &mut ws.av[..]),
+            |_, (mut s, av): (System<'_, D>, &mut [AvRates<D>])| {
+                for k in 0..s.len() {
+                    let mat = &params.materials[s.mat[k] as usize];
+                    let a = &mut av[k];
+                    a.v_half = s.v[k] + a.acc * hdt;
+                    a.e_half = s.e[k] + a.de * hdt;
+                    a.rho_half = s.rho[k] + a.drho * hdt;
+                    s.x[k] += a.v_half * dt;
+                    s.v[k] = a.v_half + a.acc * hdt;
+                    s.e[k] = a.e_half + a.de * hdt;
+                    s.rho[k] = a.rho_half + a.drho * hdt;
+                    if E::STRENGTH {
+                        a.s_half = s.s[k] + a.ds * hdt;
+                        s.s[k] = return_map::<E>(a.s_half + a.ds * hdt, mat).0;
+                    }
+                    if E::PERIODIC {
+                        s.x[k] = params.periodic.wrap(s.x[k]);
+                    }
+                    refresh_eos(&mut s, k, mat, params.h_factor);
+                }
+            },
+        );
+        rates::<D, E, X>(sys, ws.av, params, exec);
+        // Second kick with the rates of the predicted state.
+        exec.run(
+            (sys.reborrow(), &ws.av[..]),
+            |_, (mut s, av): (System<'_, D>, &[AvRates<D>])| {
+                for k in 0..s.len() {
+                    let mat = &params.materials[s.mat[k] as usize];
+                    let a = &av[k];
+                    s.v[k] = a.v_half + a.acc * hdt;
+                    s.e[k] = a.e_half + a.de * hdt;
+                    s.rho[k] = a.rho_half + a.drho * hdt;
+                    if E::STRENGTH {
+                        let (snew, deps) = return_map::<E>(a.s_half + a.ds * hdt, mat);
+                        s.s[k] = snew;
+                        if E::PLASTICITY {
+                            s.eps_p[k] += deps;
+                        }
+                    }
+                    refresh_eos(&mut s, k, mat, params.h_factor);
+                }
+            },
+        );
+        Ok(())
+    }
+}

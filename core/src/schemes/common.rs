@@ -1,0 +1,192 @@
+//! Pieces shared by every scheme: the pair loop, the SPH gradient, the constitutive
+//! update (Hooke + Jaumann + plastic return) and the equation-of-state refresh.
+
+use crate::effects::Effects;
+use crate::material::{strength, Material, Strength};
+use crate::math::{real, Matrix, Real, Sym3, Vector};
+use crate::state::{smoothing_length, StepParams, System};
+
+/// One interacting pair (i, j) as seen from particle i.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Pair<const D: usize> {
+    /// Neighbour index.
+    pub j: usize,
+    /// Distance, m.
+    pub r: Real,
+    /// Unit vector from i to j (the Riemann axis; seed 004's e_R).
+    pub n: Vector<D>,
+    /// dW/dr at (r, h_ij), <= 0.
+    pub dw: Real,
+    /// `grad_i W_ij = (x_i - x_j)/r dW/dr = -n dW/dr`.
+    pub grad: Vector<D>,
+}
+
+/// Calls `f` for every neighbour of `i` inside the kernel support of `h_ij = (h_i+h_j)/2`.
+/// Positions are taken from `x` (minimum image on periodic axes when `E::PERIODIC`).
+#[inline(always)]
+pub(crate) fn for_each_pair<const D: usize, E: Effects>(
+    x: &[Vector<D>],
+    h: &[Real],
+    params: &StepParams<'_, D>,
+    i: usize,
+    mut f: impl FnMut(&Pair<D>),
+) {
+    let xi = x[i];
+    let hi = h[i];
+    let support = params.kernel.support();
+    for &j in params.nbrs.of(i) {
+        let j = j as usize;
+        let mut rij = xi - x[j];
+        if E::PERIODIC {
+            rij = params.periodic.min_image(rij);
+        }
+        let r2 = rij.norm_squared();
+        let hij = 0.5 * (hi + h[j]);
+        let rmax = support * hij;
+        if r2 >= rmax * rmax || r2 <= 0.0 {
+            continue;
+        }
+        let r = real::sqrt(r2);
+        let dw = params.kernel.dw::<D>(r, hij);
+        let e = rij / r;
+        f(&Pair {
+            j,
+            r,
+            n: -e,
+            dw,
+            grad: e * dw,
+        });
+    }
+}
+
+/// `a ⊗ b` as a `D x D` matrix (`(a ⊗ b)_kl = a_k b_l`).
+#[inline(always)]
+pub(crate) fn outer<const D: usize>(a: &Vector<D>, b: &Vector<D>) -> Matrix<D> {
+    a * b.transpose()
+}
+
+/// Advances the deviator over `dt` with the velocity gradient `grad_v` (`dv_a/dx_b`):
+/// hypoelastic Hooke's law on the full 3x3 deviator plus the Jaumann spin terms, then the
+/// plastic return. Returns the equivalent plastic strain increment (not yet added).
+#[inline(always)]
+pub(crate) fn advance_deviator<const D: usize, E: Effects>(
+    s: &Sym3,
+    mat: &Material,
+    grad_v: &Matrix<D>,
+    dt: Real,
+) -> (Sym3, Real) {
+    let g = mat.shear_modulus;
+    let d = Sym3::sym_of(grad_v);
+    let rate = d.deviator() * (2.0 * g) + s.jaumann(grad_v);
+    let trial = *s + rate * dt;
+    if E::PLASTICITY {
+        if let Strength::VonMises { yield_stress } = mat.strength {
+            let r = strength::radial_return(trial, yield_stress, g);
+            return (r.s, r.d_eps_p);
+        }
+    }
+    (trial, 0.0)
+}
+
+/// Plastic return of a deviator that was advanced by other means (leap-frog).
+#[inline(always)]
+pub(crate) fn return_map<E: Effects>(s: Sym3, mat: &Material) -> (Sym3, Real) {
+    if E::PLASTICITY {
+        if let Strength::VonMises { yield_stress } = mat.strength {
+            let r = strength::radial_return(s, yield_stress, mat.shear_modulus);
+            return (r.s, r.d_eps_p);
+        }
+    }
+    (s, 0.0)
+}
+
+/// The deviator rate `2G dev(sym L) + W.S - S.W`.
+#[inline(always)]
+pub(crate) fn deviator_rate<const D: usize>(s: &Sym3, mat: &Material, grad_v: &Matrix<D>) -> Sym3 {
+    Sym3::sym_of(grad_v).deviator() * (2.0 * mat.shear_modulus) + s.jaumann(grad_v)
+}
+
+/// Refreshes pressure, sound speeds and smoothing length of local particle `k` of a chunk.
+#[inline(always)]
+pub(crate) fn refresh_eos<const D: usize>(
+    sys: &mut System<'_, D>,
+    k: usize,
+    mat: &Material,
+    h_factor: Real,
+) {
+    let st = mat.eos(sys.rho[k], sys.e[k]);
+    let c2 = real::max(st.c2, 0.0);
+    sys.p[k] = st.p;
+    sys.c[k] = real::sqrt(c2);
+    sys.cl[k] = mat.c_long(sys.rho[k], c2);
+    sys.h[k] = smoothing_length::<D>(h_factor, sys.m[k], sys.rho[k]);
+}
+
+/// The Cauchy stress `S - P I` of particle `i` (just `-P I` without strength).
+#[inline(always)]
+pub(crate) fn cauchy<const D: usize, E: Effects>(sys: &System<'_, D>, i: usize) -> Sym3 {
+    if E::STRENGTH {
+        sys.s[i] - Sym3::isotropic(sys.p[i])
+    } else {
+        Sym3::isotropic(-sys.p[i])
+    }
+}
+
+/// Smallest eigenvalue of the symmetric part of a `D x D` matrix (closed forms).
+pub(crate) fn min_sym_eigenvalue<const D: usize>(m: &Matrix<D>) -> Real {
+    let a = |i: usize, j: usize| 0.5 * (m[(i, j)] + m[(j, i)]);
+    match D {
+        1 => a(0, 0),
+        2 => {
+            let (p, q, r) = (a(0, 0), a(1, 1), a(0, 1));
+            let mean = 0.5 * (p + q);
+            let rad = real::sqrt(0.25 * (p - q) * (p - q) + r * r);
+            mean - rad
+        }
+        _ => {
+            // Symmetric 3x3: trigonometric closed form (Smith 1961).
+            let p1 = a(0, 1) * a(0, 1) + a(0, 2) * a(0, 2) + a(1, 2) * a(1, 2);
+            let tr = a(0, 0) + a(1, 1) + a(2, 2);
+            let q = tr / 3.0;
+            if p1 <= 0.0 {
+                return real::min(a(0, 0), real::min(a(1, 1), a(2, 2)));
+            }
+            let p2 = (a(0, 0) - q) * (a(0, 0) - q)
+                + (a(1, 1) - q) * (a(1, 1) - q)
+                + (a(2, 2) - q) * (a(2, 2) - q)
+                + 2.0 * p1;
+            let p = real::sqrt(p2 / 6.0);
+            let b = |i: usize, j: usize| (a(i, j) - if i == j { q } else { 0.0 }) / p;
+            let det_b = b(0, 0) * (b(1, 1) * b(2, 2) - b(1, 2) * b(2, 1))
+                - b(0, 1) * (b(1, 0) * b(2, 2) - b(1, 2) * b(2, 0))
+                + b(0, 2) * (b(1, 0) * b(2, 1) - b(1, 1) * b(2, 0));
+            let r = real::max(-1.0, real::min(1.0, 0.5 * det_b));
+            let phi = libm_acos(r) / 3.0;
+            // eigenvalues: q + 2p cos(phi + 2 pi k/3); the smallest is k = 1
+            q + 2.0 * p * real::cos(phi + 2.0 * crate::math::PI / 3.0)
+        }
+    }
+}
+
+#[inline]
+fn libm_acos(x: Real) -> Real {
+    real::atan2(real::sqrt(real::max(0.0, 1.0 - x * x)), x)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn smallest_eigenvalue_closed_forms() {
+        let m2 = Matrix::<2>::new(2.0, 1.0, 1.0, 2.0);
+        assert!((min_sym_eigenvalue(&m2) - 1.0).abs() < 1e-14);
+        // diag(3, 1, 2) rotated by a permutation-like orthogonal matrix keeps eigenvalue 1
+        let m3 = Matrix::<3>::new(2.0, 1.0, 0.0, 1.0, 2.0, 0.0, 0.0, 0.0, 5.0);
+        assert!((min_sym_eigenvalue(&m3) - 1.0).abs() < 1e-12);
+        let id = Matrix::<3>::identity();
+        assert!((min_sym_eigenvalue(&id) - 1.0).abs() < 1e-14);
+        let m1 = Matrix::<1>::new(0.4);
+        assert_eq!(min_sym_eigenvalue(&m1), 0.4);
+    }
+}

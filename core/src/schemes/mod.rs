@@ -1,0 +1,108 @@
+//! The numerical schemes. Each family lives in its own module with the same shape
+//! (passes over pairs, then per-particle updates) and implements [`SchemeFamily`]; the
+//! driver and the generated dispatch table (`crate::dispatch`) know only the trait.
+//!
+//! | CLI name | family | effects added by the name | seed |
+//! | --- | --- | --- | --- |
+//! | `av`  | [`av::Av`] | – | 000 §4 |
+//! | `pm`  | [`pm::Pm`] | – | 000 §3.2 |
+//! | `tkc` | [`pm::Pm`] | correction + MUSCL (minmod) | 004 §1–2 |
+//! | `ts1` | [`ts::Ts`] | – | 000 §3.3–3.4 |
+//! | `ts2` | [`ts::Ts`] | MUSCL (limiter selectable) | 000 §3.3.1 |
+
+pub mod av;
+pub(crate) mod common;
+pub mod pm;
+pub mod ts;
+
+use crate::effects::{EffectSet, Effects};
+use crate::exec::Executor;
+use crate::state::{Family, StepError, StepParams, System, Workspace};
+
+/// One scheme family: advances the particles by one step of `params.dt`.
+pub trait SchemeFamily {
+    /// The family.
+    const FAMILY: Family;
+    /// The effects this family can run with (others are rejected before stepping).
+    const SUPPORTED: EffectSet;
+    /// Advances `sys` by one time step.
+    fn step<const D: usize, E: Effects, X: Executor>(
+        sys: &mut System<'_, D>,
+        ws: &mut Workspace<'_, D>,
+        params: &StepParams<'_, D>,
+        exec: &X,
+    ) -> Result<(), StepError>;
+}
+
+/// A compiled step function (one specialisation).
+pub type StepFn<const D: usize, X> =
+    fn(&mut System<'_, D>, &mut Workspace<'_, D>, &StepParams<'_, D>, &X) -> Result<(), StepError>;
+
+/// The scheme names of the CLI and scenes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Scheme {
+    /// Artificial-viscosity SPH.
+    Av,
+    /// Parshikov–Medin contact SPH (first order).
+    Pm,
+    /// Time-split Godunov SPH, first order.
+    Ts1,
+    /// Time-split Godunov SPH with MUSCL.
+    Ts2,
+    /// TKC-MUSCL-SPH: contact SPH with kernel correction and MUSCL.
+    Tkc,
+}
+
+impl Scheme {
+    /// All schemes, in the order tables list them.
+    pub const ALL: [Scheme; 5] = [
+        Scheme::Av,
+        Scheme::Pm,
+        Scheme::Ts1,
+        Scheme::Ts2,
+        Scheme::Tkc,
+    ];
+
+    /// The CLI/scene name.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Scheme::Av => "av",
+            Scheme::Pm => "pm",
+            Scheme::Ts1 => "ts1",
+            Scheme::Ts2 => "ts2",
+            Scheme::Tkc => "tkc",
+        }
+    }
+    /// Parses a CLI/scene name.
+    pub fn from_name(s: &str) -> Option<Scheme> {
+        Scheme::ALL.into_iter().find(|x| x.name() == s)
+    }
+    /// The family that implements it.
+    pub const fn family(self) -> Family {
+        match self {
+            Scheme::Av => Family::Av,
+            Scheme::Pm | Scheme::Tkc => Family::Pm,
+            Scheme::Ts1 | Scheme::Ts2 => Family::Ts,
+        }
+    }
+    /// The effects the scheme itself brings (on top of the scene's).
+    pub const fn effects(self) -> EffectSet {
+        match self {
+            Scheme::Av | Scheme::Pm | Scheme::Ts1 => EffectSet::HYDRO,
+            Scheme::Ts2 => EffectSet::MUSCL,
+            Scheme::Tkc => EffectSet::CORRECTION.union(EffectSet::MUSCL),
+        }
+    }
+}
+
+/// The effects a family supports.
+pub const fn supported(family: Family) -> EffectSet {
+    match family {
+        Family::Av => av::Av::SUPPORTED,
+        Family::Pm => pm::Pm::SUPPORTED,
+        Family::Ts => ts::Ts::SUPPORTED,
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,320 @@
+//! The contact (Parshikov–Medin) family: `pm` (first order) and `tkc` (TKC-MUSCL-SPH: with
+//! kernel gradient correction and minmod MUSCL). Seed 000 §3.2, seed 004 §1–2.
+//!
+//! For each pair the full elastic Riemann problem is solved along the axis `n` from i to j
+//! (longitudinal wave with `Z = rho c_l`, transverse waves with `Z = rho c_t`), giving the
+//! contact velocity `V*` and traction `T*` ([`crate::riemann::acoustic_star_vector`]).
+//! With `W' = dW/dr`:
+//!
+//! ```text
+//! dv_i/dt = -2 sum_j m_j T*_ij W'_ij / (rho_i rho_j)                        (004 eq 10)
+//! de_i/dt = -2 sum_j m_j T*_ij . (V*_ij - v_i) W'_ij / (rho_i rho_j)        (004 eq 11 minus kinetic part)
+//! div v_i =  2 sum_j m_j/rho_j (V*_ij - v_i) . (L_i^-1 grad_i W_ij)         (004 eq 9, 19)
+//! L_ab    =  2 sum_j m_j/rho_j (V*_ij - v_i)_a (L_i^-1 grad_i W_ij)_b        (004 eq 20)
+//! rho    <-  rho exp(-dt div v)                                             (004 eq 16)
+//! ```
+//!
+//! `T*` is antisymmetric and `V*` symmetric under i <-> j, so momentum is conserved to
+//! round-off and the energy fluxes cancel pairwise; time integration is explicit Euler
+//! (seed 004), so total energy drifts at first order in dt.
+//!
+//! With correction, the traction of each side is `sigma . (L_i^-1 + L_j^-1)/2 . n`
+//! (symmetric in i, j, so momentum stays conserved). With MUSCL, every reconstructed
+//! quantity Phi (stress components, rho, c_l, c_t, velocity) is extrapolated to the
+//! contact with `Phi_l = Phi_i + minmod(Phi_j - Phi_i, grad Phi_i . r_ji)/2` and
+//! `Phi_r = Phi_j - minmod(grad Phi_j . r_ji, Phi_j - Phi_i)/2` (004 eqs 13–15).
+
+use super::common::{
+    advance_deviator, cauchy, for_each_pair, min_sym_eigenvalue, outer, refresh_eos,
+};
+use super::SchemeFamily;
+use crate::effects::{EffectSet, Effects};
+use crate::exec::Executor;
+use crate::limiter::minmod;
+use crate::math::{det, inverse, Matrix, Real, Sym3, Vector};
+use crate::riemann::acoustic_star_vector;
+use crate::state::{
+    Correction, Family, Gradients, PairSums, StepError, StepParams, System, Workspace,
+};
+
+/// The contact family (`pm`, `tkc`).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Pm;
+
+/// Reconstructed contact values of one side.
+#[inline(always)]
+fn muscl_pair(phi_i: Real, phi_j: Real, gi_rji: Real, gj_rji: Real) -> (Real, Real) {
+    let d = phi_j - phi_i;
+    (
+        phi_i + 0.5 * minmod(d, gi_rji),
+        phi_j - 0.5 * minmod(gj_rji, d),
+    )
+}
+
+/// Kernel correction: L_i, its inverse and the free-surface flags.
+pub(crate) fn correction_pass<const D: usize, E: Effects, X: Executor>(
+    sys: &System<'_, D>,
+    corr: &mut [Correction<D>],
+    sums: &mut [PairSums<D>],
+    params: &StepParams<'_, D>,
+    exec: &X,
+) {
+    let lam = params.options.surface_lambda;
+    let eps = params.options.det_epsilon;
+    exec.run(&mut *corr, |off, chunk: &mut [Correction<D>]| {
+        for (k, out) in chunk.iter_mut().enumerate() {
+            let i = off + k;
+            let mut l = Matrix::<D>::zeros();
+            for_each_pair::<D, E>(sys.x, sys.h, params, i, |pr| {
+                let vol = sys.m[pr.j] / sys.rho[pr.j];
+                // L = sum V_j grad_i W_ij ⊗ (x_j - x_i), with x_j - x_i = r n
+                l += outer(&pr.grad, &(pr.n * pr.r)) * vol;
+            });
+            let lam_min = min_sym_eigenvalue(&l);
+            out.lambda_min = lam_min;
+            out.boundary = if lam_min < lam { 2 } else { 0 };
+            out.l_inv = match inverse(&l) {
+                Some(inv) if det(&l) >= eps => inv,
+                _ => Matrix::<D>::identity(),
+            };
+        }
+    });
+    // Particles with a boundary particle within their smoothing length use L = I
+    // (flag staged in `sums.div`, which the pair pass overwrites later).
+    let c: &[Correction<D>] = corr;
+    exec.run(&mut *sums, |off, chunk: &mut [PairSums<D>]| {
+        for (k, out) in chunk.iter_mut().enumerate() {
+            let i = off + k;
+            let mut near = c[i].boundary == 2;
+            let hi = sys.h[i];
+            for_each_pair::<D, E>(sys.x, sys.h, params, i, |pr| {
+                if c[pr.j].boundary == 2 && pr.r < hi {
+                    near = true;
+                }
+            });
+            out.div = if near { 1.0 } else { 0.0 };
+        }
+    });
+    let s: &[PairSums<D>] = sums;
+    exec.run(corr, |off, chunk: &mut [Correction<D>]| {
+        for (k, out) in chunk.iter_mut().enumerate() {
+            if s[off + k].div > 0.0 {
+                if out.boundary == 0 {
+                    out.boundary = 1;
+                }
+                out.l_inv = Matrix::<D>::identity();
+            }
+        }
+    });
+}
+
+/// Gradients of the reconstructed quantities (corrected when `E::CORRECTION`).
+fn gradient_pass<const D: usize, E: Effects, X: Executor>(
+    sys: &System<'_, D>,
+    corr: &[Correction<D>],
+    grad: &mut [Gradients<D>],
+    grad_stress: &mut [[Vector<D>; 6]],
+    params: &StepParams<'_, D>,
+    exec: &X,
+) {
+    exec.run(
+        (grad, grad_stress),
+        |off, (g, gs): (&mut [Gradients<D>], &mut [[Vector<D>; 6]])| {
+            for (k, out) in g.iter_mut().enumerate() {
+                let i = off + k;
+                let mut acc = Gradients::<D>::default();
+                let mut acc_s = [Vector::<D>::zeros(); 6];
+                let si = cauchy::<D, E>(sys, i).to_array();
+                let cti = crate::math::real::sqrt(
+                    params.materials[sys.mat[i] as usize].shear_modulus / sys.rho[i],
+                );
+                for_each_pair::<D, E>(sys.x, sys.h, params, i, |pr| {
+                    let j = pr.j;
+                    let vol = sys.m[j] / sys.rho[j];
+                    let gw = if E::CORRECTION {
+                        corr[i].l_inv * pr.grad
+                    } else {
+                        pr.grad
+                    } * vol;
+                    acc.rho += gw * (sys.rho[j] - sys.rho[i]);
+                    acc.p += gw * (sys.p[j] - sys.p[i]);
+                    acc.cl += gw * (sys.cl[j] - sys.cl[i]);
+                    let ctj = crate::math::real::sqrt(
+                        params.materials[sys.mat[j] as usize].shear_modulus / sys.rho[j],
+                    );
+                    acc.ct += gw * (ctj - cti);
+                    acc.v += outer(&(sys.v[j] - sys.v[i]), &gw);
+                    if E::STRENGTH {
+                        let sj = cauchy::<D, E>(sys, j).to_array();
+                        for c in 0..6 {
+                            acc_s[c] += gw * (sj[c] - si[c]);
+                        }
+                    }
+                });
+                *out = acc;
+                if E::STRENGTH {
+                    gs[k] = acc_s;
+                }
+            }
+        },
+    );
+}
+
+impl SchemeFamily for Pm {
+    const FAMILY: Family = Family::Pm;
+    const SUPPORTED: EffectSet = EffectSet::STRENGTH
+        .union(EffectSet::PLASTICITY)
+        .union(EffectSet::DAMAGE)
+        .union(EffectSet::HEAT)
+        .union(EffectSet::PERIODIC)
+        .union(EffectSet::CORRECTION)
+        .union(EffectSet::MUSCL);
+
+    fn step<const D: usize, E: Effects, X: Executor>(
+        sys: &mut System<'_, D>,
+        ws: &mut Workspace<'_, D>,
+        params: &StepParams<'_, D>,
+        exec: &X,
+    ) -> Result<(), StepError> {
+        let n = sys.len();
+        if ws.sums.len() != n
+            || (E::CORRECTION && ws.corr.len() != n)
+            || (E::MUSCL && ws.grad.len() != n)
+            || (E::MUSCL && E::STRENGTH && ws.grad_stress.len() != n)
+        {
+            return Err(StepError::Storage { field: "workspace" });
+        }
+        let dt = params.dt;
+        {
+            let sysr: &System<'_, D> = sys;
+            if E::CORRECTION {
+                correction_pass::<D, E, X>(sysr, ws.corr, ws.sums, params, exec);
+            }
+            if E::MUSCL {
+                gradient_pass::<D, E, X>(sysr, ws.corr, ws.grad, ws.grad_stress, params, exec);
+            }
+            let corr: &[Correction<D>] = ws.corr;
+            let grad: &[Gradients<D>] = ws.grad;
+            let grad_s: &[[Vector<D>; 6]] = ws.grad_stress;
+            exec.run(&mut *ws.sums, |off, chunk: &mut [PairSums<D>]| {
+                for (k, out) in chunk.iter_mut().enumerate() {
+                    let i = off + k;
+                    *out = pair_sums::<D, E>(sysr, corr, grad, grad_s, params, i);
+                }
+            });
+        }
+        exec.run(
+            (sys.reborrow(), &ws.sums[..]),
+            |_, (mut s, sums): (System<'_, D>, &[PairSums<D>])| {
+                for k in 0..s.len() {
+                    let mat = &params.materials[s.mat[k] as usize];
+                    let ps = &sums[k];
+                    s.v[k] += ps.acc * dt;
+                    s.e[k] += ps.power * dt;
+                    s.rho[k] *= crate::math::real::exp(-dt * ps.div);
+                    if E::STRENGTH {
+                        let (snew, deps) = advance_deviator::<D, E>(&s.s[k], mat, &ps.grad_v, dt);
+                        s.s[k] = snew;
+                        if E::PLASTICITY {
+                            s.eps_p[k] += deps;
+                        }
+                    }
+                    s.x[k] += s.v[k] * dt;
+                    if E::PERIODIC {
+                        s.x[k] = params.periodic.wrap(s.x[k]);
+                    }
+                    refresh_eos(&mut s, k, mat, params.h_factor);
+                }
+            },
+        );
+        Ok(())
+    }
+}
+
+/// The pair sums of particle i.
+#[inline(always)]
+fn pair_sums<const D: usize, E: Effects>(
+    sys: &System<'_, D>,
+    corr: &[Correction<D>],
+    grad: &[Gradients<D>],
+    grad_s: &[[Vector<D>; 6]],
+    params: &StepParams<'_, D>,
+    i: usize,
+) -> PairSums<D> {
+    let mats = params.materials;
+    let vi = sys.v[i];
+    let rhoi = sys.rho[i];
+    let sig_i = cauchy::<D, E>(sys, i);
+    let gi_mat = mats[sys.mat[i] as usize].shear_modulus;
+    let ct_i = crate::math::real::sqrt(gi_mat / rhoi);
+    let mut out = PairSums::<D>::default();
+    for_each_pair::<D, E>(sys.x, sys.h, params, i, |pr| {
+        let j = pr.j;
+        let rhoj = sys.rho[j];
+        let ct_j = crate::math::real::sqrt(mats[sys.mat[j] as usize].shear_modulus / rhoj);
+        let sig_j = cauchy::<D, E>(sys, j);
+        let (mut rho_l, mut rho_r) = (rhoi, rhoj);
+        let (mut cl_l, mut cl_r) = (sys.cl[i], sys.cl[j]);
+        let (mut ct_l, mut ct_r) = (ct_i, ct_j);
+        let (mut v_l, mut v_r) = (vi, sys.v[j]);
+        let (mut s_l, mut s_r) = (sig_i, sig_j);
+        if E::MUSCL {
+            let rji = pr.n * pr.r;
+            let (gi, gj) = (&grad[i], &grad[j]);
+            (rho_l, rho_r) = muscl_pair(rhoi, rhoj, gi.rho.dot(&rji), gj.rho.dot(&rji));
+            (cl_l, cl_r) = muscl_pair(cl_l, cl_r, gi.cl.dot(&rji), gj.cl.dot(&rji));
+            (ct_l, ct_r) = muscl_pair(ct_l, ct_r, gi.ct.dot(&rji), gj.ct.dot(&rji));
+            let dvi = gi.v * rji;
+            let dvj = gj.v * rji;
+            for a in 0..D {
+                (v_l[a], v_r[a]) = muscl_pair(vi[a], sys.v[j][a], dvi[a], dvj[a]);
+            }
+            if E::STRENGTH {
+                let (si, sj) = (sig_i.to_array(), sig_j.to_array());
+                let (mut al, mut ar) = ([0.0; 6], [0.0; 6]);
+                for c in 0..6 {
+                    (al[c], ar[c]) =
+                        muscl_pair(si[c], sj[c], grad_s[i][c].dot(&rji), grad_s[j][c].dot(&rji));
+                }
+                (s_l, s_r) = (Sym3::from_array(al), Sym3::from_array(ar));
+            } else {
+                let (pl, pr_) = muscl_pair(sys.p[i], sys.p[j], gi.p.dot(&rji), gj.p.dot(&rji));
+                (s_l, s_r) = (Sym3::isotropic(-pl), Sym3::isotropic(-pr_));
+            }
+        }
+        let axis = if E::CORRECTION {
+            (corr[i].l_inv + corr[j].l_inv) * pr.n * 0.5
+        } else {
+            pr.n
+        };
+        let t_l = s_l.dot_vec(&axis);
+        let t_r = s_r.dot_vec(&axis);
+        let (vs, ts) = acoustic_star_vector(
+            &pr.n,
+            &v_l,
+            &t_l,
+            rho_l * cl_l,
+            rho_l * ct_l,
+            &v_r,
+            &t_r,
+            rho_r * cl_r,
+            rho_r * ct_r,
+        );
+        let mj = sys.m[j];
+        let f = -2.0 * mj * pr.dw / (rhoi * rhoj);
+        out.acc += ts * f;
+        let dv = vs - vi;
+        out.power += f * ts.dot(&dv);
+        let gw = if E::CORRECTION {
+            corr[i].l_inv * pr.grad
+        } else {
+            pr.grad
+        };
+        let w = 2.0 * mj / rhoj;
+        out.div += w * dv.dot(&gw);
+        if E::STRENGTH {
+            out.grad_v += outer(&dv, &gw) * w;
+        }
+    });
+    out
+}

@@ -1,0 +1,527 @@
+//! Particle state as structure-of-arrays over caller-provided slices, the per-step
+//! workspace, step parameters and errors.
+//!
+//! Optional fields (deviator, plastic strain, damage, temperature, and every workspace
+//! array an effect needs) are empty slices when their effect is absent: a hydro-only run
+//! allocates no storage for strength, damage, heat, gradients or kernel correction.
+//! [`Layout`] tells the caller which arrays a given scheme family and effect set needs.
+
+use crate::effects::EffectSet;
+use crate::exec::{split_opt, Split};
+use crate::kernel::Kernel;
+use crate::limiter::Limiter;
+use crate::material::Material;
+use crate::math::{real, Matrix, Real, Sym3, Vector};
+use crate::neighbors::{Neighbors, Periodic};
+
+/// The particles of a run (structure of arrays). All slices have the same length `n`,
+/// except optional fields, which are empty when their effect is absent.
+#[derive(Debug)]
+pub struct System<'a, const D: usize> {
+    /// Positions, m.
+    pub x: &'a mut [Vector<D>],
+    /// Velocities, m/s.
+    pub v: &'a mut [Vector<D>],
+    /// Masses, kg (per unit area in 2D, per unit cross-section in 1D).
+    pub m: &'a [Real],
+    /// Material index into [`StepParams::materials`].
+    pub mat: &'a [u16],
+    /// Density, kg/m³.
+    pub rho: &'a mut [Real],
+    /// Specific internal energy, J/kg.
+    pub e: &'a mut [Real],
+    /// Pressure, Pa (kept consistent with rho, e by the EOS).
+    pub p: &'a mut [Real],
+    /// Bulk sound speed, m/s (from the EOS).
+    pub c: &'a mut [Real],
+    /// Longitudinal sound speed `sqrt(c² + 4G/(3 rho))`, m/s.
+    pub cl: &'a mut [Real],
+    /// Smoothing length, m: `h = h_factor (m/rho)^(1/D)`.
+    pub h: &'a mut [Real],
+    /// Stress deviator S (full 3x3), Pa. Empty without `strength`.
+    pub s: &'a mut [Sym3],
+    /// Equivalent plastic strain. Empty without `plasticity`.
+    pub eps_p: &'a mut [Real],
+    /// Damage in [0, 1]. Empty without `damage`.
+    pub damage: &'a mut [Real],
+    /// Temperature, K. Empty without `heat`.
+    pub temp: &'a mut [Real],
+}
+
+impl<'a, const D: usize> System<'a, D> {
+    /// Number of particles.
+    #[inline]
+    pub fn len(&self) -> usize {
+        self.x.len()
+    }
+    /// True if there are no particles.
+    #[inline]
+    pub fn is_empty(&self) -> bool {
+        self.x.is_empty()
+    }
+    /// Reborrows with a shorter lifetime (to split or hand to an executor).
+    pub fn reborrow(&mut self) -> System<'_, D> {
+        System {
+            x: self.x,
+            v: self.v,
+            m: self.m,
+            mat: self.mat,
+            rho: self.rho,
+            e: self.e,
+            p: self.p,
+            c: self.c,
+            cl: self.cl,
+            h: self.h,
+            s: self.s,
+            eps_p: self.eps_p,
+            damage: self.damage,
+            temp: self.temp,
+        }
+    }
+    /// Checks that every slice has the length its effect set requires.
+    pub fn check_storage(&self, effects: EffectSet) -> Result<(), StepError> {
+        let n = self.len();
+        let need = |len: usize, on: bool, field: &'static str| {
+            if len == if on { n } else { 0 } {
+                Ok(())
+            } else {
+                Err(StepError::Storage { field })
+            }
+        };
+        need(self.v.len(), true, "v")?;
+        need(self.m.len(), true, "m")?;
+        need(self.mat.len(), true, "mat")?;
+        need(self.rho.len(), true, "rho")?;
+        need(self.e.len(), true, "e")?;
+        need(self.p.len(), true, "p")?;
+        need(self.c.len(), true, "c")?;
+        need(self.cl.len(), true, "cl")?;
+        need(self.h.len(), true, "h")?;
+        need(self.s.len(), effects.contains(EffectSet::STRENGTH), "s")?;
+        need(
+            self.eps_p.len(),
+            effects.contains(EffectSet::PLASTICITY),
+            "eps_p",
+        )?;
+        need(
+            self.damage.len(),
+            effects.contains(EffectSet::DAMAGE),
+            "damage",
+        )?;
+        need(self.temp.len(), effects.contains(EffectSet::HEAT), "temp")?;
+        Ok(())
+    }
+}
+
+impl<const D: usize> Split for System<'_, D> {
+    fn len(&self) -> usize {
+        self.x.len()
+    }
+    fn split_at(self, mid: usize) -> (Self, Self) {
+        let (x0, x1) = self.x.split_at_mut(mid);
+        let (v0, v1) = self.v.split_at_mut(mid);
+        let (m0, m1) = self.m.split_at(mid);
+        let (k0, k1) = self.mat.split_at(mid);
+        let (r0, r1) = self.rho.split_at_mut(mid);
+        let (e0, e1) = self.e.split_at_mut(mid);
+        let (p0, p1) = self.p.split_at_mut(mid);
+        let (c0, c1) = self.c.split_at_mut(mid);
+        let (l0, l1) = self.cl.split_at_mut(mid);
+        let (h0, h1) = self.h.split_at_mut(mid);
+        let (s0, s1) = split_opt(self.s, mid);
+        let (q0, q1) = split_opt(self.eps_p, mid);
+        let (d0, d1) = split_opt(self.damage, mid);
+        let (t0, t1) = split_opt(self.temp, mid);
+        (
+            System {
+                x: x0,
+                v: v0,
+                m: m0,
+                mat: k0,
+                rho: r0,
+                e: e0,
+                p: p0,
+                c: c0,
+                cl: l0,
+                h: h0,
+                s: s0,
+                eps_p: q0,
+                damage: d0,
+                temp: t0,
+            },
+            System {
+                x: x1,
+                v: v1,
+                m: m1,
+                mat: k1,
+                rho: r1,
+                e: e1,
+                p: p1,
+                c: c1,
+                cl: l1,
+                h: h1,
+                s: s1,
+                eps_p: q1,
+                damage: d1,
+                temp: t1,
+            },
+        )
+    }
+}
+
+/// What one pass over the pairs accumulates for particle i (per unit mass where it is a
+/// rate of a specific quantity).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PairSums<const D: usize> {
+    /// Acceleration, m/s².
+    pub acc: Vector<D>,
+    /// Power per unit mass at the pair contacts (scheme-specific, see each scheme), W/kg.
+    pub power: Real,
+    /// Velocity divergence, 1/s.
+    pub div: Real,
+    /// Velocity gradient `L_ab = dv_a/dx_b`, 1/s (only with `strength`).
+    pub grad_v: Matrix<D>,
+    /// Velocity at the start of the step (time-centred position update), m/s.
+    pub v0: Vector<D>,
+}
+
+impl<const D: usize> Default for PairSums<D> {
+    fn default() -> Self {
+        PairSums {
+            acc: Vector::<D>::zeros(),
+            power: 0.0,
+            div: 0.0,
+            grad_v: Matrix::<D>::zeros(),
+            v0: Vector::<D>::zeros(),
+        }
+    }
+}
+
+/// Gradients used by MUSCL reconstruction (`ts2`, `tkc`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Gradients<const D: usize> {
+    /// grad rho.
+    pub rho: Vector<D>,
+    /// grad P.
+    pub p: Vector<D>,
+    /// Velocity gradient `dv_a/dx_b`.
+    pub v: Matrix<D>,
+    /// grad c_l (tkc).
+    pub cl: Vector<D>,
+    /// grad c_t (tkc).
+    pub ct: Vector<D>,
+}
+
+impl<const D: usize> Default for Gradients<D> {
+    fn default() -> Self {
+        Gradients {
+            rho: Vector::<D>::zeros(),
+            p: Vector::<D>::zeros(),
+            v: Matrix::<D>::zeros(),
+            cl: Vector::<D>::zeros(),
+            ct: Vector::<D>::zeros(),
+        }
+    }
+}
+
+/// Kernel gradient correction of one particle (`tkc`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Correction<const D: usize> {
+    /// The matrix `L^-1` applied to kernel gradients (identity near free surfaces).
+    pub l_inv: Matrix<D>,
+    /// Smallest eigenvalue of L (free-surface indicator).
+    pub lambda_min: Real,
+    /// 0 interior, 1 near a boundary particle, 2 boundary particle.
+    pub boundary: u8,
+}
+
+impl<const D: usize> Default for Correction<D> {
+    fn default() -> Self {
+        Correction {
+            l_inv: Matrix::<D>::identity(),
+            lambda_min: 1.0,
+            boundary: 0,
+        }
+    }
+}
+
+/// State of the leap-frog integration of `av` kept between steps.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AvRates<const D: usize> {
+    /// dv/dt.
+    pub acc: Vector<D>,
+    /// de/dt.
+    pub de: Real,
+    /// drho/dt.
+    pub drho: Real,
+    /// dS/dt.
+    pub ds: Sym3,
+    /// Half-step velocity (scratch).
+    pub v_half: Vector<D>,
+    /// Half-step energy (scratch).
+    pub e_half: Real,
+    /// Half-step density (scratch).
+    pub rho_half: Real,
+    /// Half-step deviator (scratch).
+    pub s_half: Sym3,
+}
+
+impl<const D: usize> Default for AvRates<D> {
+    fn default() -> Self {
+        AvRates {
+            acc: Vector::<D>::zeros(),
+            de: 0.0,
+            drho: 0.0,
+            ds: Sym3::ZERO,
+            v_half: Vector::<D>::zeros(),
+            e_half: 0.0,
+            rho_half: 0.0,
+            s_half: Sym3::ZERO,
+        }
+    }
+}
+
+/// Per-step scratch and scheme state owned by the caller. Arrays a family or effect set
+/// does not use are empty (see [`Layout`]).
+#[derive(Debug)]
+pub struct Workspace<'a, const D: usize> {
+    /// Pair sums (all schemes).
+    pub sums: &'a mut [PairSums<D>],
+    /// MUSCL gradients.
+    pub grad: &'a mut [Gradients<D>],
+    /// Gradients of the six stress components (`tkc` with strength).
+    pub grad_stress: &'a mut [[Vector<D>; 6]],
+    /// Kernel correction.
+    pub corr: &'a mut [Correction<D>],
+    /// Leap-frog rates (`av`); persistent between steps.
+    pub av: &'a mut [AvRates<D>],
+    /// True once `av` holds the rates of the current state (set by the first `av` step).
+    pub primed: bool,
+}
+
+/// Which workspace arrays a family and effect set need.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Layout {
+    /// [`Workspace::grad`].
+    pub grad: bool,
+    /// [`Workspace::grad_stress`].
+    pub grad_stress: bool,
+    /// [`Workspace::corr`].
+    pub corr: bool,
+    /// [`Workspace::av`].
+    pub av: bool,
+}
+
+impl Layout {
+    /// The arrays needed by `family` with `effects`.
+    pub const fn of(family: Family, effects: EffectSet) -> Layout {
+        let muscl = effects.contains(EffectSet::MUSCL);
+        Layout {
+            grad: muscl,
+            grad_stress: muscl
+                && matches!(family, Family::Pm)
+                && effects.contains(EffectSet::STRENGTH),
+            corr: effects.contains(EffectSet::CORRECTION),
+            av: matches!(family, Family::Av),
+        }
+    }
+}
+
+/// Scheme families. `tkc` is the `pm` family with correction and MUSCL; `ts2` is `ts`
+/// with MUSCL.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Family {
+    /// Standard SPH with Monaghan artificial viscosity, leap-frog.
+    Av,
+    /// Contact (Parshikov–Medin) Godunov SPH: full stress Riemann problem per pair.
+    Pm,
+    /// Time-split Godunov SPH: deviatoric step, then hydrodynamic Riemann step.
+    Ts,
+}
+
+/// Riemann solver of the hydrodynamic step of `ts`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RiemannSolver {
+    /// Linearised acoustic solver.
+    Acoustic,
+    /// Two-shock approximate solver (Dukowicz 1985).
+    TwoShock,
+}
+
+/// Scheme options (with the defaults of the seeds).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SchemeOptions {
+    /// Monaghan viscosity alpha (`av`).
+    pub av_alpha: Real,
+    /// Monaghan viscosity beta (`av`).
+    pub av_beta: Real,
+    /// Slope limiter of `ts2`.
+    pub limiter: Limiter,
+    /// Riemann solver of `ts`.
+    pub riemann: RiemannSolver,
+    /// Apply the MUSCL–Hancock time factor `max(0, 1 - c dt / r_ij)` in `ts2`
+    /// (seed 000 eq 23, corrected to be dimensionless).
+    pub hancock: bool,
+    /// Threshold on the smallest eigenvalue of L below which a particle is a free-surface
+    /// particle (`tkc`).
+    pub surface_lambda: Real,
+    /// L = I where det L is below this (`tkc`).
+    pub det_epsilon: Real,
+}
+
+impl Default for SchemeOptions {
+    fn default() -> Self {
+        SchemeOptions {
+            av_alpha: 1.0,
+            av_beta: 1.0,
+            limiter: Limiter::Superbee,
+            riemann: RiemannSolver::Acoustic,
+            hancock: true,
+            surface_lambda: 0.75,
+            det_epsilon: 0.05,
+        }
+    }
+}
+
+/// Everything a step needs besides the particles.
+#[derive(Clone, Copy, Debug)]
+pub struct StepParams<'a, const D: usize> {
+    /// Time step, s.
+    pub dt: Real,
+    /// Materials, indexed by [`System::mat`].
+    pub materials: &'a [Material],
+    /// Smoothing kernel.
+    pub kernel: Kernel,
+    /// `h = h_factor (m/rho)^(1/D)`.
+    pub h_factor: Real,
+    /// Periodic boundaries.
+    pub periodic: Periodic<D>,
+    /// Neighbour lists (sorted; see [`crate::neighbors`]).
+    pub nbrs: Neighbors<'a>,
+    /// Scheme options.
+    pub options: SchemeOptions,
+}
+
+/// A step that cannot continue.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum StepError {
+    /// A field became NaN or infinite.
+    NonFinite {
+        /// Particle index.
+        particle: usize,
+        /// Field name.
+        field: &'static str,
+    },
+    /// Density became zero or negative.
+    NonPositiveDensity {
+        /// Particle index.
+        particle: usize,
+    },
+    /// A slice has the wrong length for the effect set.
+    Storage {
+        /// Field name.
+        field: &'static str,
+    },
+    /// The requested specialisation is not compiled into this build.
+    NotCompiled,
+}
+
+impl core::fmt::Display for StepError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            StepError::NonFinite { particle, field } => {
+                write!(f, "{field} of particle {particle} is not finite")
+            }
+            StepError::NonPositiveDensity { particle } => {
+                write!(f, "density of particle {particle} is not positive")
+            }
+            StepError::Storage { field } => write!(
+                f,
+                "storage for `{field}` has the wrong length for this effect set"
+            ),
+            StepError::NotCompiled => {
+                f.write_str("this specialisation is not compiled into this build")
+            }
+        }
+    }
+}
+
+/// Checks every particle for NaN/inf and non-positive density (first offender reported).
+pub fn check_finite<const D: usize>(sys: &System<'_, D>) -> Result<(), StepError> {
+    for i in 0..sys.len() {
+        let bad = |field| Err(StepError::NonFinite { particle: i, field });
+        if !sys.x[i].iter().all(|c| c.is_finite()) {
+            return bad("position");
+        }
+        if !sys.v[i].iter().all(|c| c.is_finite()) {
+            return bad("velocity");
+        }
+        if !sys.rho[i].is_finite() {
+            return bad("density");
+        }
+        if sys.rho[i] <= 0.0 {
+            return Err(StepError::NonPositiveDensity { particle: i });
+        }
+        if !sys.e[i].is_finite() {
+            return bad("internal energy");
+        }
+        if !sys.p[i].is_finite() {
+            return bad("pressure");
+        }
+        if !sys.s.is_empty() && !sys.s[i].is_finite() {
+            return bad("stress deviator");
+        }
+    }
+    Ok(())
+}
+
+/// Total energy `sum m (v²/2 + e)`, J (per unit area in 2D).
+pub fn total_energy<const D: usize>(sys: &System<'_, D>) -> Real {
+    let mut s = 0.0;
+    for i in 0..sys.len() {
+        s += sys.m[i] * (0.5 * sys.v[i].norm_squared() + sys.e[i]);
+    }
+    s
+}
+
+/// Kinetic energy, J.
+pub fn kinetic_energy<const D: usize>(sys: &System<'_, D>) -> Real {
+    let mut s = 0.0;
+    for i in 0..sys.len() {
+        s += sys.m[i] * 0.5 * sys.v[i].norm_squared();
+    }
+    s
+}
+
+/// Total momentum, kg m/s.
+pub fn total_momentum<const D: usize>(sys: &System<'_, D>) -> Vector<D> {
+    let mut s = Vector::<D>::zeros();
+    for i in 0..sys.len() {
+        s += sys.v[i] * sys.m[i];
+    }
+    s
+}
+
+/// Largest stable time step `cfl * min h / (c_l + |v|)`.
+pub fn stable_dt<const D: usize>(sys: &System<'_, D>, cfl: Real) -> Real {
+    let mut dt = Real::INFINITY;
+    for i in 0..sys.len() {
+        let speed = sys.cl[i] + real::sqrt(sys.v[i].norm_squared());
+        if speed > 0.0 {
+            dt = real::min(dt, sys.h[i] / speed);
+        }
+    }
+    cfl * dt
+}
+
+/// Smoothing length of a particle: `h_factor (m/rho)^(1/D)`.
+#[inline]
+pub fn smoothing_length<const D: usize>(h_factor: Real, m: Real, rho: Real) -> Real {
+    let vol = m / rho;
+    h_factor
+        * match D {
+            1 => vol,
+            2 => real::sqrt(vol),
+            _ => real::cbrt(vol),
+        }
+}
