@@ -1,6 +1,14 @@
 //! # gsph
 //!
 //! The std host of gsph: scenes, parallel neighbour search, the run driver, output
-//! (HDF5 + XDMF, CSV, JSON) and the `gsph` command line.
+//! (HDF5 + XDMF, CSV, JSON) and the `gsph` command line. The physics is in `gsph-core`.
 
+pub mod cli;
+pub mod driver;
+pub mod exec;
+pub mod materials;
+pub mod neighbors;
 pub mod output;
+pub mod reference;
+pub mod scene;
+pub mod sim;

@@ -1,0 +1,162 @@
+//! The `gsph` command line (DESIGN §6). `main` only calls [`main_with_args`].
+
+use crate::driver::{run, RunOptions};
+use crate::scene::{self, build_particles};
+use clap::{Parser, Subcommand};
+use std::path::PathBuf;
+
+/// Godunov SPH for solids under shock and impact.
+#[derive(Parser, Debug)]
+#[command(name = "gsph", version, about)]
+pub struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// Subcommands.
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Validate a scene, print particle counts and the resolved effects.
+    Check {
+        /// Scene file.
+        scene: PathBuf,
+        /// Override a scene key (dotted path), e.g. --set scheme=ts2.
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+    },
+    /// Run a scene.
+    Run {
+        /// Scene file.
+        scene: PathBuf,
+        /// Output directory (default out/<scene name>).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Override a scene key (dotted path), e.g. --set bodies.0.spacing=5e-4.
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        /// Worker threads (default: all cores).
+        #[arg(long)]
+        threads: Option<usize>,
+        /// No progress bar.
+        #[arg(long)]
+        quiet: bool,
+    },
+}
+
+/// Scene name: the `name` key or the file stem.
+pub fn scene_name(scene: &scene::Scene, path: &std::path::Path) -> String {
+    scene.name.clone().unwrap_or_else(|| {
+        path.file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default()
+    })
+}
+
+fn pool(threads: Option<usize>) -> Result<rayon::ThreadPool, String> {
+    let mut b = rayon::ThreadPoolBuilder::new();
+    if let Some(t) = threads {
+        if t == 0 {
+            return Err("--threads must be at least 1".into());
+        }
+        b = b.num_threads(t);
+    }
+    b.build().map_err(|e| format!("cannot start threads: {e}"))
+}
+
+/// Runs the CLI on `args`; returns the process exit code. Errors are printed as one line.
+pub fn main_with_args(args: impl IntoIterator<Item = std::ffi::OsString>) -> i32 {
+    let cli = match Cli::try_parse_from(args) {
+        Ok(c) => c,
+        Err(e) => {
+            let code = if e.use_stderr() { 2 } else { 0 };
+            let _ = e.print();
+            return code;
+        }
+    };
+    match execute(cli.command) {
+        Ok(()) => 0,
+        Err(msg) => {
+            eprintln!("error: {}", msg.replace('\n', " "));
+            1
+        }
+    }
+}
+
+fn execute(cmd: Command) -> Result<(), String> {
+    match cmd {
+        Command::Check { scene: path, set } => {
+            let sc = scene::load(&path, &set).map_err(|e| e.to_string())?;
+            let parts = build_particles(&sc).map_err(|e| e.to_string())?;
+            let materials: Vec<_> = sc
+                .materials
+                .iter()
+                .map(crate::materials::material_of)
+                .collect();
+            let effects = crate::sim::resolve_effects(&sc, &materials);
+            println!("scene     {}", scene_name(&sc, &path));
+            println!("dim       {}", sc.dim);
+            println!("scheme    {}", sc.scheme);
+            println!("particles {}", parts.len());
+            for (b, body) in sc.bodies.iter().enumerate() {
+                let n = parts.body.iter().filter(|&&k| k as usize == b).count();
+                println!("  body {b} ({}): {n}", body.material);
+            }
+            println!("effects   {effects}");
+            let dim = sc.dim;
+            let family = gsph_core::schemes::Scheme::from_name(&sc.scheme)
+                .expect("validated")
+                .family();
+            let spec = gsph_core::dispatch::CATALOGUE
+                .iter()
+                .find(|s| s.dim == dim && s.family == family && s.effects == effects.kernel_part());
+            match spec {
+                Some(s) if s.compiled => println!("kernel    {} (compiled)", s.name),
+                Some(s) => return Err(format!("{} is not compiled into this build", s.name)),
+                None => {
+                    return Err(format!(
+                        "no specialisation exists for {dim}D {} with effects {effects}",
+                        sc.scheme
+                    ))
+                }
+            }
+            Ok(())
+        }
+        Command::Run {
+            scene: path,
+            out,
+            set,
+            threads,
+            quiet,
+        } => {
+            let sc = scene::load(&path, &set).map_err(|e| e.to_string())?;
+            let name = scene_name(&sc, &path);
+            let out = out.unwrap_or_else(|| PathBuf::from("out").join(&name));
+            let pool = pool(threads)?;
+            let opts = RunOptions {
+                out: Some(out.clone()),
+                progress: !quiet,
+            };
+            let res = pool
+                .install(|| run(&sc, &name, &opts))
+                .map_err(|e| e.to_string())?;
+            let s = &res.summary;
+            let g = |k: &str| s.get(k).cloned().unwrap_or_default();
+            println!(
+                "{name}: {} {}D, {} particles, {} steps, wall {:.3} s, energy error {:.3e}{}",
+                g("scheme").as_str().unwrap_or(""),
+                g("dim"),
+                g("particles"),
+                g("steps"),
+                g("wall_s").as_f64().unwrap_or(0.0),
+                g("energy_rel_error").as_f64().unwrap_or(0.0),
+                s.get("l1_error")
+                    .and_then(|v| v.as_f64())
+                    .map(|v| format!(", L1(sigma_xx) {v:.4e} Pa"))
+                    .unwrap_or_default()
+            );
+            println!("wrote {}", out.display());
+            Ok(())
+        }
+    }
+}

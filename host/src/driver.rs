@@ -1,0 +1,259 @@
+//! The run loop: time-step control, output schedule, diagnostics, progress, summary.
+
+use crate::output::{write_atomic, write_csv, Frame, OutputError, SnapshotWriter};
+use crate::reference::Reference;
+use crate::scene::{build_particles, Scene, SceneError};
+use crate::sim::{Sim, SimError};
+use serde_json::{json, Map, Value};
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Why a run failed. `Display` is one line.
+#[derive(Debug)]
+pub enum RunError {
+    /// Bad scene.
+    Scene(SceneError),
+    /// The simulation failed.
+    Sim(SimError),
+    /// Writing output failed.
+    Output(String),
+}
+
+impl std::fmt::Display for RunError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            RunError::Scene(e) => write!(f, "{e}"),
+            RunError::Sim(e) => write!(f, "{e}"),
+            RunError::Output(e) => write!(f, "output: {e}"),
+        }
+    }
+}
+
+impl std::error::Error for RunError {}
+
+impl From<SceneError> for RunError {
+    fn from(e: SceneError) -> Self {
+        RunError::Scene(e)
+    }
+}
+impl From<SimError> for RunError {
+    fn from(e: SimError) -> Self {
+        RunError::Sim(e)
+    }
+}
+impl From<OutputError> for RunError {
+    fn from(e: OutputError) -> Self {
+        RunError::Output(e.to_string())
+    }
+}
+impl From<std::io::Error> for RunError {
+    fn from(e: std::io::Error) -> Self {
+        RunError::Output(e.to_string())
+    }
+}
+
+/// How to run.
+#[derive(Debug, Clone)]
+pub struct RunOptions {
+    /// Output directory (`None`: keep results in memory only; used by studies and tests).
+    pub out: Option<PathBuf>,
+    /// Show a progress bar (only drawn on a terminal).
+    pub progress: bool,
+}
+
+/// What a run produced.
+#[derive(Debug, Clone)]
+pub struct RunResult {
+    /// The summary (also written as summary.json).
+    pub summary: Map<String, Value>,
+    /// Final particle state.
+    pub table: crate::output::ParticleTable,
+}
+
+/// Runs a validated scene.
+pub fn run(scene: &Scene, scene_name: &str, opts: &RunOptions) -> Result<RunResult, RunError> {
+    match scene.dim {
+        1 => run_dim::<1>(scene, scene_name, opts),
+        2 => run_dim::<2>(scene, scene_name, opts),
+        _ => run_dim::<3>(scene, scene_name, opts),
+    }
+}
+
+/// Removes the files of an earlier run so that a failed run leaves nothing that looks complete.
+fn clear_outputs(dir: &Path) -> std::io::Result<()> {
+    std::fs::create_dir_all(dir)?;
+    for f in [
+        "summary.json",
+        "final.csv",
+        "series.csv",
+        "snapshots.h5",
+        "snapshots.xdmf",
+    ] {
+        match std::fs::remove_file(dir.join(f)) {
+            Err(e) if e.kind() != std::io::ErrorKind::NotFound => return Err(e),
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
+fn run_dim<const D: usize>(
+    scene: &Scene,
+    scene_name: &str,
+    opts: &RunOptions,
+) -> Result<RunResult, RunError> {
+    let t_total = Instant::now();
+    let reference = Reference::from_scene(scene)?;
+    let parts = build_particles(scene)?;
+    let mut sim = Sim::<D>::new(scene, &parts)?;
+    if let Some(dir) = &opts.out {
+        clear_outputs(dir)?;
+    }
+    let mut writer = match &opts.out {
+        Some(dir) => Some(SnapshotWriter::create(dir, D)?),
+        None => None,
+    };
+    let (k0, i0) = sim.energy();
+    let energy0 = k0 + i0;
+    let mom0 = sim.momentum();
+    let n_out = scene.output.snapshots;
+    let n_series = scene.output.series.unwrap_or(200);
+    let mut series =
+        String::from("t,step,dt,kinetic,internal,total,momentum_x,momentum_y,momentum_z\n");
+    let mut push_series = |sim: &Sim<D>, dt: f64| {
+        let (k, i) = sim.energy();
+        let p = sim.momentum();
+        series.push_str(&format!(
+            "{:e},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e}\n",
+            sim.t,
+            sim.step,
+            dt,
+            k,
+            i,
+            k + i,
+            p[0],
+            p[1],
+            p[2]
+        ));
+    };
+    push_series(&sim, 0.0);
+    if let Some(w) = writer.as_mut() {
+        w.append(&Frame {
+            time: 0.0,
+            step: 0,
+            dim: D,
+            table: sim.table(),
+        })?;
+    }
+    let bar = (opts.progress && std::io::stderr().is_terminal()).then(|| {
+        let b = indicatif::ProgressBar::new(1000);
+        b.set_style(
+            indicatif::ProgressStyle::with_template(
+                "{spinner} [{elapsed_precise}] {bar:40} {percent:>3}% t={msg} eta {eta}",
+            )
+            .expect("valid template"),
+        );
+        b
+    });
+    let t_end = scene.t_end;
+    let max_steps = scene.max_steps.unwrap_or(u64::MAX);
+    let mut next_out = 1usize;
+    let mut next_series = 1usize;
+    let t_loop = Instant::now();
+    while sim.t < t_end * (1.0 - 1e-12) {
+        if sim.step >= max_steps {
+            break;
+        }
+        let t_out = t_end * next_out as f64 / n_out as f64;
+        let mut dt = sim.stable_dt(scene.cfl);
+        if !(dt.is_finite() && dt > 0.0) {
+            return Err(RunError::Sim(SimError::Step {
+                step: sim.step + 1,
+                t: sim.t,
+                cause: gsph_core::state::StepError::NonFinite {
+                    particle: 0,
+                    field: "time step",
+                },
+            }));
+        }
+        if sim.t + dt >= t_out {
+            dt = t_out - sim.t;
+        }
+        sim.step(dt)?;
+        if sim.t >= t_end * next_series as f64 / n_series as f64 {
+            push_series(&sim, dt);
+            while sim.t >= t_end * next_series as f64 / n_series as f64 {
+                next_series += 1;
+            }
+        }
+        if sim.t >= t_out * (1.0 - 1e-12) {
+            if let Some(w) = writer.as_mut() {
+                w.append(&Frame {
+                    time: sim.t,
+                    step: sim.step,
+                    dim: D,
+                    table: sim.table(),
+                })?;
+            }
+            next_out += 1;
+        }
+        if let Some(b) = &bar {
+            b.set_position((1000.0 * sim.t / t_end) as u64);
+            b.set_message(format!("{:.3e}", sim.t));
+        }
+    }
+    let wall = t_loop.elapsed().as_secs_f64();
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
+    let (k1, i1) = sim.energy();
+    let energy1 = k1 + i1;
+    let mom1 = sim.momentum();
+    let table = sim.table();
+    let mut s = Map::new();
+    s.insert("scene".into(), json!(scene_name));
+    s.insert("dim".into(), json!(D));
+    s.insert("scheme".into(), json!(sim.scheme.name()));
+    s.insert(
+        "effects".into(),
+        json!(sim.effects.names().collect::<Vec<_>>()),
+    );
+    s.insert("particles".into(), json!(sim.len()));
+    s.insert("steps".into(), json!(sim.step));
+    s.insert("t_end".into(), json!(sim.t));
+    s.insert("wall_s".into(), json!(wall));
+    s.insert(
+        "wall_total_s".into(),
+        json!(t_total.elapsed().as_secs_f64()),
+    );
+    s.insert("threads".into(), json!(rayon::current_num_threads()));
+    s.insert("pair_interactions".into(), json!(sim.pair_interactions));
+    s.insert("neighbor_rebuilds".into(), json!(sim.rebuilds));
+    s.insert("bytes_per_particle".into(), json!(sim.bytes_per_particle()));
+    s.insert("energy_initial".into(), json!(energy0));
+    s.insert("energy_final".into(), json!(energy1));
+    s.insert(
+        "energy_rel_error".into(),
+        json!((energy1 - energy0) / energy0.abs().max(f64::MIN_POSITIVE)),
+    );
+    s.insert("kinetic_final".into(), json!(k1));
+    s.insert("internal_final".into(), json!(i1));
+    s.insert("momentum_initial".into(), json!(mom0[..D].to_vec()));
+    s.insert("momentum_final".into(), json!(mom1[..D].to_vec()));
+    if let Some(r) = &reference {
+        for (k, v) in r.measures(&table, sim.t) {
+            s.insert(k.into(), json!(v));
+        }
+    }
+    if let Some(dir) = &opts.out {
+        write_csv(&dir.join("final.csv"), &table)?;
+        write_atomic(&dir.join("series.csv"), series.as_bytes())?;
+        if let Some(w) = writer.take() {
+            w.finish()?;
+        }
+        let text = serde_json::to_string_pretty(&Value::Object(s.clone())).expect("json");
+        write_atomic(&dir.join("summary.json"), text.as_bytes())?;
+    }
+    Ok(RunResult { summary: s, table })
+}

@@ -1,0 +1,45 @@
+//! Scene materials to core materials.
+
+use crate::scene::{EosSpec, MaterialSpec, StrengthSpec};
+use gsph_core::material::eos::{
+    Eos, Hugoniot, Linear, Logarithmic, MieGruneisen, Polynomial, TwoCurve,
+};
+use gsph_core::material::{Material, Strength};
+
+/// The core material of a (validated) scene material.
+pub fn material_of(m: &MaterialSpec) -> Material {
+    let rho0 = m.rho0;
+    let eos: Eos = match m.eos {
+        EosSpec::Linear { c0, gamma } => Linear { rho0, c0, gamma }.into(),
+        EosSpec::Logarithmic { bulk_modulus } => Logarithmic { rho0, bulk_modulus }.into(),
+        EosSpec::MieGruneisen { c0, s1, gamma0 } => MieGruneisen {
+            rho0,
+            c0,
+            s1,
+            gamma0,
+        }
+        .into(),
+        EosSpec::Hugoniot { c0, s1 } => Hugoniot { rho0, c0, s1 }.into(),
+        EosSpec::TwoCurve { c_a, s_a, gamma } => TwoCurve {
+            rho0,
+            c_a,
+            s_a,
+            gamma,
+        }
+        .into(),
+        EosSpec::Polynomial { k1, k2, k3 } => Polynomial { rho0, k1, k2, k3 }.into(),
+    };
+    let strength = match m.strength {
+        Some(StrengthSpec::Fluid) => Strength::Fluid,
+        Some(StrengthSpec::Elastic) => Strength::Elastic,
+        Some(StrengthSpec::VonMises { yield_stress }) => Strength::VonMises { yield_stress },
+        None if m.shear_modulus > 0.0 => Strength::Elastic,
+        None => Strength::Fluid,
+    };
+    Material {
+        rho0,
+        eos,
+        shear_modulus: m.shear_modulus,
+        strength,
+    }
+}

@@ -1,0 +1,195 @@
+//! Atomic file writing: a failed run never leaves a file that looks complete.
+//!
+//! Data are written to `<name>.tmp` in the destination's directory, synced to disk, then renamed
+//! over the destination (rename within one directory is atomic on POSIX file systems). A temp file
+//! whose writer is dropped without committing is removed.
+
+use std::ffi::OsString;
+use std::fs::{self, File};
+use std::io::{self, BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+/// The temp path used while writing `path`: `<name>.tmp` in the same directory.
+pub fn tmp_path(path: &Path) -> PathBuf {
+    let mut name: OsString = path.file_name().map(OsString::from).unwrap_or_default();
+    name.push(".tmp");
+    path.with_file_name(name)
+}
+
+/// Syncs the directory holding `path`, so a rename into it survives a crash (best effort: not every
+/// platform can open a directory for syncing).
+pub fn sync_parent_dir(path: &Path) {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    if let Ok(d) = File::open(dir) {
+        let _ = d.sync_all();
+    }
+}
+
+/// Syncs `tmp` to disk and renames it to `path`; removes `tmp` if either fails.
+pub fn commit_tmp(tmp: &Path, path: &Path) -> io::Result<()> {
+    let result = File::open(tmp)
+        .and_then(|f| f.sync_all())
+        .and_then(|()| fs::rename(tmp, path));
+    match result {
+        Ok(()) => {
+            sync_parent_dir(path);
+            Ok(())
+        }
+        Err(e) => {
+            let _ = fs::remove_file(tmp);
+            Err(e)
+        }
+    }
+}
+
+/// Writes `bytes` to `path` atomically (temp file in the same directory, fsync, rename).
+pub fn write_atomic(path: impl AsRef<Path>, bytes: &[u8]) -> io::Result<()> {
+    let mut f = AtomicFile::create(path)?;
+    f.write_all(bytes)?;
+    f.commit()
+}
+
+/// A buffered file written under a temp name and renamed to its final name by
+/// [`AtomicFile::commit`].
+///
+/// Dropping it without committing removes the temp file.
+#[derive(Debug)]
+pub struct AtomicFile {
+    path: PathBuf,
+    tmp: PathBuf,
+    writer: Option<BufWriter<File>>,
+}
+
+impl AtomicFile {
+    /// Creates (truncating) the temp file for `path`.
+    pub fn create(path: impl AsRef<Path>) -> io::Result<Self> {
+        let path = path.as_ref().to_path_buf();
+        let tmp = tmp_path(&path);
+        let file = File::create(&tmp)?;
+        Ok(Self {
+            path,
+            tmp,
+            writer: Some(BufWriter::new(file)),
+        })
+    }
+
+    /// The final path.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// The temp path being written.
+    pub fn tmp_path(&self) -> &Path {
+        &self.tmp
+    }
+
+    /// Flushes, syncs and renames the temp file to the final path.
+    pub fn commit(mut self) -> io::Result<()> {
+        let writer = self
+            .writer
+            .take()
+            .ok_or_else(|| io::Error::other("already committed"))?;
+        let result = writer
+            .into_inner()
+            .map_err(io::IntoInnerError::into_error)
+            .and_then(|f| f.sync_all())
+            .and_then(|()| fs::rename(&self.tmp, &self.path));
+        match result {
+            Ok(()) => {
+                sync_parent_dir(&self.path);
+                Ok(())
+            }
+            Err(e) => {
+                let _ = fs::remove_file(&self.tmp);
+                Err(e)
+            }
+        }
+    }
+
+    fn writer(&mut self) -> io::Result<&mut BufWriter<File>> {
+        self.writer
+            .as_mut()
+            .ok_or_else(|| io::Error::other("already committed"))
+    }
+}
+
+impl Write for AtomicFile {
+    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+        self.writer()?.write(buf)
+    }
+
+    fn flush(&mut self) -> io::Result<()> {
+        self.writer()?.flush()
+    }
+}
+
+impl Drop for AtomicFile {
+    fn drop(&mut self) {
+        if let Some(w) = self.writer.take() {
+            drop(w);
+            let _ = fs::remove_file(&self.tmp);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn names(dir: &Path) -> Vec<String> {
+        let mut v: Vec<String> = fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        v.sort();
+        v
+    }
+
+    #[test]
+    fn tmp_path_is_sibling() {
+        assert_eq!(
+            tmp_path(Path::new("/a/b/final.csv")),
+            Path::new("/a/b/final.csv.tmp")
+        );
+        assert_eq!(tmp_path(Path::new("x.json")), Path::new("x.json.tmp"));
+    }
+
+    #[test]
+    fn write_atomic_leaves_no_tmp() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("summary.json");
+        write_atomic(&p, b"{\"a\":1}").unwrap();
+        write_atomic(&p, b"{\"a\":2}").unwrap();
+        assert_eq!(fs::read(&p).unwrap(), b"{\"a\":2}");
+        assert_eq!(names(dir.path()), vec!["summary.json"]);
+    }
+
+    #[test]
+    fn atomic_file_commit_and_drop() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("out.txt");
+        let mut f = AtomicFile::create(&p).unwrap();
+        f.write_all(b"hello").unwrap();
+        assert!(f.tmp_path().exists());
+        assert!(!p.exists());
+        f.commit().unwrap();
+        assert_eq!(fs::read(&p).unwrap(), b"hello");
+
+        let q = dir.path().join("dropped.txt");
+        let mut g = AtomicFile::create(&q).unwrap();
+        g.write_all(b"partial").unwrap();
+        drop(g);
+        assert_eq!(names(dir.path()), vec!["out.txt"]);
+    }
+
+    #[test]
+    fn write_atomic_into_missing_dir_fails_cleanly() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("nope").join("x.txt");
+        assert!(write_atomic(&p, b"x").is_err());
+        assert!(names(dir.path()).is_empty());
+    }
+}

@@ -1,0 +1,265 @@
+//! Turns bodies into particles: lattices clipped to shapes, initial velocity and state.
+
+use super::spec::*;
+use super::SceneError;
+use crate::materials::material_of;
+use gsph_core::material::{Material, Strength};
+use gsph_core::math::Sym3;
+
+/// Particles of a scene before the run (positions padded to 3 components).
+#[derive(Debug, Clone, Default)]
+pub struct InitialParticles {
+    /// Dimension.
+    pub dim: usize,
+    /// Positions, m (unused components 0).
+    pub x: Vec<[f64; 3]>,
+    /// Velocities, m/s.
+    pub v: Vec<[f64; 3]>,
+    /// Masses.
+    pub m: Vec<f64>,
+    /// Densities, kg/m³.
+    pub rho: Vec<f64>,
+    /// Specific internal energies, J/kg.
+    pub e: Vec<f64>,
+    /// Deviators, Pa.
+    pub s: Vec<Sym3>,
+    /// Material index.
+    pub mat: Vec<u16>,
+    /// Body index.
+    pub body: Vec<u16>,
+    /// Lattice spacing of the particle's body, m.
+    pub spacing: Vec<f64>,
+}
+
+impl InitialParticles {
+    /// Number of particles.
+    pub fn len(&self) -> usize {
+        self.x.len()
+    }
+    /// True if empty.
+    pub fn is_empty(&self) -> bool {
+        self.x.is_empty()
+    }
+}
+
+/// Builds the particles of every body.
+pub fn build_particles(scene: &Scene) -> Result<InitialParticles, SceneError> {
+    let mut out = InitialParticles {
+        dim: scene.dim,
+        ..Default::default()
+    };
+    for (b, body) in scene.bodies.iter().enumerate() {
+        let key = format!("bodies[{b}]");
+        let mi = scene
+            .materials
+            .iter()
+            .position(|m| m.name == body.material)
+            .expect("validated: material exists");
+        let mat = material_of(&scene.materials[mi]);
+        let dx = body.spacing / scene.resolution_scale;
+        let pts = lattice(
+            scene.dim,
+            &body.shape,
+            dx,
+            body.lattice.as_deref() == Some("polar"),
+        );
+        if pts.is_empty() {
+            return Err(SceneError(format!(
+                "{key}: the shape holds no particle at spacing {dx:e} m (spacing too coarse?)"
+            )));
+        }
+        let (rho, e, s) = initial_state(&mat, body.initial.as_ref())
+            .map_err(|msg| SceneError(format!("{key}.initial: {msg}")))?;
+        for (x, vol) in pts {
+            out.v.push(velocity(body.velocity.as_ref(), &x));
+            out.x.push(x);
+            out.m.push(rho * vol);
+            out.rho.push(rho);
+            out.e.push(e);
+            out.s.push(s);
+            out.mat.push(mi as u16);
+            out.body.push(b as u16);
+            out.spacing.push(dx);
+        }
+    }
+    Ok(out)
+}
+
+/// Lattice points inside a shape with their volumes (length in 1D, area in 2D).
+fn lattice(dim: usize, shape: &ShapeSpec, dx: f64, polar: bool) -> Vec<([f64; 3], f64)> {
+    let mut pts = Vec::new();
+    match shape {
+        ShapeSpec::Segment { min, max } => {
+            let n = ((max - min) / dx).round().max(1.0) as usize;
+            let d = (max - min) / n as f64;
+            for k in 0..n {
+                pts.push(([min + (k as f64 + 0.5) * d, 0.0, 0.0], d));
+            }
+        }
+        ShapeSpec::Box { min, max } => {
+            let n: Vec<usize> = (0..dim)
+                .map(|a| ((max[a] - min[a]) / dx).round().max(1.0) as usize)
+                .collect();
+            let d: Vec<f64> = (0..dim).map(|a| (max[a] - min[a]) / n[a] as f64).collect();
+            let vol: f64 = d.iter().product();
+            let nz = if dim == 3 { n[2] } else { 1 };
+            for kz in 0..nz {
+                for ky in 0..n[1] {
+                    for kx in 0..n[0] {
+                        let mut x = [0.0; 3];
+                        x[0] = min[0] + (kx as f64 + 0.5) * d[0];
+                        x[1] = min[1] + (ky as f64 + 0.5) * d[1];
+                        if dim == 3 {
+                            x[2] = min[2] + (kz as f64 + 0.5) * d[2];
+                        }
+                        pts.push((x, vol));
+                    }
+                }
+            }
+        }
+        ShapeSpec::Disc { center, radius } => {
+            if polar {
+                polar_rings(&mut pts, center, 0.0, *radius, dx);
+            } else {
+                square_clip(&mut pts, dim, center, 0.0, *radius, dx);
+            }
+        }
+        ShapeSpec::Annulus {
+            center,
+            r_inner,
+            r_outer,
+        } => {
+            if polar {
+                polar_rings(&mut pts, center, *r_inner, *r_outer, dx);
+            } else {
+                square_clip(&mut pts, dim, center, *r_inner, *r_outer, dx);
+            }
+        }
+    }
+    pts
+}
+
+/// Cartesian lattice, offset by half a spacing from the centre, clipped to r_in <= r < r_out.
+fn square_clip(
+    pts: &mut Vec<([f64; 3], f64)>,
+    dim: usize,
+    c: &[f64],
+    r_in: f64,
+    r_out: f64,
+    dx: f64,
+) {
+    let n = (r_out / dx).ceil() as i64 + 1;
+    let vol = dx.powi(dim as i32);
+    let zr = if dim == 3 { -n..n } else { 0..1 };
+    for kz in zr {
+        for ky in -n..n {
+            for kx in -n..n {
+                let off = [
+                    (kx as f64 + 0.5) * dx,
+                    (ky as f64 + 0.5) * dx,
+                    if dim == 3 {
+                        (kz as f64 + 0.5) * dx
+                    } else {
+                        0.0
+                    },
+                ];
+                let r = (off[0] * off[0] + off[1] * off[1] + off[2] * off[2]).sqrt();
+                if r >= r_in && r < r_out {
+                    let mut x = [0.0; 3];
+                    for a in 0..dim {
+                        x[a] = c[a] + off[a];
+                    }
+                    pts.push((x, vol));
+                }
+            }
+        }
+    }
+}
+
+/// Concentric rings of particles (2D): ring k at r_k = r_in + (k + 1/2) dr with
+/// round(2 pi r_k / dr) particles, each carrying the area of its ring sector.
+fn polar_rings(pts: &mut Vec<([f64; 3], f64)>, c: &[f64], r_in: f64, r_out: f64, dx: f64) {
+    let nr = ((r_out - r_in) / dx).round().max(1.0) as usize;
+    let dr = (r_out - r_in) / nr as f64;
+    for k in 0..nr {
+        let r = r_in + (k as f64 + 0.5) * dr;
+        let nt = ((2.0 * std::f64::consts::PI * r / dr).round() as usize).max(1);
+        let area =
+            std::f64::consts::PI * ((r + 0.5 * dr).powi(2) - (r - 0.5 * dr).powi(2)) / nt as f64;
+        let shift = if k % 2 == 1 { 0.5 } else { 0.0 };
+        for j in 0..nt {
+            let th = (j as f64 + shift) * 2.0 * std::f64::consts::PI / nt as f64;
+            pts.push(([c[0] + r * th.cos(), c[1] + r * th.sin(), 0.0], area));
+        }
+    }
+}
+
+fn velocity(spec: Option<&VelocitySpec>, x: &[f64; 3]) -> [f64; 3] {
+    let mut v = [0.0; 3];
+    match spec {
+        None => {}
+        Some(VelocitySpec::Uniform { value }) => v[..value.len()].copy_from_slice(value),
+        Some(VelocitySpec::Radial { v0, r_ref, center }) => {
+            let mut d = [0.0; 3];
+            for a in 0..center.len() {
+                d[a] = x[a] - center[a];
+            }
+            let r = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+            if r > 0.0 {
+                for a in 0..3 {
+                    v[a] = v0 * r_ref / r * d[a] / r;
+                }
+            }
+        }
+        Some(VelocitySpec::Pulse {
+            amplitude,
+            k,
+            center,
+            axis,
+        }) => {
+            let s = x[*axis] - center;
+            v[*axis] = amplitude * (-k * s * s).exp();
+        }
+    }
+    v
+}
+
+/// Initial (rho, e, deviator) of a body.
+fn initial_state(mat: &Material, init: Option<&InitialSpec>) -> Result<(f64, f64, Sym3), String> {
+    match init {
+        None => Ok((mat.rho0, 0.0, Sym3::ZERO)),
+        Some(InitialSpec::Density { rho, e }) => Ok((*rho, *e, Sym3::ZERO)),
+        Some(InitialSpec::UniaxialStress { sigma_xx }) => {
+            let sxx_of = |rho: f64| -> f64 {
+                let elastic = -(4.0 * mat.shear_modulus / 3.0) * (rho / mat.rho0).ln();
+                match mat.strength {
+                    Strength::Fluid => 0.0,
+                    Strength::Elastic => elastic,
+                    Strength::VonMises { yield_stress } => {
+                        elastic.clamp(-2.0 * yield_stress / 3.0, 2.0 * yield_stress / 3.0)
+                    }
+                }
+            };
+            let sigma = |rho: f64| -mat.eos(rho, 0.0).p + sxx_of(rho) - sigma_xx;
+            let (mut lo, mut hi) = (mat.rho0 * 0.2, mat.rho0 * 5.0);
+            if sigma(lo) * sigma(hi) > 0.0 {
+                return Err(format!("no density between {lo:.4e} and {hi:.4e} kg/m³ gives sigma_xx = {sigma_xx:e} Pa"));
+            }
+            for _ in 0..200 {
+                let mid = 0.5 * (lo + hi);
+                if sigma(lo) * sigma(mid) <= 0.0 {
+                    hi = mid;
+                } else {
+                    lo = mid;
+                }
+            }
+            let rho = 0.5 * (lo + hi);
+            let sxx = sxx_of(rho);
+            Ok((
+                rho,
+                0.0,
+                Sym3::new(sxx, -0.5 * sxx, -0.5 * sxx, 0.0, 0.0, 0.0),
+            ))
+        }
+    }
+}

@@ -1,0 +1,146 @@
+//! Scene files: TOML descriptions of a case (DESIGN §6).
+//!
+//! A scene names its materials, bodies (shapes filled with a particle lattice), initial
+//! fields, scheme and run controls. Unknown keys are errors. `--set KEY=VALUE` overrides
+//! any key by dotted path before the scene is interpreted (see [`apply_override`]).
+//! Every error is one line naming the file, the key and the cause.
+
+mod build;
+mod spec;
+mod validate;
+
+pub use build::{build_particles, InitialParticles};
+pub use spec::*;
+
+use std::path::Path;
+
+/// A scene error: one line naming the key (or position) and the cause.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SceneError(pub String);
+
+impl std::fmt::Display for SceneError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for SceneError {}
+
+fn err<T>(msg: impl Into<String>) -> Result<T, SceneError> {
+    Err(SceneError(msg.into()))
+}
+
+/// Reads and validates a scene file, applying `overrides` (`KEY=VALUE`) first.
+pub fn load(path: &Path, overrides: &[String]) -> Result<Scene, SceneError> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| SceneError(format!("{}: cannot read scene: {e}", path.display())))?;
+    parse(&text, &path.display().to_string(), overrides)
+}
+
+/// Parses and validates scene text. `origin` names the source in messages.
+pub fn parse(text: &str, origin: &str, overrides: &[String]) -> Result<Scene, SceneError> {
+    let mut value: toml::Table = text.parse::<toml::Table>().map_err(|e| {
+        SceneError(format!(
+            "{origin}:{}: malformed TOML: {}",
+            line_of(text, e.span()),
+            e.message().trim()
+        ))
+    })?;
+    for o in overrides {
+        apply_override(&mut value, o).map_err(|e| SceneError(format!("--set {o}: {}", e.0)))?;
+    }
+    let scene: Scene =
+        Scene::deserialize_table(value).map_err(|e| SceneError(format!("{origin}: {}", e)))?;
+    validate::validate(&scene).map_err(|e| SceneError(format!("{origin}: {}", e.0)))?;
+    Ok(scene)
+}
+
+fn line_of(text: &str, span: Option<std::ops::Range<usize>>) -> String {
+    match span {
+        Some(s) => {
+            let before = &text[..s.start.min(text.len())];
+            let line = before.matches('\n').count() + 1;
+            let col = before.len() - before.rfind('\n').map_or(0, |p| p + 1) + 1;
+            format!("{line}:{col}")
+        }
+        None => "?".into(),
+    }
+}
+
+/// Applies one `KEY=VALUE` override to a parsed scene table. `KEY` is a dotted path; array
+/// elements are addressed by index (`bodies.0.spacing`). `VALUE` is parsed as a TOML value
+/// (`1e-3`, `true`, `[1.0, 2.0]`, `"text"`); a bare word that is not valid TOML is taken as
+/// a string (`scheme=ts2`). Missing tables on the path are created; array indices must exist.
+pub fn apply_override(table: &mut toml::Table, assignment: &str) -> Result<(), SceneError> {
+    let (key, raw) = assignment
+        .split_once('=')
+        .ok_or_else(|| SceneError("expected KEY=VALUE".into()))?;
+    let key = key.trim();
+    if key.is_empty() {
+        return err("empty key");
+    }
+    let raw = raw.trim();
+    let value = match format!("v = {raw}").parse::<toml::Table>() {
+        Ok(mut t) => t.remove("v").expect("parsed table has key v"),
+        Err(_) => toml::Value::String(raw.to_string()),
+    };
+    let parts: Vec<&str> = key.split('.').collect();
+    let mut cur = TomlSlot::Table(table);
+    for (k, part) in parts.iter().enumerate() {
+        let last = k + 1 == parts.len();
+        cur = match cur {
+            TomlSlot::Table(t) => {
+                if last {
+                    t.insert(part.to_string(), value);
+                    return Ok(());
+                }
+                let entry = t
+                    .entry(part.to_string())
+                    .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+                TomlSlot::from_value(entry, &parts[..=k])?
+            }
+            TomlSlot::Array(a) => {
+                let idx: usize = part.parse().map_err(|_| {
+                    SceneError(format!(
+                        "`{}` is an array: expected an index, got `{part}`",
+                        parts[..k].join(".")
+                    ))
+                })?;
+                let len = a.len();
+                let slot = a.get_mut(idx).ok_or_else(|| {
+                    SceneError(format!(
+                        "`{}` has {len} elements, index {idx} is out of range",
+                        parts[..k].join(".")
+                    ))
+                })?;
+                if last {
+                    *slot = value;
+                    return Ok(());
+                }
+                TomlSlot::from_value(slot, &parts[..=k])?
+            }
+        };
+    }
+    Ok(())
+}
+
+enum TomlSlot<'a> {
+    Table(&'a mut toml::Table),
+    Array(&'a mut Vec<toml::Value>),
+}
+
+impl<'a> TomlSlot<'a> {
+    fn from_value(v: &'a mut toml::Value, path: &[&str]) -> Result<Self, SceneError> {
+        match v {
+            toml::Value::Table(t) => Ok(TomlSlot::Table(t)),
+            toml::Value::Array(a) => Ok(TomlSlot::Array(a)),
+            _ => err(format!(
+                "`{}` is a value, not a table or array",
+                path.join(".")
+            )),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests;

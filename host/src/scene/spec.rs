@@ -1,0 +1,382 @@
+//! The scene schema (serde). Units are SI; every field is documented in `cases/README.md`.
+
+use serde::Deserialize;
+
+fn one() -> f64 {
+    1.0
+}
+fn default_cfl() -> f64 {
+    0.5
+}
+fn default_h_factor() -> f64 {
+    1.2
+}
+fn default_skin() -> f64 {
+    0.1
+}
+fn default_snapshots() -> usize {
+    10
+}
+fn default_kernel() -> String {
+    "cubic_spline".into()
+}
+
+/// A whole scene.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scene {
+    /// Case name (defaults to the file stem).
+    #[serde(default)]
+    pub name: Option<String>,
+    /// Free text.
+    #[serde(default)]
+    pub description: Option<String>,
+    /// Dimension: 1 (uniaxial strain), 2 (plane strain) or 3.
+    pub dim: usize,
+    /// Scheme: av, pm, ts1, ts2, tkc.
+    pub scheme: String,
+    /// End time, s.
+    pub t_end: f64,
+    /// Factor on the number of particles along each axis (spacing / factor).
+    #[serde(default = "one")]
+    pub resolution_scale: f64,
+    /// CFL number on h / (c_l + |v|).
+    #[serde(default = "default_cfl")]
+    pub cfl: f64,
+    /// Kernel: cubic_spline, wendland_c2, gaussian.
+    #[serde(default = "default_kernel")]
+    pub kernel: String,
+    /// Smoothing length factor: h = h_factor (m/rho)^(1/dim) (seed 004's theta is h_factor/2).
+    #[serde(default = "default_h_factor")]
+    pub h_factor: f64,
+    /// Neighbour list capacity per particle (default by dimension and kernel).
+    #[serde(default)]
+    pub neighbor_capacity: Option<usize>,
+    /// Relative skin of the neighbour lists.
+    #[serde(default = "default_skin")]
+    pub skin: f64,
+    /// Stop after this many steps (safety net).
+    #[serde(default)]
+    pub max_steps: Option<u64>,
+    /// Scheme options.
+    #[serde(default)]
+    pub options: OptionsSpec,
+    /// Output schedule.
+    #[serde(default)]
+    pub output: OutputSpec,
+    /// Periodic boundaries.
+    #[serde(default)]
+    pub periodic: Option<PeriodicSpec>,
+    /// Materials.
+    pub materials: Vec<MaterialSpec>,
+    /// Bodies.
+    pub bodies: Vec<BodySpec>,
+    /// Exact or analytic reference of the case.
+    #[serde(default)]
+    pub reference: Option<ReferenceSpec>,
+}
+
+impl Scene {
+    /// Deserialises from a TOML table.
+    pub fn deserialize_table(t: toml::Table) -> Result<Scene, String> {
+        t.try_into()
+            .map_err(|e: toml::de::Error| e.message().trim().replace('\n', " "))
+    }
+}
+
+/// Scheme options.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OptionsSpec {
+    /// Monaghan alpha (av).
+    #[serde(default = "one")]
+    pub av_alpha: f64,
+    /// Monaghan beta (av).
+    #[serde(default = "one")]
+    pub av_beta: f64,
+    /// Slope limiter (ts2): minmod, superbee, mc, vanleer, sweby:BETA.
+    #[serde(default)]
+    pub limiter: Option<String>,
+    /// Riemann solver (ts): acoustic or two_shock.
+    #[serde(default)]
+    pub riemann: Option<String>,
+    /// MUSCL–Hancock factor in ts2.
+    #[serde(default)]
+    pub hancock: Option<bool>,
+    /// Free-surface eigenvalue threshold (tkc).
+    #[serde(default)]
+    pub surface_lambda: Option<f64>,
+    /// det L threshold (tkc).
+    #[serde(default)]
+    pub det_epsilon: Option<f64>,
+}
+
+impl Default for OptionsSpec {
+    fn default() -> Self {
+        OptionsSpec {
+            av_alpha: 1.0,
+            av_beta: 1.0,
+            limiter: None,
+            riemann: None,
+            hancock: None,
+            surface_lambda: None,
+            det_epsilon: None,
+        }
+    }
+}
+
+/// Output schedule.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutputSpec {
+    /// Number of snapshot intervals (snapshots at t = 0, t_end/N, ..., t_end).
+    #[serde(default = "default_snapshots")]
+    pub snapshots: usize,
+    /// Number of diagnostic samples (time series) over the run.
+    #[serde(default)]
+    pub series: Option<usize>,
+}
+
+impl Default for OutputSpec {
+    fn default() -> Self {
+        OutputSpec {
+            snapshots: default_snapshots(),
+            series: None,
+        }
+    }
+}
+
+/// Periodic boundaries: a box `[lo, hi)` on the listed axes (0 = x, 1 = y, 2 = z).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PeriodicSpec {
+    /// Axes that are periodic.
+    pub axes: Vec<usize>,
+    /// Lower corner (all dims).
+    pub lo: Vec<f64>,
+    /// Upper corner (all dims).
+    pub hi: Vec<f64>,
+}
+
+/// A material.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialSpec {
+    /// Name bodies refer to.
+    pub name: String,
+    /// Reference density, kg/m³.
+    pub rho0: f64,
+    /// Shear modulus, Pa (omit or 0 for a fluid).
+    #[serde(default)]
+    pub shear_modulus: f64,
+    /// Equation of state.
+    pub eos: EosSpec,
+    /// Strength model (default: elastic if shear_modulus > 0, else fluid).
+    #[serde(default)]
+    pub strength: Option<StrengthSpec>,
+}
+
+/// Equations of state (DESIGN §4).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum EosSpec {
+    /// p = c0² (rho - rho0) + (gamma - 1) rho e.
+    Linear {
+        /// Sound speed, m/s.
+        c0: f64,
+        /// Gamma (1: no thermal term).
+        #[serde(default = "one")]
+        gamma: f64,
+    },
+    /// P = B ln(rho/rho0).
+    Logarithmic {
+        /// Bulk modulus B, Pa.
+        bulk_modulus: f64,
+    },
+    /// Mie–Grüneisen with Hugoniot reference (seed 000 eq 37).
+    MieGruneisen {
+        /// Bulk sound speed, m/s.
+        c0: f64,
+        /// Us-up slope.
+        s1: f64,
+        /// Grüneisen gamma.
+        gamma0: f64,
+    },
+    /// Isothermal Mie–Grüneisen in Hugoniot form (flyer plate).
+    Hugoniot {
+        /// Bulk sound speed, m/s.
+        c0: f64,
+        /// Us-up slope.
+        s1: f64,
+    },
+    /// Mie–Grüneisen with two reference curves (seed 004 eqs 6–7).
+    TwoCurve {
+        /// c_a, m/s.
+        c_a: f64,
+        /// s_a.
+        s_a: f64,
+        /// Grüneisen gamma.
+        gamma: f64,
+    },
+    /// Polynomial P = k1 z + k2 z² + k3 z³ (seed 000 eq 39).
+    Polynomial {
+        /// k1, Pa.
+        k1: f64,
+        /// k2, Pa.
+        #[serde(default)]
+        k2: f64,
+        /// k3, Pa.
+        #[serde(default)]
+        k3: f64,
+    },
+}
+
+/// Strength models.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum StrengthSpec {
+    /// No deviatoric stress.
+    Fluid,
+    /// Elastic, no yield.
+    Elastic,
+    /// Von Mises, constant yield stress.
+    VonMises {
+        /// Yield stress, Pa.
+        yield_stress: f64,
+    },
+}
+
+/// A body: a shape filled with a lattice of particles of one material.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BodySpec {
+    /// Material name.
+    pub material: String,
+    /// Shape.
+    pub shape: ShapeSpec,
+    /// Lattice spacing, m (divided by `resolution_scale`).
+    pub spacing: f64,
+    /// Lattice: square (cartesian) or polar (concentric rings; disc and annulus only).
+    #[serde(default)]
+    pub lattice: Option<String>,
+    /// Initial velocity field.
+    #[serde(default)]
+    pub velocity: Option<VelocitySpec>,
+    /// Initial mechanical state (default: unstressed at rho0).
+    #[serde(default)]
+    pub initial: Option<InitialSpec>,
+}
+
+/// Shapes.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum ShapeSpec {
+    /// 1D interval [min, max].
+    Segment {
+        /// Lower end, m.
+        min: f64,
+        /// Upper end, m.
+        max: f64,
+    },
+    /// Axis-aligned box (2D/3D).
+    Box {
+        /// Lower corner, m.
+        min: Vec<f64>,
+        /// Upper corner, m.
+        max: Vec<f64>,
+    },
+    /// Disc (2D) or ball (3D).
+    Disc {
+        /// Centre, m.
+        center: Vec<f64>,
+        /// Radius, m.
+        radius: f64,
+    },
+    /// Annulus (2D).
+    Annulus {
+        /// Centre, m.
+        center: Vec<f64>,
+        /// Inner radius, m.
+        r_inner: f64,
+        /// Outer radius, m.
+        r_outer: f64,
+    },
+}
+
+/// Initial velocity fields.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum VelocitySpec {
+    /// Uniform velocity, m/s.
+    Uniform {
+        /// Components.
+        value: Vec<f64>,
+    },
+    /// Radial `v = v0 r_ref / r e_r` (negative v0: inward).
+    Radial {
+        /// Speed at r_ref, m/s.
+        v0: f64,
+        /// Reference radius, m.
+        r_ref: f64,
+        /// Centre, m.
+        center: Vec<f64>,
+    },
+    /// Gaussian pulse along an axis: `v_axis = amplitude exp(-k (x - center)²)`.
+    Pulse {
+        /// Amplitude, m/s.
+        amplitude: f64,
+        /// k, 1/m².
+        k: f64,
+        /// Centre coordinate along the axis, m.
+        center: f64,
+        /// Axis (0 = x).
+        #[serde(default)]
+        axis: usize,
+    },
+}
+
+/// Initial mechanical states.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum InitialSpec {
+    /// The state reached by uniaxial-strain compression (along x) to `sigma_xx`
+    /// (tension positive): density and deviator from the EOS and the strength model.
+    UniaxialStress {
+        /// Target sigma_xx, Pa.
+        sigma_xx: f64,
+    },
+    /// Given density and specific internal energy, no deviator.
+    Density {
+        /// Density, kg/m³.
+        rho: f64,
+        /// Specific internal energy, J/kg.
+        #[serde(default)]
+        e: f64,
+    },
+}
+
+/// The exact or analytic reference of a case (what `l1_error` etc. are measured against).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum ReferenceSpec {
+    /// Seed 000 §4.1: symmetric impact of identical elastic–plastic plates.
+    FlyerPlate {
+        /// Material of both plates (Hugoniot EOS, von Mises).
+        material: String,
+        /// Flyer velocity, m/s.
+        impact_velocity: f64,
+        /// Initial interface position, m.
+        interface: f64,
+    },
+    /// Seed 004 §2.1.1: elastic–plastic Riemann problem with a free left end.
+    ElasticPlasticRiemann {
+        /// Material (logarithmic EOS, von Mises).
+        material: String,
+        /// Left stress sigma1, Pa.
+        sigma1: f64,
+        /// Initial discontinuity position, m.
+        interface: f64,
+        /// Free left end of the bar, m.
+        x_left: f64,
+    },
+}

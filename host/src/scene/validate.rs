@@ -1,0 +1,367 @@
+//! Semantic checks of a deserialised scene. Each failure is one line naming the key.
+
+use super::spec::*;
+use super::SceneError;
+use gsph_core::limiter::Limiter;
+use gsph_core::schemes::Scheme;
+
+type R = Result<(), SceneError>;
+
+fn fail(key: &str, msg: impl std::fmt::Display) -> R {
+    Err(SceneError(format!("{key}: {msg}")))
+}
+
+fn positive(key: &str, v: f64) -> R {
+    if v.is_finite() && v > 0.0 {
+        Ok(())
+    } else {
+        fail(key, format!("must be positive and finite (got {v})"))
+    }
+}
+
+fn non_negative(key: &str, v: f64) -> R {
+    if v.is_finite() && v >= 0.0 {
+        Ok(())
+    } else {
+        fail(key, format!("must be non-negative and finite (got {v})"))
+    }
+}
+
+fn finite(key: &str, v: f64) -> R {
+    if v.is_finite() {
+        Ok(())
+    } else {
+        fail(key, format!("must be finite (got {v})"))
+    }
+}
+
+fn dims(key: &str, v: &[f64], dim: usize) -> R {
+    if v.len() != dim {
+        return fail(
+            key,
+            format!(
+                "must have {dim} components for a {dim}D scene (got {})",
+                v.len()
+            ),
+        );
+    }
+    for (k, x) in v.iter().enumerate() {
+        finite(&format!("{key}[{k}]"), *x)?;
+    }
+    Ok(())
+}
+
+/// Known kernel names.
+pub const KERNELS: [&str; 3] = ["cubic_spline", "wendland_c2", "gaussian"];
+
+/// Checks the scene.
+pub fn validate(s: &Scene) -> R {
+    if !(1..=3).contains(&s.dim) {
+        return fail("dim", format!("must be 1, 2 or 3 (got {})", s.dim));
+    }
+    if Scheme::from_name(&s.scheme).is_none() {
+        return fail(
+            "scheme",
+            format!(
+                "unknown scheme `{}` (known: av, pm, ts1, ts2, tkc)",
+                s.scheme
+            ),
+        );
+    }
+    positive("t_end", s.t_end)?;
+    positive("resolution_scale", s.resolution_scale)?;
+    positive("cfl", s.cfl)?;
+    if s.cfl > 1.0 {
+        return fail("cfl", format!("must be at most 1 (got {})", s.cfl));
+    }
+    if !KERNELS.contains(&s.kernel.as_str()) {
+        return fail(
+            "kernel",
+            format!(
+                "unknown kernel `{}` (known: {})",
+                s.kernel,
+                KERNELS.join(", ")
+            ),
+        );
+    }
+    positive("h_factor", s.h_factor)?;
+    non_negative("skin", s.skin)?;
+    if s.neighbor_capacity == Some(0) {
+        return fail("neighbor_capacity", "must be at least 1");
+    }
+    if s.max_steps == Some(0) {
+        return fail("max_steps", "must be at least 1");
+    }
+    if s.output.snapshots == 0 {
+        return fail(
+            "output.snapshots",
+            "must be at least 1 (initial and final state)",
+        );
+    }
+    let o = &s.options;
+    non_negative("options.av_alpha", o.av_alpha)?;
+    non_negative("options.av_beta", o.av_beta)?;
+    if let Some(l) = &o.limiter {
+        if Limiter::from_name(l).is_none() {
+            return fail(
+                "options.limiter",
+                format!("unknown limiter `{l}` (known: minmod, superbee, mc, vanleer, sweby:BETA)"),
+            );
+        }
+    }
+    if let Some(r) = &o.riemann {
+        if r != "acoustic" && r != "two_shock" {
+            return fail(
+                "options.riemann",
+                format!("unknown Riemann solver `{r}` (known: acoustic, two_shock)"),
+            );
+        }
+    }
+    if let Some(v) = o.surface_lambda {
+        positive("options.surface_lambda", v)?;
+    }
+    if let Some(v) = o.det_epsilon {
+        non_negative("options.det_epsilon", v)?;
+    }
+    if let Some(p) = &s.periodic {
+        dims("periodic.lo", &p.lo, s.dim)?;
+        dims("periodic.hi", &p.hi, s.dim)?;
+        if p.axes.is_empty() {
+            return fail("periodic.axes", "must list at least one axis");
+        }
+        for (k, &a) in p.axes.iter().enumerate() {
+            if a >= s.dim {
+                return fail(
+                    &format!("periodic.axes[{k}]"),
+                    format!("axis {a} does not exist in {}D", s.dim),
+                );
+            }
+            if p.hi[a] <= p.lo[a] {
+                return fail(
+                    "periodic.hi",
+                    format!("must exceed periodic.lo along axis {a}"),
+                );
+            }
+        }
+    }
+    if s.materials.is_empty() {
+        return fail("materials", "at least one material is required");
+    }
+    for (k, m) in s.materials.iter().enumerate() {
+        let key = format!("materials[{k}]");
+        if s.materials[..k].iter().any(|o| o.name == m.name) {
+            return fail(
+                &format!("{key}.name"),
+                format!("duplicate material name `{}`", m.name),
+            );
+        }
+        positive(&format!("{key}.rho0"), m.rho0)?;
+        non_negative(&format!("{key}.shear_modulus"), m.shear_modulus)?;
+        validate_eos(&format!("{key}.eos"), &m.eos)?;
+        match &m.strength {
+            Some(StrengthSpec::Elastic) | Some(StrengthSpec::VonMises { .. })
+                if m.shear_modulus <= 0.0 =>
+            {
+                return fail(
+                    &format!("{key}.shear_modulus"),
+                    "must be positive for a material with strength",
+                );
+            }
+            Some(StrengthSpec::VonMises { yield_stress }) => {
+                positive(&format!("{key}.strength.yield_stress"), *yield_stress)?
+            }
+            Some(StrengthSpec::Fluid) if m.shear_modulus > 0.0 => {
+                return fail(
+                    &format!("{key}.strength"),
+                    "a fluid must have shear_modulus = 0",
+                );
+            }
+            _ => {}
+        }
+    }
+    if s.bodies.is_empty() {
+        return fail("bodies", "at least one body is required");
+    }
+    for (k, b) in s.bodies.iter().enumerate() {
+        let key = format!("bodies[{k}]");
+        material_known(s, &format!("{key}.material"), &b.material)?;
+        positive(&format!("{key}.spacing"), b.spacing)?;
+        validate_shape(&format!("{key}.shape"), &b.shape, s.dim)?;
+        match b.lattice.as_deref() {
+            None | Some("square") => {}
+            Some("polar") => {
+                if !matches!(b.shape, ShapeSpec::Disc { .. } | ShapeSpec::Annulus { .. })
+                    || s.dim != 2
+                {
+                    return fail(
+                        &format!("{key}.lattice"),
+                        "polar lattices exist for 2D discs and annuli only",
+                    );
+                }
+            }
+            Some(other) => {
+                return fail(
+                    &format!("{key}.lattice"),
+                    format!("unknown lattice `{other}` (known: square, polar)"),
+                )
+            }
+        }
+        match &b.velocity {
+            Some(VelocitySpec::Uniform { value }) => {
+                dims(&format!("{key}.velocity.value"), value, s.dim)?
+            }
+            Some(VelocitySpec::Radial { v0, r_ref, center }) => {
+                finite(&format!("{key}.velocity.v0"), *v0)?;
+                positive(&format!("{key}.velocity.r_ref"), *r_ref)?;
+                dims(&format!("{key}.velocity.center"), center, s.dim)?;
+            }
+            Some(VelocitySpec::Pulse {
+                amplitude,
+                k: kk,
+                center,
+                axis,
+            }) => {
+                finite(&format!("{key}.velocity.amplitude"), *amplitude)?;
+                positive(&format!("{key}.velocity.k"), *kk)?;
+                finite(&format!("{key}.velocity.center"), *center)?;
+                if *axis >= s.dim {
+                    return fail(
+                        &format!("{key}.velocity.axis"),
+                        format!("axis {axis} does not exist in {}D", s.dim),
+                    );
+                }
+            }
+            None => {}
+        }
+        match &b.initial {
+            Some(InitialSpec::UniaxialStress { sigma_xx }) => {
+                finite(&format!("{key}.initial.sigma_xx"), *sigma_xx)?
+            }
+            Some(InitialSpec::Density { rho, e }) => {
+                positive(&format!("{key}.initial.rho"), *rho)?;
+                finite(&format!("{key}.initial.e"), *e)?;
+            }
+            None => {}
+        }
+    }
+    match &s.reference {
+        Some(ReferenceSpec::FlyerPlate {
+            material,
+            impact_velocity,
+            interface,
+        }) => {
+            material_known(s, "reference.material", material)?;
+            finite("reference.impact_velocity", *impact_velocity)?;
+            finite("reference.interface", *interface)?;
+        }
+        Some(ReferenceSpec::ElasticPlasticRiemann {
+            material,
+            sigma1,
+            interface,
+            x_left,
+        }) => {
+            material_known(s, "reference.material", material)?;
+            finite("reference.sigma1", *sigma1)?;
+            finite("reference.interface", *interface)?;
+            finite("reference.x_left", *x_left)?;
+        }
+        None => {}
+    }
+    Ok(())
+}
+
+fn material_known(s: &Scene, key: &str, name: &str) -> R {
+    if s.materials.iter().any(|m| m.name == name) {
+        Ok(())
+    } else {
+        let known: Vec<&str> = s.materials.iter().map(|m| m.name.as_str()).collect();
+        fail(
+            key,
+            format!("unknown material `{name}` (known: {})", known.join(", ")),
+        )
+    }
+}
+
+fn validate_eos(key: &str, e: &EosSpec) -> R {
+    match e {
+        EosSpec::Linear { c0, gamma } => {
+            positive(&format!("{key}.c0"), *c0)?;
+            finite(&format!("{key}.gamma"), *gamma)
+        }
+        EosSpec::Logarithmic { bulk_modulus } => {
+            positive(&format!("{key}.bulk_modulus"), *bulk_modulus)
+        }
+        EosSpec::MieGruneisen { c0, s1, gamma0 } => {
+            positive(&format!("{key}.c0"), *c0)?;
+            non_negative(&format!("{key}.s1"), *s1)?;
+            finite(&format!("{key}.gamma0"), *gamma0)
+        }
+        EosSpec::Hugoniot { c0, s1 } => {
+            positive(&format!("{key}.c0"), *c0)?;
+            non_negative(&format!("{key}.s1"), *s1)
+        }
+        EosSpec::TwoCurve { c_a, s_a, gamma } => {
+            positive(&format!("{key}.c_a"), *c_a)?;
+            non_negative(&format!("{key}.s_a"), *s_a)?;
+            finite(&format!("{key}.gamma"), *gamma)
+        }
+        EosSpec::Polynomial { k1, k2, k3 } => {
+            positive(&format!("{key}.k1"), *k1)?;
+            finite(&format!("{key}.k2"), *k2)?;
+            finite(&format!("{key}.k3"), *k3)
+        }
+    }
+}
+
+fn validate_shape(key: &str, sh: &ShapeSpec, dim: usize) -> R {
+    match sh {
+        ShapeSpec::Segment { min, max } => {
+            if dim != 1 {
+                return fail(key, format!("a segment is a 1D shape; use a box in {dim}D"));
+            }
+            finite(&format!("{key}.min"), *min)?;
+            finite(&format!("{key}.max"), *max)?;
+            if max <= min {
+                return fail(
+                    &format!("{key}.max"),
+                    format!("must exceed min ({max} <= {min})"),
+                );
+            }
+        }
+        ShapeSpec::Box { min, max } => {
+            if dim == 1 {
+                return fail(key, "use a segment in 1D");
+            }
+            dims(&format!("{key}.min"), min, dim)?;
+            dims(&format!("{key}.max"), max, dim)?;
+            for a in 0..dim {
+                if max[a] <= min[a] {
+                    return fail(&format!("{key}.max[{a}]"), format!("must exceed min[{a}]"));
+                }
+            }
+        }
+        ShapeSpec::Disc { center, radius } => {
+            if dim == 1 {
+                return fail(key, "a disc needs 2 or 3 dimensions");
+            }
+            dims(&format!("{key}.center"), center, dim)?;
+            positive(&format!("{key}.radius"), *radius)?;
+        }
+        ShapeSpec::Annulus {
+            center,
+            r_inner,
+            r_outer,
+        } => {
+            if dim != 2 {
+                return fail(key, "an annulus is a 2D shape");
+            }
+            dims(&format!("{key}.center"), center, dim)?;
+            non_negative(&format!("{key}.r_inner"), *r_inner)?;
+            positive(&format!("{key}.r_outer"), *r_outer)?;
+            if r_outer <= r_inner {
+                return fail(&format!("{key}.r_outer"), "must exceed r_inner");
+            }
+        }
+    }
+    Ok(())
+}

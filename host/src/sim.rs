@@ -1,0 +1,595 @@
+//! A simulation in one dimension: Vec-backed particle state, workspace and neighbour lists
+//! around the core's slice-based step.
+
+use crate::exec::Rayon;
+use crate::output::{ParticleRow, ParticleTable};
+use crate::scene::{InitialParticles, Scene};
+use gsph_core::effects::EffectSet;
+use gsph_core::kernel::Kernel;
+use gsph_core::limiter::Limiter;
+use gsph_core::material::Material;
+use gsph_core::math::{Real, Sym3, Vector};
+use gsph_core::neighbors::{NeighborError, Neighbors, Periodic};
+use gsph_core::schemes::{Scheme, StepFn};
+use gsph_core::state::*;
+use std::any::Any;
+
+/// Why a simulation stopped or could not start. `Display` is one line.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SimError {
+    /// Neighbour lists overflowed.
+    Neighbors(NeighborError),
+    /// Two particles closer than half a lattice spacing.
+    Overlap {
+        /// First particle id.
+        i: u32,
+        /// Second particle id.
+        j: u32,
+        /// Distance, m.
+        distance: f64,
+        /// Where, m.
+        at: [f64; 3],
+    },
+    /// A step failed.
+    Step {
+        /// Step number (1-based).
+        step: u64,
+        /// Time at the start of the step, s.
+        t: f64,
+        /// Cause.
+        cause: StepError,
+    },
+    /// The specialisation for this scene is not compiled into this build.
+    NotCompiled {
+        /// Dimension.
+        dim: usize,
+        /// Scheme.
+        scheme: Scheme,
+        /// Effects.
+        effects: EffectSet,
+    },
+    /// The scheme family cannot run an effect the scene needs.
+    Unsupported {
+        /// Scheme.
+        scheme: Scheme,
+        /// The effects it cannot run.
+        effects: EffectSet,
+    },
+}
+
+impl std::fmt::Display for SimError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            SimError::Neighbors(e) => write!(f, "{e}"),
+            SimError::Overlap { i, j, distance, at } => write!(
+                f,
+                "particles {i} and {j} overlap: {distance:.3e} m apart at ({:.4e}, {:.4e}, {:.4e}) (less than half the lattice spacing; do two bodies overlap?)",
+                at[0], at[1], at[2]
+            ),
+            SimError::Step { step, t, cause } => write!(f, "step {step} (t = {t:.6e} s): {cause}"),
+            SimError::NotCompiled { dim, scheme, effects } => write!(
+                f,
+                "this build does not contain the specialisation {dim}D {} with effects {effects}; rebuild with the features that select it (see `gsph check` and the README)",
+                scheme.name()
+            ),
+            SimError::Unsupported { scheme, effects } => {
+                write!(f, "scheme {} does not support the effects {effects}", scheme.name())
+            }
+        }
+    }
+}
+
+impl std::error::Error for SimError {}
+
+/// The step function for dimension `D` (looked up once per run).
+fn select<const D: usize>(scheme: Scheme, effects: EffectSet) -> Option<StepFn<D, Rayon>> {
+    use gsph_core::dispatch::{select_1d, select_2d, select_3d};
+    let family = scheme.family();
+    let effects = effects.kernel_part();
+    match D {
+        1 => select_1d::<Rayon>(family, effects)
+            .and_then(|f| (&f as &dyn Any).downcast_ref::<StepFn<D, Rayon>>().copied()),
+        2 => select_2d::<Rayon>(family, effects)
+            .and_then(|f| (&f as &dyn Any).downcast_ref::<StepFn<D, Rayon>>().copied()),
+        3 => select_3d::<Rayon>(family, effects)
+            .and_then(|f| (&f as &dyn Any).downcast_ref::<StepFn<D, Rayon>>().copied()),
+        _ => None,
+    }
+}
+
+/// The effects a scene calls for (DESIGN §5): from its materials, options and scheme.
+pub fn resolve_effects(scene: &Scene, materials: &[Material]) -> EffectSet {
+    let mut e = Scheme::from_name(&scene.scheme).map_or(EffectSet::HYDRO, |s| s.effects());
+    if materials.iter().any(|m| m.has_strength()) {
+        e = e.union(EffectSet::STRENGTH);
+    }
+    if materials.iter().any(|m| m.has_plasticity()) {
+        e = e.union(EffectSet::PLASTICITY);
+    }
+    if scene.periodic.is_some() {
+        e = e.union(EffectSet::PERIODIC);
+    }
+    e.closed()
+}
+
+/// The kernel named in a scene.
+pub fn kernel_of(name: &str) -> Kernel {
+    match name {
+        "wendland_c2" => Kernel::WendlandC2,
+        "gaussian" => Kernel::Gaussian,
+        _ => Kernel::CubicSpline,
+    }
+}
+
+/// Default neighbour capacity for a dimension and kernel.
+pub fn default_capacity(dim: usize, kernel: Kernel, h_factor: f64) -> usize {
+    let r = kernel.support() * h_factor * 1.5; // room for compression and skin
+    match dim {
+        1 => (2.0 * r).ceil() as usize + 4,
+        2 => (std::f64::consts::PI * r * r).ceil() as usize + 8,
+        _ => (4.0 / 3.0 * std::f64::consts::PI * r * r * r).ceil() as usize + 16,
+    }
+}
+
+/// A running simulation in dimension `D`.
+pub struct Sim<const D: usize> {
+    /// Particle ids.
+    pub ids: Vec<u32>,
+    /// Positions.
+    pub x: Vec<Vector<D>>,
+    /// Velocities.
+    pub v: Vec<Vector<D>>,
+    /// Masses.
+    pub m: Vec<Real>,
+    /// Material indices.
+    pub mat: Vec<u16>,
+    /// Densities.
+    pub rho: Vec<Real>,
+    /// Specific internal energies.
+    pub e: Vec<Real>,
+    /// Pressures.
+    pub p: Vec<Real>,
+    /// Bulk sound speeds.
+    pub c: Vec<Real>,
+    /// Longitudinal sound speeds.
+    pub cl: Vec<Real>,
+    /// Smoothing lengths.
+    pub h: Vec<Real>,
+    /// Deviators (empty without strength).
+    pub s: Vec<Sym3>,
+    /// Plastic strains (empty without plasticity).
+    pub eps_p: Vec<Real>,
+    /// Damage (empty without damage).
+    pub damage: Vec<Real>,
+    /// Temperatures (empty without heat).
+    pub temp: Vec<Real>,
+    sums: Vec<PairSums<D>>,
+    grad: Vec<Gradients<D>>,
+    grad_stress: Vec<[Vector<D>; 6]>,
+    corr: Vec<Correction<D>>,
+    av: Vec<AvRates<D>>,
+    primed: bool,
+    nbr_index: Vec<u32>,
+    nbr_count: Vec<u32>,
+    capacity: usize,
+    build_x: Vec<Vector<D>>,
+    build_h: Vec<Real>,
+    /// Materials.
+    pub materials: Vec<Material>,
+    /// Kernel.
+    pub kernel: Kernel,
+    /// Smoothing length factor.
+    pub h_factor: Real,
+    /// Periodic box.
+    pub periodic: Periodic<D>,
+    /// Scheme options.
+    pub options: SchemeOptions,
+    skin: Real,
+    /// Resolved effects.
+    pub effects: EffectSet,
+    /// Scheme.
+    pub scheme: Scheme,
+    step_fn: StepFn<D, Rayon>,
+    exec: Rayon,
+    /// Time, s.
+    pub t: Real,
+    /// Steps taken.
+    pub step: u64,
+    /// Pair interactions evaluated so far (directed pairs in the lists, per step).
+    pub pair_interactions: u64,
+    /// Neighbour-list rebuilds so far.
+    pub rebuilds: u64,
+}
+
+fn vec_of<const D: usize>(a: &[f64; 3]) -> Vector<D> {
+    Vector::<D>::from_fn(|k, _| a[k])
+}
+
+impl<const D: usize> Sim<D> {
+    /// Builds a simulation from a validated scene and its particles.
+    pub fn new(scene: &Scene, parts: &InitialParticles) -> Result<Self, SimError> {
+        let materials: Vec<Material> = scene
+            .materials
+            .iter()
+            .map(crate::materials::material_of)
+            .collect();
+        let scheme = Scheme::from_name(&scene.scheme).expect("validated scheme");
+        let effects = resolve_effects(scene, &materials);
+        let unsupported = effects
+            .kernel_part()
+            .without(gsph_core::schemes::supported(scheme.family()));
+        if unsupported != EffectSet::HYDRO {
+            return Err(SimError::Unsupported {
+                scheme,
+                effects: unsupported,
+            });
+        }
+        let step_fn = select::<D>(scheme, effects).ok_or(SimError::NotCompiled {
+            dim: D,
+            scheme,
+            effects,
+        })?;
+        let n = parts.len();
+        let kernel = kernel_of(&scene.kernel);
+        let layout = Layout::of(scheme.family(), effects);
+        let opt = &scene.options;
+        let mut options = SchemeOptions {
+            av_alpha: opt.av_alpha,
+            av_beta: opt.av_beta,
+            ..SchemeOptions::default()
+        };
+        if let Some(l) = &opt.limiter {
+            options.limiter = Limiter::from_name(l).expect("validated limiter");
+        }
+        if scheme == Scheme::Tkc && opt.limiter.is_none() {
+            options.limiter = Limiter::Minmod;
+        }
+        if let Some(r) = &opt.riemann {
+            options.riemann = if r == "two_shock" {
+                RiemannSolver::TwoShock
+            } else {
+                RiemannSolver::Acoustic
+            };
+        }
+        if let Some(hc) = opt.hancock {
+            options.hancock = hc;
+        }
+        if let Some(v) = opt.surface_lambda {
+            options.surface_lambda = v;
+        }
+        if let Some(v) = opt.det_epsilon {
+            options.det_epsilon = v;
+        }
+        let periodic = match &scene.periodic {
+            None => Periodic::none(),
+            Some(p) => {
+                let mut axes = [false; D];
+                for &a in &p.axes {
+                    axes[a] = true;
+                }
+                Periodic {
+                    lo: Vector::<D>::from_fn(|k, _| p.lo[k]),
+                    len: Vector::<D>::from_fn(|k, _| p.hi[k] - p.lo[k]),
+                    axes,
+                }
+            }
+        };
+        let has = |e: EffectSet| effects.contains(e);
+        let opt_vec = |on: bool, v: &[Sym3]| if on { v.to_vec() } else { Vec::new() };
+        let capacity = scene
+            .neighbor_capacity
+            .unwrap_or_else(|| default_capacity(D, kernel, scene.h_factor));
+        let mut sim = Sim {
+            ids: (0..n as u32).collect(),
+            x: parts
+                .x
+                .iter()
+                .map(|p| periodic.wrap(vec_of::<D>(p)))
+                .collect(),
+            v: parts.v.iter().map(vec_of::<D>).collect(),
+            m: parts.m.clone(),
+            mat: parts.mat.clone(),
+            rho: parts.rho.clone(),
+            e: parts.e.clone(),
+            p: vec![0.0; n],
+            c: vec![0.0; n],
+            cl: vec![0.0; n],
+            h: vec![0.0; n],
+            s: opt_vec(has(EffectSet::STRENGTH), &parts.s),
+            eps_p: if has(EffectSet::PLASTICITY) {
+                vec![0.0; n]
+            } else {
+                Vec::new()
+            },
+            damage: if has(EffectSet::DAMAGE) {
+                vec![0.0; n]
+            } else {
+                Vec::new()
+            },
+            temp: if has(EffectSet::HEAT) {
+                vec![0.0; n]
+            } else {
+                Vec::new()
+            },
+            sums: vec![PairSums::default(); n],
+            grad: if layout.grad {
+                vec![Gradients::default(); n]
+            } else {
+                Vec::new()
+            },
+            grad_stress: if layout.grad_stress {
+                vec![[Vector::<D>::zeros(); 6]; n]
+            } else {
+                Vec::new()
+            },
+            corr: if layout.corr {
+                vec![Correction::default(); n]
+            } else {
+                Vec::new()
+            },
+            av: if layout.av {
+                vec![AvRates::default(); n]
+            } else {
+                Vec::new()
+            },
+            primed: false,
+            nbr_index: vec![0; n * capacity],
+            nbr_count: vec![0; n],
+            capacity,
+            build_x: Vec::new(),
+            build_h: Vec::new(),
+            materials,
+            kernel,
+            h_factor: scene.h_factor,
+            periodic,
+            options,
+            skin: scene.skin,
+            effects,
+            scheme,
+            step_fn,
+            exec: Rayon::default(),
+            t: 0.0,
+            step: 0,
+            pair_interactions: 0,
+            rebuilds: 0,
+        };
+        for i in 0..n {
+            let mat = sim.materials[sim.mat[i] as usize];
+            let st = mat.eos(sim.rho[i], sim.e[i]);
+            sim.p[i] = st.p;
+            sim.c[i] = st.c2.max(0.0).sqrt();
+            sim.cl[i] = mat.c_long(sim.rho[i], st.c2.max(0.0));
+            sim.h[i] = smoothing_length::<D>(sim.h_factor, sim.m[i], sim.rho[i]);
+        }
+        sim.rebuild()?;
+        sim.check_overlap(&parts.spacing)?;
+        Ok(sim)
+    }
+
+    /// Number of particles.
+    pub fn len(&self) -> usize {
+        self.x.len()
+    }
+
+    /// True if there are no particles.
+    pub fn is_empty(&self) -> bool {
+        self.x.is_empty()
+    }
+
+    /// Bytes of per-particle storage (state, workspace and neighbour lists) per particle.
+    pub fn bytes_per_particle(&self) -> usize {
+        use std::mem::size_of;
+        let n = self.len().max(1);
+        let state = self.x.len() * size_of::<Vector<D>>() * 2
+            + (self.m.len()
+                + self.rho.len()
+                + self.e.len()
+                + self.p.len()
+                + self.c.len()
+                + self.cl.len()
+                + self.h.len())
+                * size_of::<Real>()
+            + self.mat.len() * 2
+            + self.ids.len() * 4
+            + self.s.len() * size_of::<Sym3>()
+            + (self.eps_p.len() + self.damage.len() + self.temp.len()) * size_of::<Real>();
+        let ws = self.sums.len() * size_of::<PairSums<D>>()
+            + self.grad.len() * size_of::<Gradients<D>>()
+            + self.grad_stress.len() * size_of::<[Vector<D>; 6]>()
+            + self.corr.len() * size_of::<Correction<D>>()
+            + self.av.len() * size_of::<AvRates<D>>();
+        let lists = (self.nbr_index.len() + self.nbr_count.len()) * 4;
+        (state + ws + lists) / n
+    }
+
+    fn rebuild(&mut self) -> Result<(), SimError> {
+        crate::neighbors::build(
+            &self.x,
+            &self.h,
+            self.kernel.support(),
+            self.skin,
+            &self.periodic,
+            self.capacity,
+            &mut self.nbr_index,
+            &mut self.nbr_count,
+        )
+        .map_err(SimError::Neighbors)?;
+        self.build_x.clone_from(&self.x);
+        self.build_h.clone_from(&self.h);
+        self.rebuilds += 1;
+        Ok(())
+    }
+
+    /// True when some pair may have entered the kernel support since the last build.
+    fn lists_stale(&self) -> bool {
+        if self.build_x.len() != self.x.len() {
+            return true;
+        }
+        let mut dmax2: f64 = 0.0;
+        let mut growth: f64 = 0.0;
+        let mut hmin = f64::INFINITY;
+        for i in 0..self.x.len() {
+            let d = self.periodic.min_image(self.x[i] - self.build_x[i]);
+            dmax2 = dmax2.max(d.norm_squared());
+            growth = growth.max(self.h[i] / self.build_h[i] - 1.0);
+            hmin = hmin.min(self.build_h[i]);
+        }
+        2.0 * dmax2.sqrt() >= self.kernel.support() * hmin * (self.skin - growth)
+    }
+
+    fn check_overlap(&self, spacing: &[f64]) -> Result<(), SimError> {
+        let nb = Neighbors {
+            capacity: self.capacity,
+            index: &self.nbr_index,
+            count: &self.nbr_count,
+        };
+        for i in 0..self.len() {
+            for &j in nb.of(i) {
+                let j = j as usize;
+                let d = self.periodic.min_image(self.x[i] - self.x[j]).norm();
+                if d < 0.5 * spacing[i].min(spacing[j]) {
+                    let mut at = [0.0; 3];
+                    for a in 0..D {
+                        at[a] = self.x[i][a];
+                    }
+                    return Err(SimError::Overlap {
+                        i: self.ids[i],
+                        j: self.ids[j],
+                        distance: d,
+                        at,
+                    });
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Largest stable time step for the CFL number.
+    pub fn stable_dt(&mut self, cfl: Real) -> Real {
+        let mut dt = f64::INFINITY;
+        for i in 0..self.len() {
+            let speed = self.cl[i] + self.v[i].norm();
+            if speed > 0.0 {
+                dt = dt.min(self.h[i] / speed);
+            }
+        }
+        cfl * dt
+    }
+
+    /// Advances by `dt`.
+    pub fn step(&mut self, dt: Real) -> Result<(), SimError> {
+        if self.lists_stale() {
+            self.rebuild()?;
+        }
+        let t0 = self.t;
+        let nbrs = Neighbors {
+            capacity: self.capacity,
+            index: &self.nbr_index,
+            count: &self.nbr_count,
+        };
+        let pairs = nbrs.pairs() as u64;
+        let params = StepParams {
+            dt,
+            materials: &self.materials,
+            kernel: self.kernel,
+            h_factor: self.h_factor,
+            periodic: self.periodic,
+            nbrs,
+            options: self.options,
+        };
+        let mut sys = System {
+            x: &mut self.x,
+            v: &mut self.v,
+            m: &self.m,
+            mat: &self.mat,
+            rho: &mut self.rho,
+            e: &mut self.e,
+            p: &mut self.p,
+            c: &mut self.c,
+            cl: &mut self.cl,
+            h: &mut self.h,
+            s: &mut self.s,
+            eps_p: &mut self.eps_p,
+            damage: &mut self.damage,
+            temp: &mut self.temp,
+        };
+        let mut ws = Workspace {
+            sums: &mut self.sums,
+            grad: &mut self.grad,
+            grad_stress: &mut self.grad_stress,
+            corr: &mut self.corr,
+            av: &mut self.av,
+            primed: self.primed,
+        };
+        let step = self.step + 1;
+        let fail = |cause| SimError::Step { step, t: t0, cause };
+        (self.step_fn)(&mut sys, &mut ws, &params, &self.exec).map_err(fail)?;
+        check_finite(&sys).map_err(fail)?;
+        self.primed = ws.primed;
+        self.t += dt;
+        self.step = step;
+        self.pair_interactions += pairs;
+        Ok(())
+    }
+
+    /// Total energy (kinetic + internal), J.
+    pub fn energy(&self) -> (f64, f64) {
+        let mut kin = 0.0;
+        let mut int = 0.0;
+        for i in 0..self.len() {
+            kin += 0.5 * self.m[i] * self.v[i].norm_squared();
+            int += self.m[i] * self.e[i];
+        }
+        (kin, int)
+    }
+
+    /// Total momentum, padded to 3 components.
+    pub fn momentum(&self) -> [f64; 3] {
+        let mut p = [0.0; 3];
+        for i in 0..self.len() {
+            for a in 0..D {
+                p[a] += self.m[i] * self.v[i][a];
+            }
+        }
+        p
+    }
+
+    /// The particle table (final.csv columns).
+    pub fn table(&self) -> ParticleTable {
+        let mut t = ParticleTable::with_capacity(self.len());
+        for i in 0..self.len() {
+            let g = |v: &Vector<D>, a: usize| if a < D { v[a] } else { 0.0 };
+            let s = if self.s.is_empty() {
+                Sym3::ZERO
+            } else {
+                self.s[i]
+            };
+            let opt = |v: &Vec<f64>| if v.is_empty() { 0.0 } else { v[i] };
+            t.push(&ParticleRow {
+                id: self.ids[i],
+                material: self.mat[i] as u32,
+                x: g(&self.x[i], 0),
+                y: g(&self.x[i], 1),
+                z: g(&self.x[i], 2),
+                vx: g(&self.v[i], 0),
+                vy: g(&self.v[i], 1),
+                vz: g(&self.v[i], 2),
+                m: self.m[i],
+                rho: self.rho[i],
+                p: self.p[i],
+                e: self.e[i],
+                sxx: s.xx,
+                syy: s.yy,
+                szz: s.zz,
+                sxy: s.xy,
+                sxz: s.xz,
+                syz: s.yz,
+                eps_p: opt(&self.eps_p),
+                damage: opt(&self.damage),
+                temperature: opt(&self.temp),
+                h: self.h[i],
+            });
+        }
+        t
+    }
+}

@@ -1,0 +1,9 @@
+gsph_macros::specialise! {
+    dims: [2];
+    families: [pm => crate::Pm, pm => crate::Tkc];
+    effects: [
+        strength: STRENGTH,
+    ];
+}
+
+fn main() {}

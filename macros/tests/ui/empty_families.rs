@@ -1,0 +1,9 @@
+gsph_macros::specialise! {
+    dims: [2];
+    families: [];
+    effects: [
+        strength: STRENGTH,
+    ];
+}
+
+fn main() {}
