@@ -11,6 +11,7 @@
 //! (see `examples/firmware_flyer.rs`).
 #![no_std]
 #![deny(missing_docs)]
+#![warn(clippy::std_instead_of_core)]
 
 #[cfg(test)]
 extern crate std;

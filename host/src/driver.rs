@@ -247,13 +247,13 @@ fn run_dim<const D: usize>(
         }
     }
     if let Some(dir) = &opts.out {
-        write_csv(&dir.join("final.csv"), &table)?;
-        write_atomic(&dir.join("series.csv"), series.as_bytes())?;
+        write_csv(dir.join("final.csv"), &table)?;
+        write_atomic(dir.join("series.csv"), series.as_bytes())?;
         if let Some(w) = writer.take() {
             w.finish()?;
         }
         let text = serde_json::to_string_pretty(&Value::Object(s.clone())).expect("json");
-        write_atomic(&dir.join("summary.json"), text.as_bytes())?;
+        write_atomic(dir.join("summary.json"), text.as_bytes())?;
     }
     Ok(RunResult { summary: s, table })
 }

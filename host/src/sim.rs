@@ -449,9 +449,7 @@ impl<const D: usize> Sim<D> {
                 let d = self.periodic.min_image(self.x[i] - self.x[j]).norm();
                 if d < 0.5 * spacing[i].min(spacing[j]) {
                     let mut at = [0.0; 3];
-                    for a in 0..D {
-                        at[a] = self.x[i][a];
-                    }
+                    at[..D].copy_from_slice(self.x[i].as_slice());
                     return Err(SimError::Overlap {
                         i: self.ids[i],
                         j: self.ids[j],
@@ -547,8 +545,8 @@ impl<const D: usize> Sim<D> {
     pub fn momentum(&self) -> [f64; 3] {
         let mut p = [0.0; 3];
         for i in 0..self.len() {
-            for a in 0..D {
-                p[a] += self.m[i] * self.v[i][a];
+            for (a, pa) in p.iter_mut().enumerate().take(D) {
+                *pa += self.m[i] * self.v[i][a];
             }
         }
         p

@@ -10,6 +10,9 @@
 //! | `ts1` | [`ts::Ts`] | – | 000 §3.3–3.4 |
 //! | `ts2` | [`ts::Ts`] | MUSCL (limiter selectable) | 000 §3.3.1 |
 
+// Per-particle updates index several structure-of-arrays slices with one index.
+#![allow(clippy::needless_range_loop)]
+
 pub mod av;
 pub(crate) mod common;
 pub mod pm;

@@ -102,6 +102,7 @@ fn gradient_pass<const D: usize, E: Effects, X: Executor>(
 /// `(Q_l, Q_r)` from `Q_i`, `Q_j` and the projected gradients `g_i = grad Q_i . n`,
 /// `g_j = grad Q_j . n`.
 #[inline(always)]
+#[allow(clippy::too_many_arguments)]
 fn reconstruct(
     q_i: Real,
     q_j: Real,
