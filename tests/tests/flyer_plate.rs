@@ -1,0 +1,107 @@
+//! Seed 000 §4.1: the 1D flyer plate against its exact solution (elastic precursor and
+//! plastic shock; exact solution in `gsph_core::exact::FlyerPlate`).
+
+use gsph_tests::{num, run_case};
+
+/// Relative L1 error of sigma_xx (mean |error| over particles / |final stress|) at 100
+/// particles, t = 0.5 us. Bounds sit ~25 % above the values measured when they were set
+/// (av 0.062, pm 0.061, ts1 0.055, ts2 0.030), so a regression of the schemes fails them.
+#[test]
+fn every_scheme_stays_within_its_l1_bound() {
+    for (scheme, bound) in [("av", 0.08), ("pm", 0.08), ("ts1", 0.07), ("ts2", 0.04)] {
+        let s = run_case("flyer_plate", &[&format!("scheme={scheme}")]);
+        let l1 = num(&s, "l1_error_relative");
+        println!("{scheme}: L1 relative {l1:.4e}");
+        assert!(l1 < bound, "{scheme}: L1 relative {l1} exceeds {bound}");
+    }
+}
+
+/// The elastic precursor (half-HEL crossing of sigma_xx, interpolated) against its exact
+/// position 0.5 us after impact (x = 8.086 mm, 3.086 mm from the impact plane).
+///
+/// `ts2` keeps it within 2 % of the distance travelled already at 100 particles. The
+/// first-order schemes (av, pm, ts1) smear the plastic shock, which trails the precursor
+/// by only 0.29 mm (three spacings at 100 particles), into the precursor's foot, so their
+/// half-HEL point runs ahead: 7-9 % of the travel at 100 particles (3.4 % of the x
+/// coordinate), shrinking with resolution. They meet 2 % of the exact position at 400
+/// particles; the test checks that, and that the offset falls as the resolution doubles.
+#[test]
+fn elastic_precursor_position() {
+    let s = run_case("flyer_plate", &["scheme=ts2"]);
+    let err = num(&s, "precursor_position_error_relative");
+    assert!(err < 0.02, "ts2: precursor off by {err} of its travel");
+    for scheme in ["av", "pm", "ts1", "ts2"] {
+        let runs: Vec<_> = [1, 2, 4]
+            .iter()
+            .map(|r| {
+                run_case(
+                    "flyer_plate",
+                    &[
+                        &format!("scheme={scheme}"),
+                        &format!("resolution_scale={r}"),
+                    ],
+                )
+            })
+            .collect();
+        let travel: Vec<f64> = runs
+            .iter()
+            .map(|s| num(s, "precursor_position_error_relative"))
+            .collect();
+        let at400 = &runs[2];
+        let rel_x = (num(at400, "precursor_position") - num(at400, "precursor_position_exact"))
+            .abs()
+            / num(at400, "precursor_position_exact");
+        println!("{scheme}: error / travel at 100, 200, 400 particles: {travel:?}; error / x at 400: {rel_x:.4}");
+        assert!(
+            rel_x < 0.02,
+            "{scheme}: precursor off by {rel_x} of its position at 400 particles"
+        );
+        if scheme != "ts2" {
+            assert!(
+                travel[1] < travel[0] && travel[2] < travel[1],
+                "{scheme}: offset does not shrink: {travel:?}"
+            );
+        }
+    }
+}
+
+/// L1 falls as the resolution doubles (100 -> 200 -> 400 particles).
+#[test]
+fn l1_falls_as_resolution_doubles() {
+    for scheme in ["av", "pm", "ts1", "ts2"] {
+        let l1: Vec<f64> = [1, 2, 4]
+            .iter()
+            .map(|r| {
+                num(
+                    &run_case(
+                        "flyer_plate",
+                        &[
+                            &format!("scheme={scheme}"),
+                            &format!("resolution_scale={r}"),
+                        ],
+                    ),
+                    "l1_error",
+                )
+            })
+            .collect();
+        println!("{scheme}: L1 {l1:?}");
+        assert!(
+            l1[1] < l1[0] && l1[2] < l1[1],
+            "{scheme}: L1 does not fall: {l1:?}"
+        );
+    }
+}
+
+/// Momentum is conserved to round-off by every scheme (antisymmetric pair forces).
+#[test]
+fn momentum_conserved_to_round_off() {
+    for scheme in ["av", "pm", "ts1", "ts2", "tkc"] {
+        let s = run_case("flyer_plate", &[&format!("scheme={scheme}")]);
+        let p0 = s["momentum_initial"][0].as_f64().unwrap();
+        let p1 = s["momentum_final"][0].as_f64().unwrap();
+        assert!(
+            ((p1 - p0) / p0).abs() < 1e-12,
+            "{scheme}: momentum {p0} -> {p1}"
+        );
+    }
+}
