@@ -29,7 +29,7 @@ pub enum Command {
     Run {
         /// Scene file.
         scene: PathBuf,
-        /// Output directory (default out/<scene name>).
+        /// Output directory (default `out/<scene name>`).
         #[arg(long)]
         out: Option<PathBuf>,
         /// Override a scene key (dotted path), e.g. --set bodies.0.spacing=5e-4.

@@ -29,7 +29,7 @@
 //! along the characteristic.
 //!
 //! Failed particles (damage = 1; seed 000 Algorithm 1) are handled in
-//! [`riemann_states`]: the place where first order is forced and tension is cut.
+//! `riemann_states`: the place where first order is forced and tension is cut.
 
 use super::common::{advance_deviator, for_each_pair, outer, refresh_eos};
 use super::SchemeFamily;

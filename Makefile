@@ -1,0 +1,13 @@
+# The two commands of the README. Both set up a fresh machine first (scripts/setup.sh).
+.PHONY: demo test setup
+
+setup:
+	scripts/setup.sh
+
+# Runs a bundled scene end to end: writes out/flyer_plate/{summary.json,final.csv,snapshots.h5,snapshots.xdmf}.
+demo: setup
+	cargo run --release -p gsph -- run cases/flyer_plate.toml --out out/flyer_plate
+
+# Runs the test suite (what CI runs).
+test:
+	scripts/test.sh

@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# One-time set-up of a fresh Debian/Ubuntu machine for gsph: the HDF5 C library (for the
+# hdf5-metno crate), pkg-config, and the bare-metal Rust target used to prove the core is
+# no_std. Idempotent: does nothing when everything is present.
+set -euo pipefail
+
+need_apt=()
+if ! pkg-config --exists hdf5 2>/dev/null; then
+  need_apt+=(libhdf5-dev)
+fi
+command -v pkg-config >/dev/null 2>&1 || need_apt+=(pkg-config)
+if [ ${#need_apt[@]} -gt 0 ]; then
+  echo "setup: installing ${need_apt[*]} (apt)" >&2
+  sudo_cmd=""
+  if [ "$(id -u)" -ne 0 ]; then sudo_cmd="sudo"; fi
+  export DEBIAN_FRONTEND=noninteractive
+  $sudo_cmd apt-get update -qq
+  $sudo_cmd apt-get install -y -qq "${need_apt[@]}" >/dev/null
+fi
+
+if command -v rustup >/dev/null 2>&1; then
+  if ! rustup target list --installed 2>/dev/null | grep -q '^thumbv7em-none-eabihf$'; then
+    echo "setup: adding the thumbv7em-none-eabihf target (rustup)" >&2
+    rustup target add thumbv7em-none-eabihf >/dev/null
+  fi
+fi
