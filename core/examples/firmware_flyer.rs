@@ -64,9 +64,15 @@ mod runner {
     const DX: Real = 1.0e-4;
     const MATERIAL: Material = Material {
         rho0: 6100.0,
-        eos: gsph_core::material::Eos::Hugoniot(Hugoniot { rho0: 6100.0, c0: 5077.0, s1: 1.201 }),
+        eos: gsph_core::material::Eos::Hugoniot(Hugoniot {
+            rho0: 6100.0,
+            c0: 5077.0,
+            s1: 1.201,
+        }),
         shear_modulus: 48.1e9,
-        strength: Strength::VonMises { yield_stress: 2.5e9 },
+        strength: Strength::VonMises {
+            yield_stress: 2.5e9,
+        },
     };
 
     impl Storage {
@@ -119,12 +125,49 @@ mod runner {
         let mut steps = 0;
         let mut e0 = None;
         while t < t_end {
-            let Storage { x, v, m, mat, rho, e, p, c, cl, h, s, eps_p, sums, idx, cnt } = st;
-            let mut list = NeighborList::new(CAP, idx, cnt).map_err(|_| StepError::Storage { field: "neighbors" })?;
-            let hh: &[Real] = h;
-            build_naive(&x[..], &Periodic::none(), |i, j| 2.0 * 0.5 * (hh[i] + hh[j]), &mut list)
+            let Storage {
+                x,
+                v,
+                m,
+                mat,
+                rho,
+                e,
+                p,
+                c,
+                cl,
+                h,
+                s,
+                eps_p,
+                sums,
+                idx,
+                cnt,
+            } = st;
+            let mut list = NeighborList::new(CAP, idx, cnt)
                 .map_err(|_| StepError::Storage { field: "neighbors" })?;
-            let mut sys = System { x, v, m, mat, rho, e, p, c, cl, h, s, eps_p, damage: &mut [], temp: &mut [] };
+            let hh: &[Real] = h;
+            build_naive(
+                &x[..],
+                &Periodic::none(),
+                |i, j| 2.0 * 0.5 * (hh[i] + hh[j]),
+                &mut list,
+            )
+            .map_err(|_| StepError::Storage { field: "neighbors" })?;
+            let mut sys = System {
+                x,
+                v,
+                m,
+                mat,
+                rho,
+                e,
+                p,
+                c,
+                cl,
+                h,
+                s,
+                eps_p,
+                damage: &mut [],
+                temp: &mut [],
+            };
             let energy = total_energy(&sys);
             let e0 = *e0.get_or_insert(energy);
             let _ = e0;
@@ -138,22 +181,61 @@ mod runner {
                 nbrs: list.view(),
                 options: SchemeOptions::default(),
             };
-            let mut ws =
-                Workspace { sums, grad: &mut [], grad_stress: &mut [], corr: &mut [], av: &mut [], primed: false };
+            let mut ws = Workspace {
+                sums,
+                grad: &mut [],
+                grad_stress: &mut [],
+                corr: &mut [],
+                av: &mut [],
+                primed: false,
+            };
             step(&mut sys, &mut ws, &params, &Serial)?;
             check_finite(&sys)?;
             t += dt;
             steps += 1;
         }
-        let Storage { x, v, m, mat, rho, e, p, c, cl, h, s, eps_p, .. } = st;
-        let sys = System { x, v, m, mat, rho, e, p, c, cl, h, s, eps_p, damage: &mut [], temp: &mut [] };
+        let Storage {
+            x,
+            v,
+            m,
+            mat,
+            rho,
+            e,
+            p,
+            c,
+            cl,
+            h,
+            s,
+            eps_p,
+            ..
+        } = st;
+        let sys = System {
+            x,
+            v,
+            m,
+            mat,
+            rho,
+            e,
+            p,
+            c,
+            cl,
+            h,
+            s,
+            eps_p,
+            damage: &mut [],
+            temp: &mut [],
+        };
         let e1 = total_energy(&sys);
         let e0 = e0.unwrap_or(e1);
         let mut min_sigma: Real = 0.0;
         for i in 0..N {
             min_sigma = min_sigma.min(sys.s[i].xx - sys.p[i]);
         }
-        Ok(Report { steps, energy_rel_error: (e1 - e0) / e0, min_sigma_xx: min_sigma })
+        Ok(Report {
+            steps,
+            energy_rel_error: (e1 - e0) / e0,
+            min_sigma_xx: min_sigma,
+        })
     }
 }
 

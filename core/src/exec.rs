@@ -81,3 +81,20 @@ impl Executor for Serial {
         f(0, data)
     }
 }
+
+/// A per-particle slice that may be empty (an absent effect): splitting an empty
+/// `Optional` gives two empty halves instead of panicking.
+#[derive(Debug)]
+pub struct Optional<'a, T>(pub &'a mut [T]);
+
+impl<T: Send> Split for Optional<'_, T> {
+    #[inline]
+    fn len(&self) -> usize {
+        self.0.len()
+    }
+    #[inline]
+    fn split_at(self, mid: usize) -> (Self, Self) {
+        let (a, b) = split_opt(self.0, mid);
+        (Optional(a), Optional(b))
+    }
+}

@@ -348,6 +348,20 @@ pub enum RiemannSolver {
     TwoShock,
 }
 
+/// The time dimension of the MUSCL reconstruction of `ts2`. Seed 000 eq 23 multiplies the
+/// slope by `[1 - c_i dt]`, which has units of length: see `schemes::ts` for the choice.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MusclTime {
+    /// MUSCL–Hancock predictor: the particle's state is advanced half a step with the
+    /// Lagrangian acoustic equations before the spatial reconstruction.
+    Predictor,
+    /// The seed's factor made dimensionless: slopes scaled by `max(0, 1 - c_i dt / r_ij)`
+    /// (default).
+    CourantFactor,
+    /// Spatial reconstruction only.
+    None,
+}
+
 /// Scheme options (with the defaults of the seeds).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SchemeOptions {
@@ -359,9 +373,10 @@ pub struct SchemeOptions {
     pub limiter: Limiter,
     /// Riemann solver of `ts`.
     pub riemann: RiemannSolver,
-    /// Apply the MUSCL–Hancock time factor `max(0, 1 - c dt / r_ij)` in `ts2`
-    /// (seed 000 eq 23, corrected to be dimensionless).
-    pub hancock: bool,
+    /// How `ts2` accounts for the time step when it reconstructs the contact states whose
+    /// velocities update the density (seed 000 eq 23); the contact pressure of the momentum
+    /// and energy equations uses the plain limited reconstruction (see `schemes::ts`).
+    pub muscl_time: MusclTime,
     /// Threshold on the smallest eigenvalue of L below which a particle is a free-surface
     /// particle (`tkc`).
     pub surface_lambda: Real,
@@ -376,7 +391,7 @@ impl Default for SchemeOptions {
             av_beta: 1.0,
             limiter: Limiter::Superbee,
             riemann: RiemannSolver::Acoustic,
-            hancock: true,
+            muscl_time: MusclTime::CourantFactor,
             surface_lambda: 0.75,
             det_epsilon: 0.05,
         }

@@ -1,7 +1,9 @@
 //! The `gsph` command line (DESIGN §6). `main` only calls [`main_with_args`].
 
-use crate::driver::{run, RunOptions};
+use crate::driver::{run, RunError, RunOptions};
+use crate::reference::Reference;
 use crate::scene::{self, build_particles};
+use crate::sim::{Sim, SimError};
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
 
@@ -64,14 +66,57 @@ fn pool(threads: Option<usize>) -> Result<rayon::ThreadPool, String> {
     b.build().map_err(|e| format!("cannot start threads: {e}"))
 }
 
+/// Removes the results of an earlier run from `dir`, so that a run that fails (on bad input
+/// too) leaves nothing that looks complete (DESIGN §6).
+fn clear_results(dir: &std::path::Path) -> Result<(), String> {
+    for f in [
+        "summary.json",
+        "final.csv",
+        "series.csv",
+        "snapshots.h5",
+        "snapshots.xdmf",
+    ] {
+        match std::fs::remove_file(dir.join(f)) {
+            Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+                return Err(format!(
+                    "{}: cannot remove an earlier {f}: {e}",
+                    dir.display()
+                ))
+            }
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
+/// Sets the scene up as a run would (neighbour lists, overlap check, specialisation), so
+/// `gsph check` fails where `gsph run` would fail before its first step.
+fn probe(sc: &scene::Scene, parts: &scene::InitialParticles) -> Result<(), SimError> {
+    match sc.dim {
+        1 => Sim::<1>::new(sc, parts).map(drop),
+        2 => Sim::<2>::new(sc, parts).map(drop),
+        _ => Sim::<3>::new(sc, parts).map(drop),
+    }
+}
+
 /// Runs the CLI on `args`; returns the process exit code. Errors are printed as one line.
 pub fn main_with_args(args: impl IntoIterator<Item = std::ffi::OsString>) -> i32 {
     let cli = match Cli::try_parse_from(args) {
         Ok(c) => c,
+        Err(e) if e.use_stderr() => {
+            // clap's message is a paragraph, then usage: keep the paragraph, on one line
+            let text = e.render().to_string();
+            let first: Vec<&str> = text
+                .lines()
+                .take_while(|l| !l.trim().is_empty())
+                .map(str::trim)
+                .collect();
+            eprintln!("{}", first.join(" "));
+            return 2;
+        }
         Err(e) => {
-            let code = if e.use_stderr() { 2 } else { 0 };
             let _ = e.print();
-            return code;
+            return 0;
         }
     };
     match execute(cli.command) {
@@ -87,7 +132,10 @@ fn execute(cmd: Command) -> Result<(), String> {
     match cmd {
         Command::Check { scene: path, set } => {
             let sc = scene::load(&path, &set).map_err(|e| e.to_string())?;
-            let parts = build_particles(&sc).map_err(|e| e.to_string())?;
+            let at = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
+            let parts = build_particles(&sc).map_err(|e| at(&e))?;
+            Reference::from_scene(&sc).map_err(|e| at(&e))?;
+            probe(&sc, &parts).map_err(|e| at(&e))?;
             let materials: Vec<_> = sc
                 .materials
                 .iter()
@@ -129,9 +177,13 @@ fn execute(cmd: Command) -> Result<(), String> {
             threads,
             quiet,
         } => {
+            if let Some(dir) = &out {
+                clear_results(dir)?;
+            }
             let sc = scene::load(&path, &set).map_err(|e| e.to_string())?;
             let name = scene_name(&sc, &path);
             let out = out.unwrap_or_else(|| PathBuf::from("out").join(&name));
+            clear_results(&out)?;
             let pool = pool(threads)?;
             let opts = RunOptions {
                 out: Some(out.clone()),
@@ -139,7 +191,10 @@ fn execute(cmd: Command) -> Result<(), String> {
             };
             let res = pool
                 .install(|| run(&sc, &name, &opts))
-                .map_err(|e| e.to_string())?;
+                .map_err(|e| match e {
+                    RunError::Output(e) => format!("{}: cannot write output: {e}", out.display()),
+                    e => format!("{}: {e}", path.display()),
+                })?;
             let s = &res.summary;
             let g = |k: &str| s.get(k).cloned().unwrap_or_default();
             println!(

@@ -2,7 +2,7 @@
 
 use crate::output::{write_atomic, write_csv, Frame, OutputError, SnapshotWriter};
 use crate::reference::Reference;
-use crate::scene::{build_particles, Scene, SceneError};
+use crate::scene::{build_particles, InitialParticles, Scene, SceneError};
 use crate::sim::{Sim, SimError};
 use serde_json::{json, Map, Value};
 use std::io::IsTerminal;
@@ -73,10 +73,21 @@ pub struct RunResult {
 
 /// Runs a validated scene.
 pub fn run(scene: &Scene, scene_name: &str, opts: &RunOptions) -> Result<RunResult, RunError> {
+    let parts = build_particles(scene)?;
+    run_particles(scene, scene_name, parts, opts)
+}
+
+/// Runs a validated scene from particles built (and possibly modified) by the caller.
+pub fn run_particles(
+    scene: &Scene,
+    scene_name: &str,
+    parts: InitialParticles,
+    opts: &RunOptions,
+) -> Result<RunResult, RunError> {
     match scene.dim {
-        1 => run_dim::<1>(scene, scene_name, opts),
-        2 => run_dim::<2>(scene, scene_name, opts),
-        _ => run_dim::<3>(scene, scene_name, opts),
+        1 => run_dim::<1>(scene, scene_name, &parts, opts),
+        2 => run_dim::<2>(scene, scene_name, &parts, opts),
+        _ => run_dim::<3>(scene, scene_name, &parts, opts),
     }
 }
 
@@ -101,12 +112,12 @@ fn clear_outputs(dir: &Path) -> std::io::Result<()> {
 fn run_dim<const D: usize>(
     scene: &Scene,
     scene_name: &str,
+    parts: &InitialParticles,
     opts: &RunOptions,
 ) -> Result<RunResult, RunError> {
     let t_total = Instant::now();
     let reference = Reference::from_scene(scene)?;
-    let parts = build_particles(scene)?;
-    let mut sim = Sim::<D>::new(scene, &parts)?;
+    let mut sim = Sim::<D>::new(scene, parts)?;
     if let Some(dir) = &opts.out {
         clear_outputs(dir)?;
     }
@@ -121,8 +132,10 @@ fn run_dim<const D: usize>(
     let n_series = scene.output.series.unwrap_or(200);
     let mut series =
         String::from("t,step,dt,kinetic,internal,total,momentum_x,momentum_y,momentum_z\n");
+    let mut kinetic_max: f64 = 0.0;
     let mut push_series = |sim: &Sim<D>, dt: f64| {
         let (k, i) = sim.energy();
+        kinetic_max = kinetic_max.max(k);
         let p = sim.momentum();
         series.push_str(&format!(
             "{:e},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e}\n",
@@ -233,11 +246,15 @@ fn run_dim<const D: usize>(
     s.insert("bytes_per_particle".into(), json!(sim.bytes_per_particle()));
     s.insert("energy_initial".into(), json!(energy0));
     s.insert("energy_final".into(), json!(energy1));
+    // relative to the initial energy, or to the final kinetic plus |internal| energy when
+    // the initial energy is zero (a case that starts at rest with e = 0)
+    let scale = energy0.abs().max(k1 + i1.abs()).max(f64::MIN_POSITIVE);
     s.insert(
         "energy_rel_error".into(),
-        json!((energy1 - energy0) / energy0.abs().max(f64::MIN_POSITIVE)),
+        json!((energy1 - energy0) / scale),
     );
     s.insert("kinetic_final".into(), json!(k1));
+    s.insert("kinetic_max".into(), json!(kinetic_max.max(k1)));
     s.insert("internal_final".into(), json!(i1));
     s.insert("momentum_initial".into(), json!(mom0[..D].to_vec()));
     s.insert("momentum_final".into(), json!(mom1[..D].to_vec()));

@@ -9,6 +9,8 @@ pub mod exec;
 pub mod materials;
 pub mod neighbors;
 pub mod output;
+pub mod plot;
 pub mod reference;
 pub mod scene;
 pub mod sim;
+pub mod study;

@@ -251,8 +251,12 @@ impl<const D: usize> Sim<D> {
                 RiemannSolver::Acoustic
             };
         }
-        if let Some(hc) = opt.hancock {
-            options.hancock = hc;
+        if let Some(m) = &opt.muscl_time {
+            options.muscl_time = match m.as_str() {
+                "courant" => MusclTime::CourantFactor,
+                "none" => MusclTime::None,
+                _ => MusclTime::Predictor,
+            };
         }
         if let Some(v) = opt.surface_lambda {
             options.surface_lambda = v;

@@ -277,3 +277,24 @@ fn requires_cycles_are_rejected() {
     let m: Model = syn::parse2(diamond).unwrap();
     assert_eq!(m.sets().len(), 6, "{{}}, a, ab, ac, abc, abcd");
 }
+
+/// The `gsph` snapshot is the invocation gsph-core really makes: a change to
+/// core/src/dispatch.rs must be mirrored in tests/expand/gsph.rs (and the snapshot
+/// regenerated), so the checked-in expansion never drifts from the code that runs.
+#[test]
+fn gsph_snapshot_input_matches_core_dispatch() {
+    let strip = |s: &str| -> String {
+        let start = s
+            .find("gsph_macros::specialise!")
+            .expect("invocation present");
+        let body = &s[start..];
+        let end = body.find("\n}").expect("closing brace") + 2;
+        body[..end].split_whitespace().collect::<Vec<_>>().join(" ")
+    };
+    let core = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../core/src/dispatch.rs"),
+    )
+    .expect("core/src/dispatch.rs");
+    let snap = std::fs::read_to_string(expand_dir("gsph.rs")).expect("tests/expand/gsph.rs");
+    assert_eq!(strip(&core), strip(&snap));
+}

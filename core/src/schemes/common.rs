@@ -122,6 +122,16 @@ pub(crate) fn refresh_eos<const D: usize>(
     sys.h[k] = smoothing_length::<D>(h_factor, sys.m[k], sys.rho[k]);
 }
 
+/// Refreshes pressure and sound speeds of local particle `k` (smoothing length unchanged).
+#[inline(always)]
+pub(crate) fn refresh_pressure<const D: usize>(sys: &mut System<'_, D>, k: usize, mat: &Material) {
+    let st = mat.eos(sys.rho[k], sys.e[k]);
+    let c2 = real::max(st.c2, 0.0);
+    sys.p[k] = st.p;
+    sys.c[k] = real::sqrt(c2);
+    sys.cl[k] = mat.c_long(sys.rho[k], c2);
+}
+
 /// The Cauchy stress `S - P I` of particle `i` (just `-P I` without strength).
 #[inline(always)]
 pub(crate) fn cauchy<const D: usize, E: Effects>(sys: &System<'_, D>, i: usize) -> Sym3 {

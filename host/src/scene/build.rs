@@ -42,12 +42,61 @@ impl InitialParticles {
     }
 }
 
+/// Most particles a scene may have (all bodies together): beyond this a spacing or
+/// `resolution_scale` is almost surely wrong, and building would exhaust memory.
+pub const MAX_PARTICLES: usize = 100_000_000;
+/// Most lattice cells the bounding box of the particles may span (at the finest spacing):
+/// the neighbour search keeps a grid over that box.
+pub const MAX_CELLS: f64 = (1u64 << 30) as f64;
+/// Most neighbour-list entries (particles times capacity, 4 bytes each).
+pub const MAX_NEIGHBOR_ENTRIES: f64 = (1u64 << 32) as f64;
+
+/// `v <= limit`, false for NaN.
+fn at_most(v: f64, limit: f64) -> bool {
+    v <= limit
+}
+
+/// Builds the particles once and checks that the run fits in memory (see [`MAX_PARTICLES`],
+/// [`MAX_CELLS`], [`MAX_NEIGHBOR_ENTRIES`]). Errors name the key.
+pub fn check_build(scene: &Scene) -> Result<(), SceneError> {
+    let parts = build_particles(scene)?;
+    let dim = scene.dim;
+    let finest = parts.spacing.iter().cloned().fold(f64::INFINITY, f64::min);
+    let mut cells = 1.0;
+    for a in 0..dim {
+        let (lo, hi) = parts
+            .x
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| {
+                (l.min(p[a]), h.max(p[a]))
+            });
+        cells *= (hi - lo) / finest + 1.0;
+    }
+    if !at_most(cells, MAX_CELLS) {
+        return Err(SceneError(format!(
+            "bodies: the particles span {cells:.2e} cells of the finest spacing {finest:e} m (limit {MAX_CELLS:.2e}); are bodies far apart or a spacing too fine?"
+        )));
+    }
+    let capacity = scene.neighbor_capacity.unwrap_or_else(|| {
+        crate::sim::default_capacity(dim, crate::sim::kernel_of(&scene.kernel), scene.h_factor)
+    });
+    let entries = parts.len() as f64 * capacity as f64;
+    if !at_most(entries, MAX_NEIGHBOR_ENTRIES) {
+        return Err(SceneError(format!(
+            "neighbor_capacity: {} particles x {capacity} neighbours is {entries:.2e} list entries (limit {MAX_NEIGHBOR_ENTRIES:.2e})",
+            parts.len()
+        )));
+    }
+    Ok(())
+}
+
 /// Builds the particles of every body.
 pub fn build_particles(scene: &Scene) -> Result<InitialParticles, SceneError> {
     let mut out = InitialParticles {
         dim: scene.dim,
         ..Default::default()
     };
+    let mut total = 0.0;
     for (b, body) in scene.bodies.iter().enumerate() {
         let key = format!("bodies[{b}]");
         let mi = scene
@@ -57,15 +106,17 @@ pub fn build_particles(scene: &Scene) -> Result<InitialParticles, SceneError> {
             .expect("validated: material exists");
         let mat = material_of(&scene.materials[mi]);
         let dx = body.spacing / scene.resolution_scale;
-        let pts = lattice(
-            scene.dim,
-            &body.shape,
-            dx,
-            body.lattice.as_deref() == Some("polar"),
-        );
+        let polar = body.lattice.as_deref() == Some("polar");
+        total += sites(scene.dim, &body.shape, dx, polar);
+        if !at_most(total, MAX_PARTICLES as f64) {
+            return Err(SceneError(format!(
+                "{key}.spacing: spacing {dx:e} m (spacing / resolution_scale) makes about {total:.2e} particles, more than the limit {MAX_PARTICLES:.0e}"
+            )));
+        }
+        let pts = lattice(scene.dim, &body.shape, dx, polar);
         if pts.is_empty() {
             return Err(SceneError(format!(
-                "{key}: the shape holds no particle at spacing {dx:e} m (spacing too coarse?)"
+                "{key}: the shape holds no particle at spacing {dx:e} m (spacing / resolution_scale); the shape must be at least half a spacing across"
             )));
         }
         let (rho, e, s) = initial_state(&mat, body.initial.as_ref())
@@ -85,12 +136,29 @@ pub fn build_particles(scene: &Scene) -> Result<InitialParticles, SceneError> {
     Ok(out)
 }
 
-/// Lattice points inside a shape with their volumes (length in 1D, area in 2D).
+/// Number of lattice sites [`lattice`] visits for a shape (an upper bound on its particles;
+/// infinite or NaN where `dx` is absurdly small).
+fn sites(dim: usize, shape: &ShapeSpec, dx: f64, polar: bool) -> f64 {
+    match shape {
+        ShapeSpec::Segment { min, max } => (max - min) / dx,
+        ShapeSpec::Box { min, max } => (0..dim).map(|a| (max[a] - min[a]) / dx + 1.0).product(),
+        ShapeSpec::Disc { radius: r, .. } | ShapeSpec::Annulus { r_outer: r, .. } => {
+            if polar {
+                std::f64::consts::PI * (r / dx + 1.0).powi(2)
+            } else {
+                (2.0 * (r / dx).ceil() + 2.0).powi(dim as i32)
+            }
+        }
+    }
+}
+
+/// Lattice points inside a shape with their volumes (length in 1D, area in 2D). A shape
+/// less than half a spacing across along some axis holds none.
 fn lattice(dim: usize, shape: &ShapeSpec, dx: f64, polar: bool) -> Vec<([f64; 3], f64)> {
     let mut pts = Vec::new();
     match shape {
         ShapeSpec::Segment { min, max } => {
-            let n = ((max - min) / dx).round().max(1.0) as usize;
+            let n = ((max - min) / dx).round() as usize;
             let d = (max - min) / n as f64;
             for k in 0..n {
                 pts.push(([min + (k as f64 + 0.5) * d, 0.0, 0.0], d));
@@ -98,7 +166,7 @@ fn lattice(dim: usize, shape: &ShapeSpec, dx: f64, polar: bool) -> Vec<([f64; 3]
         }
         ShapeSpec::Box { min, max } => {
             let n: Vec<usize> = (0..dim)
-                .map(|a| ((max[a] - min[a]) / dx).round().max(1.0) as usize)
+                .map(|a| ((max[a] - min[a]) / dx).round() as usize)
                 .collect();
             let d: Vec<f64> = (0..dim).map(|a| (max[a] - min[a]) / n[a] as f64).collect();
             let vol: f64 = d.iter().product();
@@ -179,7 +247,7 @@ fn square_clip(
 /// Concentric rings of particles (2D): ring k at r_k = r_in + (k + 1/2) dr with
 /// round(2 pi r_k / dr) particles, each carrying the area of its ring sector.
 fn polar_rings(pts: &mut Vec<([f64; 3], f64)>, c: &[f64], r_in: f64, r_out: f64, dx: f64) {
-    let nr = ((r_out - r_in) / dx).round().max(1.0) as usize;
+    let nr = ((r_out - r_in) / dx).round() as usize;
     let dr = (r_out - r_in) / nr as f64;
     for k in 0..nr {
         let r = r_in + (k as f64 + 0.5) * dr;

@@ -6,6 +6,7 @@
 //! Every error is one line naming the file, the key and the cause.
 
 mod build;
+mod de;
 mod spec;
 mod validate;
 
@@ -38,33 +39,88 @@ pub fn load(path: &Path, overrides: &[String]) -> Result<Scene, SceneError> {
 }
 
 /// Parses and validates scene text. `origin` names the source in messages.
+///
+/// Beyond the schema and [`validate`](validate::validate), this builds the particles once, so a
+/// body that holds no particle, an initial state the EOS cannot reach, or a scene too large
+/// for memory is reported here, before any output is written.
 pub fn parse(text: &str, origin: &str, overrides: &[String]) -> Result<Scene, SceneError> {
-    let mut value: toml::Table = text.parse::<toml::Table>().map_err(|e| {
-        SceneError(format!(
-            "{origin}:{}: malformed TOML: {}",
-            line_of(text, e.span()),
-            e.message().trim()
-        ))
-    })?;
+    let mut value: toml::Table = text
+        .parse::<toml::Table>()
+        .map_err(|e| SceneError(toml_error(text, origin, &e)))?;
     for o in overrides {
         apply_override(&mut value, o).map_err(|e| SceneError(format!("--set {o}: {}", e.0)))?;
     }
-    let scene: Scene =
-        Scene::deserialize_table(value).map_err(|e| SceneError(format!("{origin}: {}", e)))?;
-    validate::validate(&scene).map_err(|e| SceneError(format!("{origin}: {}", e.0)))?;
+    let blame = |msg: String, up: bool| {
+        SceneError(format!("{}: {msg}", source_of(&msg, up, origin, overrides)))
+    };
+    let scene = Scene::deserialize_table(value).map_err(|e| blame(e, true))?;
+    validate::validate(&scene).map_err(|e| blame(e.0, false))?;
+    build::check_build(&scene).map_err(|e| blame(e.0, false))?;
     Ok(scene)
 }
 
-fn line_of(text: &str, span: Option<std::ops::Range<usize>>) -> String {
-    match span {
+/// `origin:line:col: malformed TOML: cause` on one line.
+fn toml_error(text: &str, origin: &str, e: &toml::de::Error) -> String {
+    let cause: Vec<&str> = e
+        .message()
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty())
+        .collect();
+    let at = match e.span() {
         Some(s) => {
-            let before = &text[..s.start.min(text.len())];
+            let before = text.get(..s.start.min(text.len())).unwrap_or(text);
             let line = before.matches('\n').count() + 1;
-            let col = before.len() - before.rfind('\n').map_or(0, |p| p + 1) + 1;
-            format!("{line}:{col}")
+            let line_start = before.rfind('\n').map_or(0, |p| p + 1);
+            let col = before[line_start..].chars().count() + 1;
+            format!(":{line}:{col}")
         }
-        None => "?".into(),
+        None => String::new(),
+    };
+    format!("{origin}{at}: malformed TOML: {}", cause.join("; "))
+}
+
+/// Where the value behind an error came from: the last `--set` that wrote the key the message
+/// starts with or a table holding it (with `up`, also a key inside it), else `origin`.
+fn source_of(msg: &str, up: bool, origin: &str, overrides: &[String]) -> String {
+    let key = msg.split(": ").next().unwrap_or("");
+    let inside = |inner: &str, outer: &str| {
+        inner
+            .strip_prefix(outer)
+            .is_some_and(|rest| rest.is_empty() || rest.starts_with('.') || rest.starts_with('['))
+    };
+    let hit = |set: &str| inside(key, set) || (up && inside(set, key));
+    overrides
+        .iter()
+        .rev()
+        .find(|o| {
+            o.split_once('=')
+                .is_some_and(|(k, _)| hit(&bracketed(k.trim())))
+        })
+        .map_or_else(|| origin.to_string(), |o| format!("--set {o}"))
+}
+
+/// `bodies.0.spacing` -> `bodies[0].spacing` (the form messages use).
+fn bracketed(dotted: &str) -> String {
+    let mut s = String::new();
+    for part in dotted.split('.') {
+        if !s.is_empty() && part.parse::<usize>().is_ok() {
+            s.push_str(&format!("[{part}]"));
+        } else {
+            if !s.is_empty() {
+                s.push('.');
+            }
+            s.push_str(part);
+        }
     }
+    s
+}
+
+/// Parses the value of an override: a TOML value, or else the text as a string.
+fn override_value(raw: &str) -> toml::Value {
+    use serde::Deserialize;
+    toml::Value::deserialize(toml::de::ValueDeserializer::new(raw))
+        .unwrap_or_else(|_| toml::Value::String(raw.to_string()))
 }
 
 /// Applies one `KEY=VALUE` override to a parsed scene table. `KEY` is a dotted path; array
@@ -79,12 +135,11 @@ pub fn apply_override(table: &mut toml::Table, assignment: &str) -> Result<(), S
     if key.is_empty() {
         return err("empty key");
     }
-    let raw = raw.trim();
-    let value = match format!("v = {raw}").parse::<toml::Table>() {
-        Ok(mut t) => t.remove("v").expect("parsed table has key v"),
-        Err(_) => toml::Value::String(raw.to_string()),
-    };
-    let parts: Vec<&str> = key.split('.').collect();
+    let value = override_value(raw.trim());
+    let parts: Vec<&str> = key.split('.').map(str::trim).collect();
+    if parts.iter().any(|p| p.is_empty()) {
+        return err(format!("`{key}` has an empty part"));
+    }
     let mut cur = TomlSlot::Table(table);
     for (k, part) in parts.iter().enumerate() {
         let last = k + 1 == parts.len();

@@ -77,10 +77,10 @@ pub struct Scene {
 }
 
 impl Scene {
-    /// Deserialises from a TOML table.
+    /// Deserialises from a TOML table. The error is one line, `KEY: cause` (the key path
+    /// as in `materials[0].rho0`), or the bare cause at the top level.
     pub fn deserialize_table(t: toml::Table) -> Result<Scene, String> {
-        t.try_into()
-            .map_err(|e: toml::de::Error| e.message().trim().replace('\n', " "))
+        super::de::from_table(t).map_err(|e| e.to_string())
     }
 }
 
@@ -100,9 +100,10 @@ pub struct OptionsSpec {
     /// Riemann solver (ts): acoustic or two_shock.
     #[serde(default)]
     pub riemann: Option<String>,
-    /// MUSCL–Hancock factor in ts2.
+    /// Time treatment of the ts2 reconstruction: predictor (MUSCL–Hancock, default),
+    /// courant (slopes scaled by 1 - c dt / r, seed 000 eq 23 made dimensionless), none.
     #[serde(default)]
-    pub hancock: Option<bool>,
+    pub muscl_time: Option<String>,
     /// Free-surface eigenvalue threshold (tkc).
     #[serde(default)]
     pub surface_lambda: Option<f64>,
@@ -118,7 +119,7 @@ impl Default for OptionsSpec {
             av_beta: 1.0,
             limiter: None,
             riemann: None,
-            hancock: None,
+            muscl_time: None,
             surface_lambda: None,
             det_epsilon: None,
         }

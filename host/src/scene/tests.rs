@@ -1,1 +1,347 @@
+//! Unit tests of `--set` overrides and of the scene error messages (each names its key).
 
+use super::*;
+
+const FLYER: &str = include_str!("../../../cases/flyer_plate.toml");
+
+fn table(text: &str) -> toml::Table {
+    text.parse().expect("valid TOML")
+}
+
+fn set(t: &mut toml::Table, kv: &str) -> Result<(), SceneError> {
+    apply_override(t, kv)
+}
+
+/// The error of parsing `text` with `overrides`; asserts it is one line.
+fn parse_err(text: &str, overrides: &[&str]) -> String {
+    let o: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
+    let e = parse(text, "scene.toml", &o).expect_err("scene should be rejected");
+    assert!(!e.0.contains('\n'), "not one line: {e}");
+    e.0
+}
+
+#[test]
+fn flyer_plate_parses() {
+    let s = parse(FLYER, "flyer.toml", &[]).unwrap();
+    assert_eq!(s.dim, 1);
+    assert_eq!(s.bodies.len(), 2);
+    let parts = build_particles(&s).unwrap();
+    assert_eq!(parts.len(), 100);
+}
+
+#[test]
+fn override_sets_top_level_and_nested_keys() {
+    let mut t = table(FLYER);
+    set(&mut t, "scheme=pm").unwrap();
+    assert_eq!(t["scheme"].as_str(), Some("pm"));
+    set(&mut t, "output.snapshots=3").unwrap();
+    assert_eq!(t["output"]["snapshots"].as_integer(), Some(3));
+    set(&mut t, "materials.0.eos.c0=4000.5").unwrap();
+    assert_eq!(t["materials"][0]["eos"]["c0"].as_float(), Some(4000.5));
+}
+
+#[test]
+fn override_addresses_array_elements_by_index() {
+    let mut t = table(FLYER);
+    set(&mut t, "bodies.1.spacing=2e-4").unwrap();
+    assert_eq!(t["bodies"][1]["spacing"].as_float(), Some(2e-4));
+    assert_eq!(t["bodies"][0]["spacing"].as_float(), Some(1e-4));
+    set(&mut t, "bodies.0.velocity.value.0=10.0").unwrap();
+    assert_eq!(
+        t["bodies"][0]["velocity"]["value"][0].as_float(),
+        Some(10.0)
+    );
+    set(&mut t, "bodies.0=1").unwrap();
+    assert_eq!(t["bodies"][0].as_integer(), Some(1));
+}
+
+#[test]
+fn override_creates_missing_tables() {
+    let mut t = table(FLYER);
+    set(&mut t, "options.limiter=minmod").unwrap();
+    assert_eq!(t["options"]["limiter"].as_str(), Some("minmod"));
+    set(&mut t, "bodies.1.velocity.type=uniform").unwrap();
+    assert_eq!(t["bodies"][1]["velocity"]["type"].as_str(), Some("uniform"));
+    set(&mut t, "a.b.c=1").unwrap();
+    assert_eq!(t["a"]["b"]["c"].as_integer(), Some(1));
+}
+
+#[test]
+fn override_rejects_bad_paths() {
+    let mut t = table(FLYER);
+    let e = set(&mut t, "bodies.5.spacing=1").unwrap_err().0;
+    assert_eq!(e, "`bodies` has 2 elements, index 5 is out of range");
+    let e = set(&mut t, "bodies.x.spacing=1").unwrap_err().0;
+    assert_eq!(e, "`bodies` is an array: expected an index, got `x`");
+    let e = set(&mut t, "bodies.0.spacing.x=1").unwrap_err().0;
+    assert_eq!(e, "`bodies.0.spacing` is a value, not a table or array");
+    assert_eq!(set(&mut t, "scheme").unwrap_err().0, "expected KEY=VALUE");
+    assert_eq!(set(&mut t, " =1").unwrap_err().0, "empty key");
+    let e = set(&mut t, "bodies..spacing=1").unwrap_err().0;
+    assert_eq!(e, "`bodies..spacing` has an empty part");
+}
+
+#[test]
+fn override_values_are_toml_or_bare_strings() {
+    let mut t = toml::Table::new();
+    let cases: [(&str, toml::Value); 11] = [
+        ("1", toml::Value::Integer(1)),
+        ("-3", toml::Value::Integer(-3)),
+        ("1e-3", toml::Value::Float(1e-3)),
+        ("2.5", toml::Value::Float(2.5)),
+        ("true", toml::Value::Boolean(true)),
+        ("\"ts2\"", toml::Value::String("ts2".into())),
+        ("ts2", toml::Value::String("ts2".into())),
+        ("sweby:1.5", toml::Value::String("sweby:1.5".into())),
+        ("1 2", toml::Value::String("1 2".into())),
+        (
+            "[1.0, 2]",
+            toml::Value::Array(vec![toml::Value::Float(1.0), toml::Value::Integer(2)]),
+        ),
+        ("", toml::Value::String(String::new())),
+    ];
+    for (raw, want) in cases {
+        set(&mut t, &format!("k = {raw}")).unwrap();
+        assert_eq!(t["k"], want, "value `{raw}`");
+    }
+    // A value holding a second assignment is not smuggled in as another key.
+    set(&mut t, "k=1\ncfl = 0.9").unwrap();
+    assert_eq!(t["k"].as_str(), Some("1\ncfl = 0.9"));
+    assert!(!t.contains_key("cfl"));
+}
+
+#[test]
+fn malformed_toml_names_line_and_column() {
+    let text = FLYER.replace("cfl = 0.5", "cfl = = 0.5");
+    let e = parse_err(&text, &[]);
+    assert!(e.starts_with("scene.toml:11:7: malformed TOML: "), "{e}");
+    let e = parse_err(&FLYER.replace("dim = 1", "dim = 1\ndim = 2"), &[]);
+    assert!(
+        e.starts_with("scene.toml:9:1: malformed TOML: duplicate key"),
+        "{e}"
+    );
+}
+
+#[test]
+fn schema_errors_name_the_key() {
+    let cases: [(&str, &str, &str); 8] = [
+        (
+            "name = ",
+            "colour = 1\nname = ",
+            "scene.toml: colour: unknown key (known: name,",
+        ),
+        (
+            "rho0 = 6100.0",
+            "rho0 = 6100.0\ncolour = 1",
+            "scene.toml: materials[0].colour: unknown key",
+        ),
+        (
+            "spacing = 1.0e-4\n\n",
+            "spacing = 1.0e-4\ncolour = 1\n\n",
+            "scene.toml: bodies[1].colour: unknown key",
+        ),
+        (
+            "\"hugoniot\"",
+            "\"hugonio\"",
+            "scene.toml: materials[0].eos.type: unknown type `hugonio` (known: linear,",
+        ),
+        (
+            "c0 = 5077.0",
+            "c0 = \"fast\"",
+            "scene.toml: materials[0].eos.c0: invalid type: string \"fast\", expected f64",
+        ),
+        (
+            "rho0 = 6100.0",
+            "rho0 = \"dense\"",
+            "scene.toml: materials[0].rho0: invalid type: string \"dense\"",
+        ),
+        (
+            "dim = 1",
+            "dim = -1",
+            "scene.toml: dim: invalid value: integer `-1`, expected usize",
+        ),
+        (
+            "t_end = 0.5e-6\n",
+            "",
+            "scene.toml: t_end: missing (this key is required)",
+        ),
+    ];
+    for (from, to, want) in cases {
+        let text = FLYER.replacen(from, to, 1);
+        assert_ne!(text, FLYER, "{from}");
+        let e = parse_err(&text, &[]);
+        assert!(e.starts_with(want), "got `{e}`, want `{want}`");
+    }
+}
+
+#[test]
+fn validation_errors_name_the_key() {
+    let cases: [(&str, &str); 24] = [
+        (
+            "materials.0.rho0=-1",
+            "materials[0].rho0: must be positive and finite (got -1)",
+        ),
+        ("materials.0.rho0=0", "materials[0].rho0: must be positive"),
+        (
+            "bodies.1.spacing=0",
+            "bodies[1].spacing: must be positive and finite (got 0)",
+        ),
+        (
+            "bodies.1.spacing=-1e-4",
+            "bodies[1].spacing: must be positive",
+        ),
+        (
+            "materials.0.shear_modulus=-1",
+            "materials[0].shear_modulus: must be non-negative",
+        ),
+        (
+            "materials.0.shear_modulus=0",
+            "materials[0].shear_modulus: must be positive for a material with strength",
+        ),
+        ("t_end=0", "t_end: must be positive"),
+        ("t_end=-1", "t_end: must be positive"),
+        ("cfl=1.5", "cfl: must be at most 1 (got 1.5)"),
+        ("scheme=rk4", "scheme: unknown scheme `rk4`"),
+        ("kernel=box", "kernel: unknown kernel `box`"),
+        ("dim=4", "dim: must be 1, 2 or 3 (got 4)"),
+        (
+            "h_factor=0.1",
+            "h_factor: must be between 0.5 and 100 (got 0.1)",
+        ),
+        (
+            "neighbor_capacity=0",
+            "neighbor_capacity: must be at least 1",
+        ),
+        ("output.snapshots=0", "output.snapshots: must be at least 1"),
+        ("output.series=0", "output.series: must be at least 1"),
+        (
+            "options.limiter=best",
+            "options.limiter: unknown limiter `best`",
+        ),
+        (
+            "options.riemann=hllc",
+            "options.riemann: unknown Riemann solver `hllc`",
+        ),
+        (
+            "bodies.0.velocity.value=[1, 2]",
+            "bodies[0].velocity.value: must have 1 component for a 1D scene (got 2)",
+        ),
+        (
+            "bodies.0.shape.max=-1",
+            "bodies[0].shape.max: must exceed min (-1 <= 0)",
+        ),
+        (
+            "bodies.1.material=steel",
+            "bodies[1].material: unknown material `steel` (known: metal)",
+        ),
+        (
+            "reference.material=steel",
+            "reference.material: unknown material `steel`",
+        ),
+        (
+            "bodies.0.lattice=hex",
+            "bodies[0].lattice: unknown lattice `hex`",
+        ),
+        (
+            "materials.0.strength.yield_stress=0",
+            "materials[0].strength.yield_stress: must be positive",
+        ),
+    ];
+    for (kv, want) in cases {
+        let e = parse_err(FLYER, &[kv]);
+        let want = format!("--set {kv}: {want}");
+        assert!(e.starts_with(&want), "got `{e}`, want `{want}`");
+    }
+}
+
+#[test]
+fn errors_from_the_file_name_the_file() {
+    let e = parse_err(&FLYER.replace("rho0 = 6100.0", "rho0 = -6100.0"), &[]);
+    assert_eq!(
+        e,
+        "scene.toml: materials[0].rho0: must be positive and finite (got -6100)"
+    );
+    // An override elsewhere does not take the blame.
+    let e = parse_err(&FLYER.replace("rho0 = 6100.0", "rho0 = 0.0"), &["cfl=0.4"]);
+    assert!(e.starts_with("scene.toml: materials[0].rho0: "), "{e}");
+}
+
+#[test]
+fn lists_and_names_are_checked() {
+    let e = parse_err(FLYER, &["materials=[]"]);
+    assert_eq!(
+        e,
+        "--set materials=[]: materials: at least one material is required"
+    );
+    let e = parse_err(FLYER, &["bodies=[]"]);
+    assert_eq!(e, "--set bodies=[]: bodies: at least one body is required");
+    let twice = FLYER.replacen(
+        "[[bodies]]",
+        "[[materials]]\nname = \"metal\"\nrho0 = 1.0\neos = { type = \"linear\", c0 = 1.0 }\n\n[[bodies]]",
+        1,
+    );
+    let e = parse_err(&twice, &[]);
+    assert_eq!(
+        e,
+        "scene.toml: materials[1].name: duplicate material name `metal`"
+    );
+}
+
+#[test]
+fn particle_counts_are_checked() {
+    let e = parse_err(FLYER, &["resolution_scale=1e-3"]);
+    assert!(
+        e.starts_with("scene.toml: bodies[0]: the shape holds no particle at spacing 1e-1 m"),
+        "{e}"
+    );
+    let e = parse_err(FLYER, &["bodies.1.spacing=1e-12"]);
+    assert!(
+        e.starts_with("--set bodies.1.spacing=1e-12: bodies[1].spacing: spacing 1e-12 m"),
+        "{e}"
+    );
+    assert!(e.contains("more than the limit 1e8"), "{e}");
+    let e = parse_err(FLYER, &["neighbor_capacity=1000000000000"]);
+    assert!(
+        e.starts_with("--set neighbor_capacity=1000000000000: neighbor_capacity: 100 particles"),
+        "{e}"
+    );
+    let far = ["bodies.1.shape.min=1e6", "bodies.1.shape.max=1.000000005e6"];
+    let e = parse_err(FLYER, &far);
+    assert!(
+        e.starts_with("scene.toml: bodies: the particles span"),
+        "{e}"
+    );
+}
+
+#[test]
+fn two_dimensional_disc_smaller_than_half_a_spacing_holds_nothing() {
+    let text = r#"
+dim = 2
+scheme = "pm"
+t_end = 1e-6
+[[materials]]
+name = "al"
+rho0 = 2700.0
+eos = { type = "linear", c0 = 5000.0 }
+[[bodies]]
+material = "al"
+shape = { type = "disc", center = [0.0, 0.0], radius = 0.4e-3 }
+spacing = 1e-3
+"#;
+    let e = parse_err(text, &[]);
+    assert!(
+        e.starts_with("scene.toml: bodies[0]: the shape holds no particle"),
+        "{e}"
+    );
+    assert!(parse(text, "s", &["bodies.0.shape.radius=2e-3".into()]).is_ok());
+}
+
+#[test]
+fn keys_are_written_with_brackets() {
+    assert_eq!(
+        bracketed("bodies.0.velocity.value.1"),
+        "bodies[0].velocity.value[1]"
+    );
+    assert_eq!(bracketed("t_end"), "t_end");
+    assert_eq!(bracketed("0"), "0");
+}

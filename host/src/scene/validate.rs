@@ -11,11 +11,21 @@ fn fail(key: &str, msg: impl std::fmt::Display) -> R {
     Err(SceneError(format!("{key}: {msg}")))
 }
 
+/// A number for a message: plain where short (`0.5`, `-1`), else in `e` notation (`1e-300`).
+pub(super) fn num(v: f64) -> String {
+    let a = v.abs();
+    if v == 0.0 || !v.is_finite() || (1e-3..1e6).contains(&a) {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
+}
+
 fn positive(key: &str, v: f64) -> R {
     if v.is_finite() && v > 0.0 {
         Ok(())
     } else {
-        fail(key, format!("must be positive and finite (got {v})"))
+        fail(key, format!("must be positive and finite (got {})", num(v)))
     }
 }
 
@@ -23,7 +33,10 @@ fn non_negative(key: &str, v: f64) -> R {
     if v.is_finite() && v >= 0.0 {
         Ok(())
     } else {
-        fail(key, format!("must be non-negative and finite (got {v})"))
+        fail(
+            key,
+            format!("must be non-negative and finite (got {})", num(v)),
+        )
     }
 }
 
@@ -31,7 +44,7 @@ fn finite(key: &str, v: f64) -> R {
     if v.is_finite() {
         Ok(())
     } else {
-        fail(key, format!("must be finite (got {v})"))
+        fail(key, format!("must be finite (got {})", num(v)))
     }
 }
 
@@ -40,7 +53,8 @@ fn dims(key: &str, v: &[f64], dim: usize) -> R {
         return fail(
             key,
             format!(
-                "must have {dim} components for a {dim}D scene (got {})",
+                "must have {dim} component{} for a {dim}D scene (got {})",
+                if dim == 1 { "" } else { "s" },
                 v.len()
             ),
         );
@@ -50,6 +64,9 @@ fn dims(key: &str, v: &[f64], dim: usize) -> R {
     }
     Ok(())
 }
+
+/// Most materials, and most bodies, in a scene (particles store both indices as `u16`).
+pub const MAX_COUNT: usize = u16::MAX as usize + 1;
 
 /// Known kernel names.
 pub const KERNELS: [&str; 3] = ["cubic_spline", "wendland_c2", "gaussian"];
@@ -72,7 +89,7 @@ pub fn validate(s: &Scene) -> R {
     positive("resolution_scale", s.resolution_scale)?;
     positive("cfl", s.cfl)?;
     if s.cfl > 1.0 {
-        return fail("cfl", format!("must be at most 1 (got {})", s.cfl));
+        return fail("cfl", format!("must be at most 1 (got {})", num(s.cfl)));
     }
     if !KERNELS.contains(&s.kernel.as_str()) {
         return fail(
@@ -84,7 +101,15 @@ pub fn validate(s: &Scene) -> R {
             ),
         );
     }
-    positive("h_factor", s.h_factor)?;
+    if !(0.5..=100.0).contains(&s.h_factor) {
+        return fail(
+            "h_factor",
+            format!(
+                "must be between 0.5 and 100 (got {}); below 0.5 a particle has no neighbours",
+                num(s.h_factor)
+            ),
+        );
+    }
     non_negative("skin", s.skin)?;
     if s.neighbor_capacity == Some(0) {
         return fail("neighbor_capacity", "must be at least 1");
@@ -97,6 +122,9 @@ pub fn validate(s: &Scene) -> R {
             "output.snapshots",
             "must be at least 1 (initial and final state)",
         );
+    }
+    if s.output.series == Some(0) {
+        return fail("output.series", "must be at least 1");
     }
     let o = &s.options;
     non_negative("options.av_alpha", o.av_alpha)?;
@@ -114,6 +142,14 @@ pub fn validate(s: &Scene) -> R {
             return fail(
                 "options.riemann",
                 format!("unknown Riemann solver `{r}` (known: acoustic, two_shock)"),
+            );
+        }
+    }
+    if let Some(m) = &o.muscl_time {
+        if !["predictor", "courant", "none"].contains(&m.as_str()) {
+            return fail(
+                "options.muscl_time",
+                format!("unknown value `{m}` (known: predictor, courant, none)"),
             );
         }
     }
@@ -146,6 +182,9 @@ pub fn validate(s: &Scene) -> R {
     }
     if s.materials.is_empty() {
         return fail("materials", "at least one material is required");
+    }
+    if s.materials.len() > MAX_COUNT {
+        return fail("materials", format!("at most {MAX_COUNT} materials"));
     }
     for (k, m) in s.materials.iter().enumerate() {
         let key = format!("materials[{k}]");
@@ -181,6 +220,9 @@ pub fn validate(s: &Scene) -> R {
     }
     if s.bodies.is_empty() {
         return fail("bodies", "at least one body is required");
+    }
+    if s.bodies.len() > MAX_COUNT {
+        return fail("bodies", format!("at most {MAX_COUNT} bodies"));
     }
     for (k, b) in s.bodies.iter().enumerate() {
         let key = format!("bodies[{k}]");
@@ -324,7 +366,7 @@ fn validate_shape(key: &str, sh: &ShapeSpec, dim: usize) -> R {
             if max <= min {
                 return fail(
                     &format!("{key}.max"),
-                    format!("must exceed min ({max} <= {min})"),
+                    format!("must exceed min ({} <= {})", num(*max), num(*min)),
                 );
             }
         }

@@ -1,0 +1,228 @@
+//! `gsph study`: what accuracy costs in time. Runs a scene for a grid of schemes and
+//! resolutions and records, per run, the error against the scene's reference, wall time,
+//! steps, particles and pair interactions; writes `study.csv`, `study.md` and log-log plots
+//! of error against wall time (Pareto front marked) and against particle count.
+
+use crate::driver::{run, RunOptions};
+use crate::scene;
+use gsph_core::schemes::Scheme;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// One run of a study.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StudyRow {
+    /// Scheme.
+    pub scheme: String,
+    /// Resolution scale.
+    pub resolution: f64,
+    /// Particles.
+    pub particles: u64,
+    /// The error measure (see [`StudyOptions::metric`]).
+    pub error: f64,
+    /// Wall time of the stepping loop, s.
+    pub wall_s: f64,
+    /// Steps.
+    pub steps: u64,
+    /// Pair interactions evaluated.
+    pub pair_interactions: u64,
+    /// Relative total-energy error.
+    pub energy_rel_error: f64,
+    /// On the Pareto front of (wall time, error).
+    pub pareto: bool,
+}
+
+/// What to run.
+#[derive(Debug, Clone)]
+pub struct StudyOptions {
+    /// Schemes.
+    pub schemes: Vec<Scheme>,
+    /// Resolution scales.
+    pub resolutions: Vec<f64>,
+    /// Extra `--set` overrides applied to every run.
+    pub overrides: Vec<String>,
+    /// Summary key used as the error (absolute value). Default: `l1_error`, else
+    /// `radius_error`, else `energy_rel_error`.
+    pub metric: Option<String>,
+    /// Output directory.
+    pub out: PathBuf,
+}
+
+/// The default error key of a summary.
+pub fn default_metric(summary: &serde_json::Map<String, serde_json::Value>) -> &'static str {
+    for k in ["l1_error", "radius_error"] {
+        if summary.get(k).and_then(|v| v.as_f64()).is_some() {
+            return k;
+        }
+    }
+    "energy_rel_error"
+}
+
+/// Marks the rows not dominated in (wall time, error) by any other row.
+pub fn mark_pareto(rows: &mut [StudyRow]) {
+    let pts: Vec<(f64, f64)> = rows.iter().map(|r| (r.wall_s, r.error)).collect();
+    for (k, r) in rows.iter_mut().enumerate() {
+        r.pareto = r.error.is_finite()
+            && !pts.iter().enumerate().any(|(j, &(t, e))| {
+                j != k && t <= pts[k].0 && e <= pts[k].1 && (t < pts[k].0 || e < pts[k].1)
+            });
+    }
+}
+
+/// Runs the study; returns the rows and the metric used.
+pub fn study(scene_path: &Path, opts: &StudyOptions) -> Result<(Vec<StudyRow>, String), String> {
+    let mut rows = Vec::new();
+    let mut metric = opts.metric.clone();
+    let total = opts.schemes.len() * opts.resolutions.len();
+    for &res in &opts.resolutions {
+        for &scheme in &opts.schemes {
+            let mut set = opts.overrides.clone();
+            set.push(format!("scheme={}", scheme.name()));
+            set.push(format!("resolution_scale={res}"));
+            let sc = scene::load(scene_path, &set).map_err(|e| e.to_string())?;
+            let name = crate::cli::scene_name(&sc, scene_path);
+            eprintln!(
+                "study: run {}/{total}: {} at resolution {res}",
+                rows.len() + 1,
+                scheme.name()
+            );
+            let r = run(
+                &sc,
+                &name,
+                &RunOptions {
+                    out: None,
+                    progress: false,
+                },
+            )
+            .map_err(|e| format!("{} at resolution {res}: {e}", scheme.name()))?;
+            let s = &r.summary;
+            let key = metric
+                .get_or_insert_with(|| default_metric(s).to_string())
+                .clone();
+            let num = |k: &str| s.get(k).and_then(|v| v.as_f64()).unwrap_or(f64::NAN);
+            let error = s
+                .get(key.as_str())
+                .and_then(|v| v.as_f64())
+                .ok_or_else(|| format!("summary has no number `{key}` (choose another --metric)"))?
+                .abs();
+            rows.push(StudyRow {
+                scheme: scheme.name().to_string(),
+                resolution: res,
+                particles: num("particles") as u64,
+                error,
+                wall_s: num("wall_s"),
+                steps: num("steps") as u64,
+                pair_interactions: num("pair_interactions") as u64,
+                energy_rel_error: num("energy_rel_error"),
+                pareto: false,
+            });
+        }
+    }
+    mark_pareto(&mut rows);
+    let metric = metric.unwrap_or_else(|| "l1_error".into());
+    write_outputs(scene_path, &rows, &metric, &opts.out)?;
+    Ok((rows, metric))
+}
+
+/// The study table as CSV.
+pub fn to_csv(rows: &[StudyRow]) -> String {
+    let mut s = String::from("scheme,resolution,particles,error,wall_s,steps,pair_interactions,energy_rel_error,pareto\n");
+    for r in rows {
+        let _ = writeln!(
+            s,
+            "{},{},{},{:e},{:e},{},{},{:e},{}",
+            r.scheme,
+            r.resolution,
+            r.particles,
+            r.error,
+            r.wall_s,
+            r.steps,
+            r.pair_interactions,
+            r.energy_rel_error,
+            r.pareto
+        );
+    }
+    s
+}
+
+/// The study table as Markdown.
+pub fn to_markdown(scene: &str, metric: &str, rows: &[StudyRow]) -> String {
+    let mut s = format!(
+        "# Study of `{scene}`\n\nError measure: `{metric}`. Wall time is the stepping loop on {} threads. \
+         `*` marks the Pareto front of (wall time, error): no other run is both faster and more accurate.\n\n\
+         | scheme | resolution | particles | error | wall s | steps | pair interactions | energy error | |\n\
+         | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |\n",
+        rayon::current_num_threads()
+    );
+    for r in rows {
+        let _ = writeln!(
+            s,
+            "| {} | {} | {} | {:.4e} | {:.3} | {} | {} | {:.2e} | {} |",
+            r.scheme,
+            r.resolution,
+            r.particles,
+            r.error,
+            r.wall_s,
+            r.steps,
+            r.pair_interactions,
+            r.energy_rel_error,
+            if r.pareto { "*" } else { "" }
+        );
+    }
+    s
+}
+
+fn write_outputs(
+    scene_path: &Path,
+    rows: &[StudyRow],
+    metric: &str,
+    out: &Path,
+) -> Result<(), String> {
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    let name = scene_path
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    crate::output::write_atomic(out.join("study.csv"), to_csv(rows).as_bytes())
+        .map_err(|e| e.to_string())?;
+    crate::output::write_atomic(
+        out.join("study.md"),
+        to_markdown(&name, metric, rows).as_bytes(),
+    )
+    .map_err(|e| e.to_string())?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn row(t: f64, e: f64) -> StudyRow {
+        StudyRow {
+            scheme: "x".into(),
+            resolution: 1.0,
+            particles: 1,
+            error: e,
+            wall_s: t,
+            steps: 1,
+            pair_interactions: 1,
+            energy_rel_error: 0.0,
+            pareto: false,
+        }
+    }
+
+    #[test]
+    fn pareto_front_keeps_only_undominated_runs() {
+        let mut rows = vec![
+            row(1.0, 1.0),
+            row(2.0, 0.5),
+            row(3.0, 0.7),
+            row(0.5, 2.0),
+            row(2.0, 0.5),
+        ];
+        mark_pareto(&mut rows);
+        let front: Vec<bool> = rows.iter().map(|r| r.pareto).collect();
+        // (3, 0.7) is dominated by (2, 0.5); equal points do not dominate each other
+        assert_eq!(front, vec![true, true, false, true, true]);
+    }
+}

@@ -1,0 +1,285 @@
+//! Bad input through the real `gsph` binary: each case must exit non-zero with exactly one
+//! line on stderr, `error: ...`, naming the key, particle or step; never a panic; and a failed
+//! `run` must leave no result file and no `*.tmp` in its output directory. Positive controls
+//! check the DESIGN §6 outputs of a good run.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+const RESULTS: [&str; 4] = [
+    "summary.json",
+    "final.csv",
+    "snapshots.h5",
+    "snapshots.xdmf",
+];
+
+fn case_text(name: &str) -> String {
+    let p = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../cases")
+        .join(name);
+    std::fs::read_to_string(&p).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
+}
+
+fn flyer() -> String {
+    case_text("flyer_plate.toml")
+}
+
+/// `flyer_plate.toml` with the first `from` replaced by `to` (which must occur).
+fn flyer_with(from: &str, to: &str) -> String {
+    let t = flyer();
+    assert!(t.contains(from), "flyer_plate.toml has no `{from}`");
+    t.replacen(from, to, 1)
+}
+
+const DISC_2D: &str = r#"
+dim = 2
+scheme = "pm"
+t_end = 1e-6
+[[materials]]
+name = "al"
+rho0 = 2700.0
+eos = { type = "linear", c0 = 5000.0 }
+[[bodies]]
+material = "al"
+shape = { type = "disc", center = [0.0, 0.0], radius = 0.4e-3 }
+spacing = 1e-3
+"#;
+
+fn gsph(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_gsph"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("gsph starts")
+}
+
+/// Names in `dir` that a failed run must not leave (results and temp files).
+fn leftovers(dir: &Path) -> Vec<String> {
+    let Ok(rd) = std::fs::read_dir(dir) else {
+        return Vec::new();
+    };
+    rd.map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| RESULTS.contains(&n.as_str()) || n.ends_with(".tmp"))
+        .collect()
+}
+
+/// One bad-input case: scene text (None: no scene file is written), command and its extra
+/// arguments, and the words the one-line message must contain.
+struct Case {
+    name: &'static str,
+    scene: Option<String>,
+    cmd: &'static str,
+    args: Vec<&'static str>,
+    expect: Vec<&'static str>,
+}
+
+fn case(
+    name: &'static str,
+    scene: impl Into<Option<String>>,
+    cmd: &'static str,
+    args: &[&'static str],
+    expect: &[&'static str],
+) -> Case {
+    Case {
+        name,
+        scene: scene.into(),
+        cmd,
+        args: args.to_vec(),
+        expect: expect.to_vec(),
+    }
+}
+
+fn cases() -> Vec<Case> {
+    let f = flyer;
+    let riemann_b0 =
+        case_text("riemann_al.toml").replacen("bulk_modulus = 73.0e9", "bulk_modulus = 0.0", 1);
+    let second_metal = flyer_with(
+        "[[bodies]]",
+        "[[materials]]\nname = \"metal\"\nrho0 = 1.0\neos = { type = \"linear\", c0 = 1.0 }\n\n[[bodies]]",
+    );
+    vec![
+        case("malformed TOML", flyer_with("cfl = 0.5", "cfl = = 0.5"), "check", &[], &["scene.toml:11:7: malformed TOML"]),
+        case("unknown top-level key", format!("colour = 1\n{}", f()), "check", &[], &["scene.toml: colour: unknown key (known: name,"]),
+        case("unknown key in a material", flyer_with("rho0 = 6100.0", "rho0 = 6100.0\ncolour = 1"), "check", &[], &["materials[0].colour: unknown key"]),
+        case("unknown key in a body", flyer_with("spacing = 1.0e-4\nvelocity", "colour = 1\nspacing = 1.0e-4\nvelocity"), "check", &[], &["bodies[0].colour: unknown key"]),
+        case("unknown key via --set", f(), "check", &["--set", "materials.0.eos.colour=1"], &["--set materials.0.eos.colour=1: materials[0].eos.colour: unknown key (known: c0, s1)"]),
+        case("missing key", flyer_with("t_end = 0.5e-6\n", ""), "check", &[], &["scene.toml: t_end: missing"]),
+        case("unknown material", f(), "check", &["--set", "bodies.1.material=steel"], &["bodies[1].material: unknown material `steel` (known: metal)"]),
+        case("unknown EOS type", flyer_with("\"hugoniot\"", "\"hugonio\""), "check", &[], &["scene.toml: materials[0].eos.type: unknown type `hugonio`"]),
+        case("unknown scheme", f(), "check", &["--set", "scheme=rk4"], &["scheme: unknown scheme `rk4`"]),
+        case("negative rho0", flyer_with("rho0 = 6100.0", "rho0 = -6100.0"), "check", &[], &["scene.toml: materials[0].rho0: must be positive and finite (got -6100)"]),
+        case("zero rho0", f(), "run", &["--set", "materials.0.rho0=0"], &["materials[0].rho0: must be positive"]),
+        case("zero spacing", f(), "check", &["--set", "bodies.0.spacing=0"], &["bodies[0].spacing: must be positive"]),
+        case("negative spacing", flyer_with("spacing = 1.0e-4\n\n", "spacing = -1.0e-4\n\n"), "check", &[], &["scene.toml: bodies[1].spacing: must be positive and finite (got -1e-4)"]),
+        case("negative shear modulus", f(), "check", &["--set", "materials.0.shear_modulus=-1"], &["materials[0].shear_modulus: must be non-negative"]),
+        case("zero bulk modulus", riemann_b0, "check", &[], &["scene.toml: materials[0].eos.bulk_modulus: must be positive"]),
+        case("von Mises without shear modulus", f(), "check", &["--set", "materials.0.shear_modulus=0"], &["materials[0].shear_modulus: must be positive for a material with strength"]),
+        case("wrong number of components", f(), "check", &["--set", "bodies.0.velocity.value=[1.0, 2.0]"], &["bodies[0].velocity.value: must have 1 component for a 1D scene (got 2)"]),
+        case("segment max <= min", f(), "check", &["--set", "bodies.0.shape.max=0"], &["bodies[0].shape.max: must exceed min (0 <= 0)"]),
+        case("wrong value type via --set", f(), "check", &["--set", "materials.0.rho0=dense"], &["materials[0].rho0: invalid type: string \"dense\", expected f64"]),
+        case("wrong type inside a tagged table", flyer_with("c0 = 5077.0", "c0 = \"fast\""), "check", &[], &["scene.toml: materials[0].eos.c0: invalid type"]),
+        case("body with no particle (2D disc)", DISC_2D.to_string(), "check", &[], &["scene.toml: bodies[0]: the shape holds no particle"]),
+        case("too many particles", f(), "run", &["--set", "resolution_scale=1e9"], &["bodies[0].spacing", "limit 1e8"]),
+        case("no bodies", f(), "check", &["--set", "bodies=[]"], &["bodies: at least one body is required"]),
+        case("no materials", f(), "check", &["--set", "materials=[]"], &["materials: at least one material is required"]),
+        case("duplicate material name", second_metal, "check", &[], &["scene.toml: materials[1].name: duplicate material name `metal`"]),
+        case("overlapping bodies (check)", f(), "check", &["--set", "bodies.0.shape.max=0.01"], &["particles 50 and 100 overlap"]),
+        case("overlapping bodies (run)", f(), "run", &["--set", "bodies.0.shape.max=0.01"], &["particles 50 and 100 overlap"]),
+        case("neighbour capacity (check)", f(), "check", &["--set", "neighbor_capacity=1"], &["neighbour-capacity overflow: particle 0", "neighbor_capacity"]),
+        case("neighbour capacity (run)", f(), "run", &["--set", "neighbor_capacity=1"], &["neighbour-capacity overflow: particle 0", "neighbor_capacity"]),
+        case("blow-up at step 1", f(), "run", &["--set", "bodies.0.velocity.value=[1e200]"], &["step 1 ", "particle ", "not finite"]),
+        case("blow-up mid-run", f(), "run", &["--set", "bodies.0.velocity.value=[1e150]"], &["step ", "particle ", "not finite"]),
+        case("--set index out of range", f(), "check", &["--set", "bodies.5.spacing=1"], &["--set bodies.5.spacing=1: `bodies` has 2 elements, index 5 is out of range"]),
+        case("--set without =", f(), "run", &["--set", "scheme"], &["--set scheme: expected KEY=VALUE"]),
+        case("zero t_end", f(), "check", &["--set", "t_end=0"], &["t_end: must be positive"]),
+        case("negative t_end", f(), "run", &["--set", "t_end=-1e-6"], &["t_end: must be positive"]),
+        case("cfl above 1", f(), "check", &["--set", "cfl=1.5"], &["cfl: must be at most 1 (got 1.5)"]),
+        case("zero threads", f(), "run", &["--threads", "0"], &["--threads must be at least 1"]),
+        case("usage: threads not a number", f(), "run", &["--threads", "many"], &["'many'", "--threads"]),
+        case("nonexistent scene file", None, "check", &[], &["missing.toml: cannot read scene"]),
+    ]
+}
+
+#[test]
+fn bad_input_gives_one_line_and_no_results() {
+    let mut failures = Vec::new();
+    for c in cases() {
+        let tmp = tempfile::tempdir().unwrap();
+        let dir = tmp.path();
+        let scene = match &c.scene {
+            Some(text) => {
+                std::fs::write(dir.join("scene.toml"), text).unwrap();
+                "scene.toml"
+            }
+            None => "missing.toml",
+        };
+        let out: PathBuf = dir.join("out");
+        let mut args = vec![c.cmd, scene];
+        if c.cmd == "run" {
+            args.extend(["--out", "out", "--quiet"]);
+            // Results of an earlier run must not survive a failed one. (A command line that
+            // does not parse, `usage:`, never starts a run, so it cannot clear them.)
+            std::fs::create_dir_all(&out).unwrap();
+            if !c.name.starts_with("usage:") {
+                std::fs::write(out.join("summary.json"), "{}").unwrap();
+            }
+        }
+        args.extend(c.args.iter().copied());
+        let o = gsph(dir, &args);
+        let err = String::from_utf8_lossy(&o.stderr).into_owned();
+        let mut why = Vec::new();
+        if o.status.success() {
+            why.push("exit status 0".to_string());
+        }
+        if o.status.code().is_none() {
+            why.push(format!("killed: {:?}", o.status));
+        }
+        if err.trim_end_matches('\n').lines().count() != 1 || !err.starts_with("error: ") {
+            why.push("stderr is not one `error: ` line".into());
+        }
+        if err.contains("panicked") {
+            why.push("panicked".into());
+        }
+        for w in &c.expect {
+            if !err.contains(w) {
+                why.push(format!("missing `{w}`"));
+            }
+        }
+        let left = leftovers(&out);
+        if c.cmd == "run" && !left.is_empty() {
+            why.push(format!("left {left:?}"));
+        }
+        if !why.is_empty() {
+            failures.push(format!("{}: {} -- stderr: {err:?}", c.name, why.join(", ")));
+        }
+    }
+    assert!(failures.is_empty(), "\n{}", failures.join("\n"));
+}
+
+#[test]
+fn check_of_the_flyer_plate_prints_counts_and_effects() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let o = gsph(&dir, &["check", "cases/flyer_plate.toml"]);
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(out.contains("particles 100"), "{out}");
+    assert!(out.contains("effects   strength+plasticity+muscl"), "{out}");
+    assert!(o.stderr.is_empty());
+}
+
+fn summary(dir: &Path) -> serde_json::Map<String, serde_json::Value> {
+    let text = std::fs::read_to_string(dir.join("summary.json")).unwrap();
+    match serde_json::from_str(&text).unwrap() {
+        serde_json::Value::Object(m) => m,
+        v => panic!("summary.json is not an object: {v}"),
+    }
+}
+
+#[test]
+fn run_of_the_flyer_plate_writes_every_output() {
+    let tmp = tempfile::tempdir().unwrap();
+    std::fs::write(tmp.path().join("scene.toml"), flyer()).unwrap();
+    let o = gsph(
+        tmp.path(),
+        &["run", "scene.toml", "--out", "out", "--quiet"],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let out = tmp.path().join("out");
+    for f in RESULTS {
+        assert!(out.join(f).is_file(), "no {f}");
+    }
+    let tmps: Vec<_> = leftovers(&out)
+        .into_iter()
+        .filter(|n| n.ends_with(".tmp"))
+        .collect();
+    assert!(tmps.is_empty(), "{tmps:?}");
+    let s = summary(&out);
+    for k in [
+        "scene",
+        "dim",
+        "scheme",
+        "effects",
+        "particles",
+        "steps",
+        "t_end",
+        "wall_s",
+        "energy_initial",
+        "energy_final",
+        "energy_rel_error",
+        "momentum_initial",
+        "momentum_final",
+        "l1_error",
+    ] {
+        assert!(s.contains_key(k), "summary.json has no `{k}`");
+    }
+    assert_eq!(s["particles"], 100);
+    let csv = std::fs::read_to_string(out.join("final.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(
+        lines.next(),
+        Some("id,material,x,y,z,vx,vy,vz,m,rho,p,e,sxx,syy,szz,sxy,sxz,syz,eps_p,damage,temperature,h")
+    );
+    assert_eq!(lines.filter(|l| !l.is_empty()).count(), 100);
+}
+
+#[test]
+fn overrides_change_scheme_and_resolution() {
+    let tmp = tempfile::tempdir().unwrap();
+    std::fs::write(tmp.path().join("scene.toml"), flyer()).unwrap();
+    let args = [
+        "run",
+        "scene.toml",
+        "--out",
+        "out",
+        "--quiet",
+        "--set",
+        "scheme=pm",
+        "--set",
+        "resolution_scale=0.5",
+    ];
+    let o = gsph(tmp.path(), &args);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let s = summary(&tmp.path().join("out"));
+    assert_eq!(s["particles"], 50);
+    assert_eq!(s["scheme"], "pm");
+}
