@@ -1,5 +1,13 @@
 //! The `gsph` command line (DESIGN §6). `main` only calls [`main_with_args`].
 
+/// `println!` that ignores a closed stdout (`gsph check scene | head -1` must not panic).
+macro_rules! out {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stdout(), $($arg)*);
+    }};
+}
+
 use crate::driver::{run, RunError, RunOptions};
 use crate::reference::Reference;
 use crate::scene::{self, build_particles};
@@ -142,15 +150,15 @@ fn execute(cmd: Command) -> Result<(), String> {
                 .map(crate::materials::material_of)
                 .collect();
             let effects = crate::sim::resolve_effects(&sc, &materials);
-            println!("scene     {}", scene_name(&sc, &path));
-            println!("dim       {}", sc.dim);
-            println!("scheme    {}", sc.scheme);
-            println!("particles {}", parts.len());
+            out!("scene     {}", scene_name(&sc, &path));
+            out!("dim       {}", sc.dim);
+            out!("scheme    {}", sc.scheme);
+            out!("particles {}", parts.len());
             for (b, body) in sc.bodies.iter().enumerate() {
                 let n = parts.body.iter().filter(|&&k| k as usize == b).count();
-                println!("  body {b} ({}): {n}", body.material);
+                out!("  body {b} ({}): {n}", body.material);
             }
-            println!("effects   {effects}");
+            out!("effects   {effects}");
             let dim = sc.dim;
             let family = gsph_core::schemes::Scheme::from_name(&sc.scheme)
                 .expect("validated")
@@ -159,7 +167,7 @@ fn execute(cmd: Command) -> Result<(), String> {
                 .iter()
                 .find(|s| s.dim == dim && s.family == family && s.effects == effects.kernel_part());
             match spec {
-                Some(s) if s.compiled => println!("kernel    {} (compiled)", s.name),
+                Some(s) if s.compiled => out!("kernel    {} (compiled)", s.name),
                 Some(s) => return Err(format!("{} is not compiled into this build", s.name)),
                 None => {
                     return Err(format!(
@@ -197,7 +205,7 @@ fn execute(cmd: Command) -> Result<(), String> {
                 })?;
             let s = &res.summary;
             let g = |k: &str| s.get(k).cloned().unwrap_or_default();
-            println!(
+            out!(
                 "{name}: {} {}D, {} particles, {} steps, wall {:.3} s, energy error {:.3e}{}",
                 g("scheme").as_str().unwrap_or(""),
                 g("dim"),
@@ -210,7 +218,7 @@ fn execute(cmd: Command) -> Result<(), String> {
                     .map(|v| format!(", L1(sigma_xx) {v:.4e} Pa"))
                     .unwrap_or_default()
             );
-            println!("wrote {}", out.display());
+            out!("wrote {}", out.display());
             Ok(())
         }
     }

@@ -179,17 +179,7 @@ fn run_dim<const D: usize>(
             break;
         }
         let t_out = t_end * next_out as f64 / n_out as f64;
-        let mut dt = sim.stable_dt(scene.cfl);
-        if !(dt.is_finite() && dt > 0.0) {
-            return Err(RunError::Sim(SimError::Step {
-                step: sim.step + 1,
-                t: sim.t,
-                cause: gsph_core::state::StepError::NonFinite {
-                    particle: 0,
-                    field: "time step",
-                },
-            }));
-        }
+        let mut dt = sim.checked_dt(scene.cfl)?;
         if sim.t + dt >= t_out {
             dt = t_out - sim.t;
         }

@@ -30,8 +30,8 @@ pub fn material_of(m: &MaterialSpec) -> Material {
         EosSpec::Polynomial { k1, k2, k3 } => Polynomial { rho0, k1, k2, k3 }.into(),
     };
     let strength = match m.strength {
-        Some(StrengthSpec::Fluid) => Strength::Fluid,
-        Some(StrengthSpec::Elastic) => Strength::Elastic,
+        Some(StrengthSpec::Fluid {}) => Strength::Fluid,
+        Some(StrengthSpec::Elastic {}) => Strength::Elastic,
         Some(StrengthSpec::VonMises { yield_stress }) => Strength::VonMises { yield_stress },
         None if m.shear_modulus > 0.0 => Strength::Elastic,
         None => Strength::Fluid,

@@ -33,13 +33,11 @@ pub fn build<const D: usize>(
     let cell = (factor * hmax).max(f64::MIN_POSITIVE);
     // grid geometry
     let mut lo = [0.0; D];
-    let mut ncell = [1usize; D];
-    let mut size = [cell; D];
+    let mut extent = [0.0; D];
     for a in 0..D {
         if periodic.axes[a] {
             lo[a] = periodic.lo[a];
-            ncell[a] = ((periodic.len[a] / cell).floor() as usize).max(1);
-            size[a] = periodic.len[a] / ncell[a] as f64;
+            extent[a] = periodic.len[a];
         } else {
             let (mn, mx) = x
                 .iter()
@@ -47,7 +45,31 @@ pub fn build<const D: usize>(
                     (mn.min(p[a]), mx.max(p[a]))
                 });
             lo[a] = mn;
-            ncell[a] = (((mx - mn) / cell).floor() as usize + 1).min(1 << 20);
+            extent[a] = mx - mn;
+        }
+    }
+    // Cells at least `cell` wide; at most about 4 cells per particle in all (sparse or
+    // degenerate layouts get coarser cells instead of a huge grid).
+    let max_cells = (4 * n).max(1024) as f64;
+    let mut width = cell;
+    let cells_along = |w: f64, a: usize| -> f64 {
+        let k = (extent[a] / w).floor();
+        if k.is_finite() && k >= 1.0 {
+            k
+        } else {
+            1.0
+        }
+    };
+    while (0..D).map(|a| cells_along(width, a)).product::<f64>() > max_cells {
+        width *= 2.0;
+    }
+    let mut ncell = [1usize; D];
+    let mut size = [width; D];
+    for a in 0..D {
+        ncell[a] = cells_along(width, a) as usize;
+        if periodic.axes[a] {
+            // periodic axes: cells tile the box exactly
+            size[a] = extent[a] / ncell[a] as f64;
         }
     }
     let cell_of = |p: &Vector<D>| -> [usize; D] {
@@ -246,5 +268,15 @@ mod tests {
                 capacity: 2
             }
         );
+    }
+
+    #[test]
+    fn sparse_layouts_get_a_bounded_grid() {
+        // two clusters 1e9 cell widths apart in 3D: the grid must stay small and exact
+        let mut x: Vec<Vector<3>> = (0..20)
+            .map(|k| Vector::<3>::new(k as f64 * 0.01, 0.0, 0.0))
+            .collect();
+        x.extend((0..20).map(|k| Vector::<3>::new(1e7 + k as f64 * 0.01, 1e7, -1e7)));
+        compare(&x, &vec![0.01; x.len()], &Periodic::none(), 16);
     }
 }

@@ -39,6 +39,15 @@ pub enum SimError {
         /// Cause.
         cause: StepError,
     },
+    /// Neighbour lists overflowed when they were rebuilt during the run.
+    Rebuild {
+        /// Step number (1-based).
+        step: u64,
+        /// Time at the start of the step, s.
+        t: f64,
+        /// Cause.
+        cause: NeighborError,
+    },
     /// The specialisation for this scene is not compiled into this build.
     NotCompiled {
         /// Dimension.
@@ -67,6 +76,7 @@ impl std::fmt::Display for SimError {
                 at[0], at[1], at[2]
             ),
             SimError::Step { step, t, cause } => write!(f, "step {step} (t = {t:.6e} s): {cause}"),
+            SimError::Rebuild { step, t, cause } => write!(f, "step {step} (t = {t:.6e} s): {cause}"),
             SimError::NotCompiled { dim, scheme, effects } => write!(
                 f,
                 "this build does not contain the specialisation {dim}D {} with effects {effects}; rebuild with the features that select it (see `gsph check` and the README)",
@@ -478,12 +488,43 @@ impl<const D: usize> Sim<D> {
         cfl * dt
     }
 
+    /// The time step for the CFL number, or the error naming the first particle whose
+    /// signal speed or smoothing length is not finite (or when no particle moves and no
+    /// wave can travel).
+    pub fn checked_dt(&mut self, cfl: Real) -> Result<Real, SimError> {
+        let dt = self.stable_dt(cfl);
+        if dt.is_finite() && dt > 0.0 {
+            return Ok(dt);
+        }
+        let particle = (0..self.len())
+            .find(|&i| {
+                !(self.cl[i] + self.v[i].norm()).is_finite()
+                    || !(self.h[i] > 0.0 && self.h[i].is_finite())
+            })
+            .unwrap_or(0);
+        Err(SimError::Step {
+            step: self.step + 1,
+            t: self.t,
+            cause: StepError::NonFinite {
+                particle,
+                field: "time step (signal speed or smoothing length)",
+            },
+        })
+    }
+
     /// Advances by `dt`.
     pub fn step(&mut self, dt: Real) -> Result<(), SimError> {
-        if self.lists_stale() {
-            self.rebuild()?;
-        }
         let t0 = self.t;
+        if self.lists_stale() {
+            self.rebuild().map_err(|e| match e {
+                SimError::Neighbors(n) => SimError::Rebuild {
+                    step: self.step + 1,
+                    t: t0,
+                    cause: n,
+                },
+                other => other,
+            })?;
+        }
         let nbrs = Neighbors {
             capacity: self.capacity,
             index: &self.nbr_index,

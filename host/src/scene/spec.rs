@@ -237,9 +237,9 @@ pub enum EosSpec {
 #[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
 pub enum StrengthSpec {
     /// No deviatoric stress.
-    Fluid,
+    Fluid {},
     /// Elastic, no yield.
-    Elastic,
+    Elastic {},
     /// Von Mises, constant yield stress.
     VonMises {
         /// Yield stress, Pa.

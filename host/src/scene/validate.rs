@@ -198,7 +198,7 @@ pub fn validate(s: &Scene) -> R {
         non_negative(&format!("{key}.shear_modulus"), m.shear_modulus)?;
         validate_eos(&format!("{key}.eos"), &m.eos)?;
         match &m.strength {
-            Some(StrengthSpec::Elastic) | Some(StrengthSpec::VonMises { .. })
+            Some(StrengthSpec::Elastic {}) | Some(StrengthSpec::VonMises { .. })
                 if m.shear_modulus <= 0.0 =>
             {
                 return fail(
@@ -209,7 +209,7 @@ pub fn validate(s: &Scene) -> R {
             Some(StrengthSpec::VonMises { yield_stress }) => {
                 positive(&format!("{key}.strength.yield_stress"), *yield_stress)?
             }
-            Some(StrengthSpec::Fluid) if m.shear_modulus > 0.0 => {
+            Some(StrengthSpec::Fluid {}) if m.shear_modulus > 0.0 => {
                 return fail(
                     &format!("{key}.strength"),
                     "a fluid must have shear_modulus = 0",
