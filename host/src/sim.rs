@@ -498,8 +498,10 @@ impl<const D: usize> Sim<D> {
         }
         let particle = (0..self.len())
             .find(|&i| {
-                !(self.cl[i] + self.v[i].norm()).is_finite()
-                    || !(self.h[i] > 0.0 && self.h[i].is_finite())
+                let ok = (self.cl[i] + self.v[i].norm()).is_finite()
+                    && self.h[i] > 0.0
+                    && self.h[i].is_finite();
+                !ok
             })
             .unwrap_or(0);
         Err(SimError::Step {
