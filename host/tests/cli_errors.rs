@@ -140,10 +140,13 @@ fn cases() -> Vec<Case> {
     ]
 }
 
+/// Runs every case; with `GSPH_CATALOGUE=FILE` set, also writes the Markdown table of
+/// inputs and messages (host/docs/bad_input.md is generated this way).
 #[test]
 fn bad_input_gives_one_line_and_no_results() {
     let mut failures = Vec::new();
-    for c in cases() {
+    let mut table = String::from("| # | input | command | message |\n| ---: | --- | --- | --- |\n");
+    for (k, c) in cases().into_iter().enumerate() {
         let tmp = tempfile::tempdir().unwrap();
         let dir = tmp.path();
         let scene = match &c.scene {
@@ -185,6 +188,14 @@ fn bad_input_gives_one_line_and_no_results() {
                 why.push(format!("missing `{w}`"));
             }
         }
+        table.push_str(&format!(
+            "| {} | {} | `gsph {} SCENE {}` | {} |\n",
+            k + 1,
+            c.name,
+            c.cmd,
+            c.args.join(" ").replace('|', "\\|"),
+            err.trim_end().replace('|', "\\|").replace(dir.to_str().unwrap_or("?"), "DIR")
+        ));
         let left = leftovers(&out);
         if c.cmd == "run" && !left.is_empty() {
             why.push(format!("left {left:?}"));
@@ -192,6 +203,9 @@ fn bad_input_gives_one_line_and_no_results() {
         if !why.is_empty() {
             failures.push(format!("{}: {} -- stderr: {err:?}", c.name, why.join(", ")));
         }
+    }
+    if let Some(path) = std::env::var_os("GSPH_CATALOGUE") {
+        std::fs::write(path, &table).unwrap();
     }
     assert!(failures.is_empty(), "\n{}", failures.join("\n"));
 }
