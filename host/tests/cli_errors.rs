@@ -194,7 +194,9 @@ fn bad_input_gives_one_line_and_no_results() {
             c.name,
             c.cmd,
             c.args.join(" ").replace('|', "\\|"),
-            err.trim_end().replace('|', "\\|").replace(dir.to_str().unwrap_or("?"), "DIR")
+            err.trim_end()
+                .replace('|', "\\|")
+                .replace(dir.to_str().unwrap_or("?"), "DIR")
         ));
         let left = leftovers(&out);
         if c.cmd == "run" && !left.is_empty() {
