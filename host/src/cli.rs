@@ -27,6 +27,33 @@ pub struct Cli {
 /// Subcommands.
 #[derive(Subcommand, Debug)]
 pub enum Command {
+    /// Run a scene for a grid of schemes and resolutions: error against the reference,
+    /// wall time, steps, particles, pair interactions (study.csv, study.md, plots).
+    Study {
+        /// Scene file.
+        scene: PathBuf,
+        /// Schemes, comma-separated.
+        #[arg(long, default_value = "av,pm,ts1,ts2,tkc")]
+        schemes: String,
+        /// Resolution scales, comma-separated.
+        #[arg(long, default_value = "1,2,4")]
+        resolutions: String,
+        /// Summary key used as the error (default: l1_error, radius_error or energy_rel_error).
+        #[arg(long)]
+        metric: Option<String>,
+        /// Override a scene key in every run.
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        /// Output directory (default `out/<scene name>_study`).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Worker threads (default: all cores).
+        #[arg(long)]
+        threads: Option<usize>,
+    },
+    /// Pictures of a run's output directory.
+    #[command(subcommand)]
+    Plot(PlotCommand),
     /// Validate a scene, print particle counts and the resolved effects.
     Check {
         /// Scene file.
@@ -54,6 +81,53 @@ pub enum Command {
     },
 }
 
+/// What to plot.
+#[derive(Subcommand, Debug)]
+pub enum PlotCommand {
+    /// A snapshot, particles coloured by a field (PNG or SVG by the extension of --out).
+    Particles {
+        /// Run output directory (holds snapshots.h5).
+        dir: PathBuf,
+        /// Field: a final.csv column or sigma_xx, sigma_yy, tau_xy, von_mises, speed, vr, r.
+        #[arg(long, default_value = "eps_p")]
+        field: String,
+        /// Snapshot step (default: the last).
+        #[arg(long)]
+        step: Option<u64>,
+        /// Snapshot nearest this time, s.
+        #[arg(long)]
+        time: Option<f64>,
+        /// Colour range `MIN,MAX`.
+        #[arg(long)]
+        range: Option<String>,
+        /// Draw this material index in black (e.g. a projectile).
+        #[arg(long)]
+        highlight_material: Option<u32>,
+        /// Output file (default `DIR/<field>_<step>.png`).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// sigma_xx of the final state against the exact profile (profile.csv).
+    Profile {
+        /// Run output directory (holds profile.csv).
+        dir: PathBuf,
+        /// Output file (default `DIR/profile.png`).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// Columns of series.csv against time (`*_exact` columns dashed).
+    Series {
+        /// Run output directory (holds series.csv).
+        dir: PathBuf,
+        /// Columns, comma-separated.
+        #[arg(long)]
+        columns: String,
+        /// Output file (default `DIR/series_<columns>.png`).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+}
+
 /// Scene name: the `name` key or the file stem.
 pub fn scene_name(scene: &scene::Scene, path: &std::path::Path) -> String {
     scene.name.clone().unwrap_or_else(|| {
@@ -77,24 +151,10 @@ fn pool(threads: Option<usize>) -> Result<rayon::ThreadPool, String> {
 /// Removes the results of an earlier run from `dir`, so that a run that fails (on bad input
 /// too) leaves nothing that looks complete (DESIGN §6).
 fn clear_results(dir: &std::path::Path) -> Result<(), String> {
-    for f in [
-        "summary.json",
-        "final.csv",
-        "series.csv",
-        "snapshots.h5",
-        "snapshots.xdmf",
-    ] {
-        match std::fs::remove_file(dir.join(f)) {
-            Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
-                return Err(format!(
-                    "{}: cannot remove an earlier {f}: {e}",
-                    dir.display()
-                ))
-            }
-            _ => {}
-        }
+    if !dir.exists() {
+        return Ok(());
     }
-    Ok(())
+    crate::driver::clear_outputs(dir).map_err(|e| format!("{}: {e}", dir.display()))
 }
 
 /// Sets the scene up as a run would (neighbour lists, overlap check, specialisation), so
@@ -138,11 +198,82 @@ pub fn main_with_args(args: impl IntoIterator<Item = std::ffi::OsString>) -> i32
 
 fn execute(cmd: Command) -> Result<(), String> {
     match cmd {
+        Command::Study {
+            scene: path,
+            schemes,
+            resolutions,
+            metric,
+            set,
+            out,
+            threads,
+        } => {
+            let sc = scene::load(&path, &set).map_err(|e| e.to_string())?;
+            let name = scene_name(&sc, &path);
+            let opts = crate::study::StudyOptions {
+                schemes: crate::commands::parse_schemes(&schemes)?,
+                resolutions: crate::commands::parse_resolutions(&resolutions)?,
+                overrides: set,
+                metric,
+                out: out.unwrap_or_else(|| PathBuf::from("out").join(format!("{name}_study"))),
+            };
+            let pool = pool(threads)?;
+            pool.install(|| crate::commands::run_study(&path, &opts))?;
+            out!(
+                "{}",
+                std::fs::read_to_string(opts.out.join("study.md")).unwrap_or_default()
+            );
+            out!("wrote {}", opts.out.display());
+            Ok(())
+        }
+        Command::Plot(PlotCommand::Particles {
+            dir,
+            field,
+            step,
+            time,
+            range,
+            highlight_material,
+            out,
+        }) => {
+            let range = match range {
+                None => None,
+                Some(r) => {
+                    let v: Vec<f64> = r.split(',').filter_map(|x| x.trim().parse().ok()).collect();
+                    if v.len() != 2 || v[0] >= v[1] {
+                        return Err(format!(
+                            "--range: expected MIN,MAX with MIN < MAX, got `{r}`"
+                        ));
+                    }
+                    Some((v[0], v[1]))
+                }
+            };
+            let path = crate::commands::plot_particles(
+                &dir,
+                &field,
+                step,
+                time,
+                range,
+                highlight_material,
+                out,
+            )?;
+            out!("wrote {}", path.display());
+            Ok(())
+        }
+        Command::Plot(PlotCommand::Profile { dir, out }) => {
+            let path = crate::commands::plot_profile(&dir, out)?;
+            out!("wrote {}", path.display());
+            Ok(())
+        }
+        Command::Plot(PlotCommand::Series { dir, columns, out }) => {
+            let cols: Vec<String> = columns.split(',').map(|c| c.trim().to_string()).collect();
+            let path = crate::commands::plot_series(&dir, &cols, out)?;
+            out!("wrote {}", path.display());
+            Ok(())
+        }
         Command::Check { scene: path, set } => {
             let sc = scene::load(&path, &set).map_err(|e| e.to_string())?;
             let at = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
             let parts = build_particles(&sc).map_err(|e| at(&e))?;
-            Reference::from_scene(&sc).map_err(|e| at(&e))?;
+            Reference::from_scene(&sc, &parts.x, &parts.spacing).map_err(|e| at(&e))?;
             probe(&sc, &parts).map_err(|e| at(&e))?;
             let materials: Vec<_> = sc
                 .materials

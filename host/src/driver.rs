@@ -91,18 +91,52 @@ pub fn run_particles(
     }
 }
 
+/// sigma_xx of every particle against the exact profile at time t, sorted by x
+/// (`x,sigma_xx,sigma_xx_exact`; the exact value is empty where it does not hold), or
+/// `None` for references that are not stress profiles.
+fn profile_csv(r: &Reference, table: &crate::output::ParticleTable, t: f64) -> Option<String> {
+    r.sigma_xx(table.x.first().copied().unwrap_or(0.0), t)?;
+    let mut rows: Vec<(f64, f64, Option<f64>)> = (0..table.len())
+        .map(|i| {
+            (
+                table.x[i],
+                table.sxx[i] - table.p[i],
+                r.sigma_xx(table.x[i], t),
+            )
+        })
+        .collect();
+    rows.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut s = String::from("x,sigma_xx,sigma_xx_exact\n");
+    for (x, sxx, ex) in rows {
+        s.push_str(&format!(
+            "{x:e},{sxx:e},{}\n",
+            ex.map(|v| format!("{v:e}")).unwrap_or_default()
+        ));
+    }
+    Some(s)
+}
+
+/// The files a run writes into its output directory.
+pub const RESULT_FILES: [&str; 6] = [
+    "summary.json",
+    "final.csv",
+    "series.csv",
+    "profile.csv",
+    "snapshots.h5",
+    "snapshots.xdmf",
+];
+
 /// Removes the files of an earlier run so that a failed run leaves nothing that looks complete.
-fn clear_outputs(dir: &Path) -> std::io::Result<()> {
+pub fn clear_outputs(dir: &Path) -> std::io::Result<()> {
     std::fs::create_dir_all(dir)?;
-    for f in [
-        "summary.json",
-        "final.csv",
-        "series.csv",
-        "snapshots.h5",
-        "snapshots.xdmf",
-    ] {
+    for f in RESULT_FILES {
         match std::fs::remove_file(dir.join(f)) {
-            Err(e) if e.kind() != std::io::ErrorKind::NotFound => return Err(e),
+            Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+                return Err(std::io::Error::new(
+                    e.kind(),
+                    format!("cannot remove an earlier {f}: {e}"),
+                ))
+            }
             _ => {}
         }
     }
@@ -116,7 +150,7 @@ fn run_dim<const D: usize>(
     opts: &RunOptions,
 ) -> Result<RunResult, RunError> {
     let t_total = Instant::now();
-    let reference = Reference::from_scene(scene)?;
+    let reference = Reference::from_scene(scene, &parts.x, &parts.spacing)?;
     let mut sim = Sim::<D>::new(scene, parts)?;
     if let Some(dir) = &opts.out {
         clear_outputs(dir)?;
@@ -131,14 +165,20 @@ fn run_dim<const D: usize>(
     let n_out = scene.output.snapshots;
     let n_series = scene.output.series.unwrap_or(200);
     let mut series =
-        String::from("t,step,dt,kinetic,internal,total,momentum_x,momentum_y,momentum_z\n");
+        String::from("t,step,dt,kinetic,internal,total,momentum_x,momentum_y,momentum_z");
+    let extra = reference.as_ref().map_or(&[][..], |r| r.series_names());
+    for name in extra {
+        series.push(',');
+        series.push_str(name);
+    }
+    series.push('\n');
     let mut kinetic_max: f64 = 0.0;
     let mut push_series = |sim: &Sim<D>, dt: f64| {
         let (k, i) = sim.energy();
         kinetic_max = kinetic_max.max(k);
         let p = sim.momentum();
         series.push_str(&format!(
-            "{:e},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e}\n",
+            "{:e},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e}",
             sim.t,
             sim.step,
             dt,
@@ -149,6 +189,12 @@ fn run_dim<const D: usize>(
             p[1],
             p[2]
         ));
+        if let Some(r) = reference.as_ref().filter(|_| !extra.is_empty()) {
+            for v in r.series_values(&sim.table(), sim.t) {
+                series.push_str(&format!(",{v:e}"));
+            }
+        }
+        series.push('\n');
     };
     push_series(&sim, 0.0);
     if let Some(w) = writer.as_mut() {
@@ -256,6 +302,12 @@ fn run_dim<const D: usize>(
     if let Some(dir) = &opts.out {
         write_csv(dir.join("final.csv"), &table)?;
         write_atomic(dir.join("series.csv"), series.as_bytes())?;
+        if let Some(p) = reference
+            .as_ref()
+            .and_then(|r| profile_csv(r, &table, sim.t))
+        {
+            write_atomic(dir.join("profile.csv"), p.as_bytes())?;
+        }
         if let Some(w) = writer.take() {
             w.finish()?;
         }

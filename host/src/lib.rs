@@ -4,6 +4,7 @@
 //! (HDF5 + XDMF, CSV, JSON) and the `gsph` command line. The physics is in `gsph-core`.
 
 pub mod cli;
+pub mod commands;
 pub mod driver;
 pub mod exec;
 pub mod materials;

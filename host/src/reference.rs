@@ -1,10 +1,14 @@
-//! Exact references of the cases and the error measures reported in `summary.json`.
+//! Exact references of the cases and the error measures reported in `summary.json` and
+//! `series.csv`.
 
 use crate::output::ParticleTable;
 use crate::scene::{EosSpec, ReferenceSpec, Scene, SceneError, StrengthSpec};
-use gsph_core::exact::{ElasticPlasticRiemann, EpRiemannParams, FlyerPlate, FlyerPlateParams};
+use gsph_core::exact::{
+    ElasticPlasticRiemann, EpRiemannParams, FlyerPlate, FlyerPlateParams, ShellCollapse,
+    ShellParams,
+};
 
-/// A case's exact solution.
+/// A case's exact or analytic solution.
 #[derive(Debug, Clone)]
 pub enum Reference {
     /// Seed 000 §4.1.
@@ -18,6 +22,68 @@ pub enum Reference {
         /// Free left end, m.
         x_left: f64,
     },
+    /// Cylindrical shell collapse (ring, Verney).
+    Shell(Shell),
+}
+
+/// The shell-collapse reference with the particle rows that mark its surfaces.
+#[derive(Debug, Clone)]
+pub struct Shell {
+    /// The analytic solution.
+    pub sol: ShellCollapse,
+    /// Axis.
+    pub center: [f64; 2],
+    /// Particles (indices) of the inner surface row.
+    pub inner: Vec<usize>,
+    /// Particles of the outer surface row.
+    pub outer: Vec<usize>,
+}
+
+impl Shell {
+    /// Inner and outer surface radii of a state, estimated from the surface rows: the
+    /// material between a row and its surface is half the rows' volume, so
+    /// `pi (r_row² - r_in²) = sum V / 2` (and likewise outside). Exact for a polar lattice
+    /// at rest; the `*_row_radius` measures give the plain row radii.
+    pub fn radii(&self, t: &ParticleTable) -> ShellRadii {
+        let r = |i: usize| {
+            ((t.x[i] - self.center[0]).powi(2) + (t.y[i] - self.center[1]).powi(2)).sqrt()
+        };
+        let vol = |i: usize| t.m[i] / t.rho[i];
+        let stats = |rows: &[usize]| {
+            let n = rows.len().max(1) as f64;
+            let mean = rows.iter().map(|&i| r(i)).sum::<f64>() / n;
+            let min = rows.iter().map(|&i| r(i)).fold(f64::INFINITY, f64::min);
+            let max = rows.iter().map(|&i| r(i)).fold(0.0, f64::max);
+            let v: f64 = rows.iter().map(|&i| vol(i)).sum();
+            (mean, min, max, v)
+        };
+        let (ri, imin, imax, vi) = stats(&self.inner);
+        let (ro, _, _, vo) = stats(&self.outer);
+        ShellRadii {
+            inner: (ri * ri - vi / (2.0 * std::f64::consts::PI))
+                .max(0.0)
+                .sqrt(),
+            outer: (ro * ro + vo / (2.0 * std::f64::consts::PI)).sqrt(),
+            inner_row: ri,
+            outer_row: ro,
+            inner_spread: (imax - imin) / ri,
+        }
+    }
+}
+
+/// Radii of a shell state.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ShellRadii {
+    /// Inner surface radius, m.
+    pub inner: f64,
+    /// Outer surface radius, m.
+    pub outer: f64,
+    /// Mean radius of the inner row of particles, m.
+    pub inner_row: f64,
+    /// Mean radius of the outer row, m.
+    pub outer_row: f64,
+    /// (max - min)/mean of the inner row's radii: the circumferential symmetry measure.
+    pub inner_spread: f64,
 }
 
 fn yield_of(scene: &Scene, name: &str, key: &str) -> Result<(f64, f64), SceneError> {
@@ -35,8 +101,13 @@ fn yield_of(scene: &Scene, name: &str, key: &str) -> Result<(f64, f64), SceneErr
 }
 
 impl Reference {
-    /// Builds the reference named in the scene, if any.
-    pub fn from_scene(scene: &Scene) -> Result<Option<Reference>, SceneError> {
+    /// Builds the reference named in the scene, if any. `x0` are the initial positions
+    /// and `spacing` each particle's lattice spacing (used to find surface rows).
+    pub fn from_scene(
+        scene: &Scene,
+        x0: &[[f64; 3]],
+        spacing: &[f64],
+    ) -> Result<Option<Reference>, SceneError> {
         let Some(r) = &scene.reference else {
             return Ok(None);
         };
@@ -47,6 +118,7 @@ impl Reference {
                 .find(|m| m.name == name)
                 .expect("validated")
         };
+        let bad = |e: gsph_core::exact::ExactError| SceneError(format!("reference: {e}"));
         Ok(Some(match r {
             ReferenceSpec::FlyerPlate {
                 material,
@@ -55,20 +127,23 @@ impl Reference {
             } => {
                 let m = find(material);
                 let EosSpec::Hugoniot { c0, s1 } = m.eos else {
-                    return Err(SceneError(format!("reference.material: `{material}` must use the hugoniot EOS for the flyer-plate reference")));
+                    return Err(SceneError(format!(
+                        "reference.material: `{material}` must use the hugoniot EOS for the flyer-plate reference"
+                    )));
                 };
                 let (g, y) = yield_of(scene, material, "reference.material")?;
-                let sol = FlyerPlate::new(FlyerPlateParams {
-                    rho0: m.rho0,
-                    c0,
-                    s1,
-                    shear_modulus: g,
-                    yield_stress: y,
-                    impact_velocity: *impact_velocity,
-                    interface_x: *interface,
-                })
-                .map_err(|e| SceneError(format!("reference: {e}")))?;
-                Reference::Flyer(sol)
+                Reference::Flyer(
+                    FlyerPlate::new(FlyerPlateParams {
+                        rho0: m.rho0,
+                        c0,
+                        s1,
+                        shear_modulus: g,
+                        yield_stress: y,
+                        impact_velocity: *impact_velocity,
+                        interface_x: *interface,
+                    })
+                    .map_err(bad)?,
+                )
             }
             ReferenceSpec::ElasticPlasticRiemann {
                 material,
@@ -78,7 +153,9 @@ impl Reference {
             } => {
                 let m = find(material);
                 let EosSpec::Logarithmic { bulk_modulus } = m.eos else {
-                    return Err(SceneError(format!("reference.material: `{material}` must use the logarithmic EOS for this reference")));
+                    return Err(SceneError(format!(
+                        "reference.material: `{material}` must use the logarithmic EOS for this reference"
+                    )));
                 };
                 let (g, y) = yield_of(scene, material, "reference.material")?;
                 let sol = ElasticPlasticRiemann::new(EpRiemannParams {
@@ -88,17 +165,56 @@ impl Reference {
                     yield_stress: y,
                     sigma1: *sigma1,
                 })
-                .map_err(|e| SceneError(format!("reference: {e}")))?;
+                .map_err(bad)?;
                 Reference::EpRiemann {
                     sol,
                     interface: *interface,
                     x_left: *x_left,
                 }
             }
+            ReferenceSpec::ShellCollapse {
+                material,
+                center,
+                r_inner,
+                r_outer,
+                v0,
+            } => {
+                let m = find(material);
+                let (_, y) = yield_of(scene, material, "reference.material")?;
+                let sol = ShellCollapse::new(ShellParams {
+                    rho: m.rho0,
+                    yield_stress: y,
+                    r_inner: *r_inner,
+                    r_outer: *r_outer,
+                    v0: *v0,
+                })
+                .map_err(bad)?;
+                let c = [center[0], center[1]];
+                let r = |i: usize| ((x0[i][0] - c[0]).powi(2) + (x0[i][1] - c[1]).powi(2)).sqrt();
+                let inner: Vec<usize> = (0..x0.len())
+                    .filter(|&i| r(i) < r_inner + 0.99 * spacing[i])
+                    .collect();
+                let outer: Vec<usize> = (0..x0.len())
+                    .filter(|&i| r(i) > r_outer - 0.99 * spacing[i])
+                    .collect();
+                if inner.is_empty() || outer.is_empty() {
+                    return Err(SceneError(
+                        "reference: no particle within one spacing of the shell's surfaces (do center and radii match the body?)"
+                            .into(),
+                    ));
+                }
+                Reference::Shell(Shell {
+                    sol,
+                    center: c,
+                    inner,
+                    outer,
+                })
+            }
         }))
     }
 
-    /// Exact sigma_xx at (x, t), or `None` where the exact solution does not hold.
+    /// Exact sigma_xx at (x, t), or `None` where the exact solution does not hold or the
+    /// reference is not a stress profile.
     pub fn sigma_xx(&self, x: f64, t: f64) -> Option<f64> {
         match self {
             Reference::Flyer(sol) => Some(sol.sample(x, t).0),
@@ -107,21 +223,59 @@ impl Reference {
                 interface,
                 x_left,
             } => (x >= sol.valid_from(*x_left, t)).then(|| sol.sample(x - interface, t).sigma_xx),
+            Reference::Shell(_) => None,
         }
     }
 
-    /// A stress scale for relative errors, Pa.
-    pub fn stress_scale(&self) -> f64 {
+    /// Names of the time-series columns this reference adds to series.csv.
+    pub fn series_names(&self) -> &'static [&'static str] {
         match self {
-            Reference::Flyer(sol) => sol.final_stress().abs(),
-            Reference::EpRiemann { sol, .. } => sol.params().sigma1.abs(),
+            Reference::Shell(_) => &[
+                "inner_radius",
+                "outer_radius",
+                "inner_radius_exact",
+                "outer_radius_exact",
+                "inner_spread",
+            ],
+            _ => &[],
         }
     }
 
-    /// The measures of a state at time t: `l1_error` (mean |sigma_xx - exact| over the
-    /// particles where the exact solution holds, Pa), `l1_error_relative` (divided by the
-    /// stress scale), `l1_points`, and case-specific positions.
+    /// Values of the series columns for a state at time t.
+    pub fn series_values(&self, table: &ParticleTable, t: f64) -> Vec<f64> {
+        match self {
+            Reference::Shell(s) => {
+                let r = s.radii(table);
+                let (ei, eo) = s.sol.radii_at(t, 2000);
+                vec![r.inner, r.outer, ei, eo, r.inner_spread]
+            }
+            _ => Vec::new(),
+        }
+    }
+
+    /// The measures of a state at time t. Stress profiles: `l1_error` (mean
+    /// |sigma_xx - exact| over the particles where the exact solution holds, Pa),
+    /// `l1_error_relative`, `l1_points` and, for the flyer plate, the precursor position.
+    /// Shells: surface and row radii, their exact stopping values, relative errors,
+    /// `radius_error` (the larger of the two) and the symmetry measure `inner_spread`.
     pub fn measures(&self, table: &ParticleTable, t: f64) -> Vec<(&'static str, f64)> {
+        if let Reference::Shell(s) = self {
+            let r = s.radii(table);
+            let (ei, eo) = s.sol.stopping_radii();
+            let (ti, to) = ((r.inner - ei) / ei, (r.outer - eo) / eo);
+            return vec![
+                ("inner_radius", r.inner),
+                ("outer_radius", r.outer),
+                ("inner_row_radius", r.inner_row),
+                ("outer_row_radius", r.outer_row),
+                ("inner_radius_exact", ei),
+                ("outer_radius_exact", eo),
+                ("inner_radius_error_relative", ti),
+                ("outer_radius_error_relative", to),
+                ("radius_error", ti.abs().max(to.abs())),
+                ("inner_spread", r.inner_spread),
+            ];
+        }
         let mut sum = 0.0;
         let mut n = 0usize;
         for i in 0..table.len() {
@@ -132,9 +286,14 @@ impl Reference {
             }
         }
         let l1 = if n > 0 { sum / n as f64 } else { f64::NAN };
+        let scale = match self {
+            Reference::Flyer(sol) => sol.final_stress().abs(),
+            Reference::EpRiemann { sol, .. } => sol.params().sigma1.abs(),
+            Reference::Shell(_) => 1.0,
+        };
         let mut out = vec![
             ("l1_error", l1),
-            ("l1_error_relative", l1 / self.stress_scale()),
+            ("l1_error_relative", l1 / scale),
             ("l1_points", n as f64),
         ];
         if let Reference::Flyer(sol) = self {

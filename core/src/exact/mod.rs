@@ -6,6 +6,8 @@
 //! * [`FlyerPlate`]: the symmetric flyer-plate impact of seed 000 §4.1 (elastic precursor
 //!   and plastic shock in each plate).
 //! * [`SoundPulse`]: the linear longitudinal sound pulse of seed 004 §2.1.2.
+//! * [`ShellCollapse`]: the incompressible rigid-plastic collapse of a cylindrical shell,
+//!   reference of the beryllium ring (seed 000 §4.2) and the Verney cylinder (seed 004 §2.1.3).
 //!
 //! Conventions (DESIGN §2): SI units, Cauchy stress tension positive, pressure positive in
 //! compression, 1D = uniaxial strain with `S_xx = -2 S_yy = -2 S_zz`, so that
@@ -14,10 +16,12 @@
 mod elastic_plastic_riemann;
 mod flyer_plate;
 pub(crate) mod root;
+mod shell_collapse;
 mod sound_wave;
 
 pub use elastic_plastic_riemann::{ElasticPlasticRiemann, EpRiemannParams, EpState, EpWaves};
 pub use flyer_plate::{FlyerPlate, FlyerPlateParams};
+pub use shell_collapse::{ShellCollapse, ShellParams};
 pub use sound_wave::{SoundPulse, SoundPulseParams};
 
 use core::fmt;

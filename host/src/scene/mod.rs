@@ -40,7 +40,7 @@ pub fn load(path: &Path, overrides: &[String]) -> Result<Scene, SceneError> {
 
 /// Parses and validates scene text. `origin` names the source in messages.
 ///
-/// Beyond the schema and [`validate`](validate::validate), this builds the particles once, so a
+/// Beyond the schema and the semantic checks of `validate`, this builds the particles once, so a
 /// body that holds no particle, an initial state the EOS cannot reach, or a scene too large
 /// for memory is reported here, before any output is written.
 pub fn parse(text: &str, origin: &str, overrides: &[String]) -> Result<Scene, SceneError> {

@@ -380,4 +380,18 @@ pub enum ReferenceSpec {
         /// Free left end of the bar, m.
         x_left: f64,
     },
+    /// Collapse of a cylindrical shell (2D): incompressible rigid-plastic stopping radii
+    /// and radius history (ring of seed 000 §4.2, Verney cylinder of seed 004 §2.1.3).
+    ShellCollapse {
+        /// Material (von Mises; its rho0 and yield stress enter the solution).
+        material: String,
+        /// Axis of the shell, m.
+        center: Vec<f64>,
+        /// Initial inner radius, m.
+        r_inner: f64,
+        /// Initial outer radius, m.
+        r_outer: f64,
+        /// Initial inward speed at the inner radius, m/s.
+        v0: f64,
+    },
 }

@@ -307,6 +307,25 @@ pub fn validate(s: &Scene) -> R {
             finite("reference.interface", *interface)?;
             finite("reference.x_left", *x_left)?;
         }
+        Some(ReferenceSpec::ShellCollapse {
+            material,
+            center,
+            r_inner,
+            r_outer,
+            v0,
+        }) => {
+            material_known(s, "reference.material", material)?;
+            if s.dim != 2 {
+                return fail("reference", "shell_collapse is a 2D reference");
+            }
+            dims("reference.center", center, s.dim)?;
+            positive("reference.r_inner", *r_inner)?;
+            positive("reference.r_outer", *r_outer)?;
+            if r_outer <= r_inner {
+                return fail("reference.r_outer", "must exceed r_inner");
+            }
+            non_negative("reference.v0", *v0)?;
+        }
         None => {}
     }
     Ok(())

@@ -1,0 +1,265 @@
+//! The `gsph plot` and `gsph study` commands (argument handling around [`crate::plot`] and
+//! [`crate::study`]).
+
+use crate::output::{read_frame, read_snapshot_times};
+use crate::plot::{ParticlePlot, Series, SeriesStyle, XyPlot};
+use crate::study::{study, StudyOptions, StudyRow};
+use gsph_core::schemes::Scheme;
+use std::path::{Path, PathBuf};
+
+/// Renders one snapshot of a run directory as a picture coloured by `field`.
+/// `step`/`time` pick the snapshot (exact step, or the one nearest in time; default last).
+#[allow(clippy::too_many_arguments)]
+pub fn plot_particles(
+    dir: &Path,
+    field: &str,
+    step: Option<u64>,
+    time: Option<f64>,
+    range: Option<(f64, f64)>,
+    highlight_material: Option<u32>,
+    out: Option<PathBuf>,
+) -> Result<PathBuf, String> {
+    let h5 = dir.join("snapshots.h5");
+    let times = read_snapshot_times(&h5).map_err(|e| format!("{}: {e}", h5.display()))?;
+    let (s, t) = match (step, time) {
+        (Some(s), _) => *times.iter().find(|(k, _)| *k == s).ok_or_else(|| {
+            format!(
+                "{}: no snapshot at step {s} (steps: {})",
+                h5.display(),
+                list(&times)
+            )
+        })?,
+        (None, Some(t)) => *times
+            .iter()
+            .min_by(|a, b| (a.1 - t).abs().total_cmp(&(b.1 - t).abs()))
+            .ok_or_else(|| format!("{}: no snapshots", h5.display()))?,
+        (None, None) => *times
+            .last()
+            .ok_or_else(|| format!("{}: no snapshots", h5.display()))?,
+    };
+    let frame = read_frame(&h5, s).map_err(|e| format!("{}: {e}", h5.display()))?;
+    let name = dir
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let out = out.unwrap_or_else(|| dir.join(format!("{field}_{s:06}.png")));
+    ParticlePlot {
+        table: &frame.table,
+        field,
+        title: format!("{name}: {field} at t = {:.4} us", t * 1e6),
+        axes: (0, 1),
+        range,
+        highlight_material,
+    }
+    .save(&out)
+    .map_err(|e| format!("{}: {e}", out.display()))?;
+    Ok(out)
+}
+
+fn list(times: &[(u64, f64)]) -> String {
+    let v: Vec<String> = times.iter().map(|(s, _)| s.to_string()).collect();
+    v.join(", ")
+}
+
+/// Plots columns of a run's `series.csv` against time (in microseconds). Columns whose
+/// name ends in `_exact` are drawn dashed, as analytic references.
+pub fn plot_series(
+    dir: &Path,
+    columns: &[String],
+    out: Option<PathBuf>,
+) -> Result<PathBuf, String> {
+    let path = dir.join("series.csv");
+    let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap_or("").split(',').collect();
+    let idx = |c: &str| {
+        header.iter().position(|h| *h == c).ok_or_else(|| {
+            format!(
+                "{}: no column `{c}` (columns: {})",
+                path.display(),
+                header.join(", ")
+            )
+        })
+    };
+    let it = idx("t")?;
+    let cols: Vec<usize> = columns.iter().map(|c| idx(c)).collect::<Result<_, _>>()?;
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| {
+            l.split(',')
+                .map(|v| v.parse::<f64>().unwrap_or(f64::NAN))
+                .collect()
+        })
+        .collect();
+    let series = columns
+        .iter()
+        .zip(&cols)
+        .map(|(name, &c)| Series {
+            name: name.clone(),
+            points: rows.iter().map(|r| (r[it] * 1e6, r[c])).collect(),
+            style: if name.ends_with("_exact") {
+                SeriesStyle::Dashed
+            } else {
+                SeriesStyle::Line
+            },
+        })
+        .collect();
+    let name = dir
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let out = out.unwrap_or_else(|| dir.join(format!("series_{}.png", columns.join("_"))));
+    XyPlot {
+        title: format!("{name}: {}", columns.join(", ")),
+        x_label: "t (us)".into(),
+        y_label: columns.first().cloned().unwrap_or_default(),
+        log_x: false,
+        log_y: false,
+        series,
+        highlight: Vec::new(),
+        highlight_label: None,
+    }
+    .save(&out)
+    .map_err(|e| format!("{}: {e}", out.display()))?;
+    Ok(out)
+}
+
+/// Parses a comma-separated list of schemes.
+pub fn parse_schemes(s: &str) -> Result<Vec<Scheme>, String> {
+    s.split(',')
+        .map(|n| {
+            Scheme::from_name(n.trim()).ok_or_else(|| {
+                format!("--schemes: unknown scheme `{n}` (known: av, pm, ts1, ts2, tkc)")
+            })
+        })
+        .collect()
+}
+
+/// Parses a comma-separated list of positive resolution scales.
+pub fn parse_resolutions(s: &str) -> Result<Vec<f64>, String> {
+    s.split(',')
+        .map(|n| match n.trim().parse::<f64>() {
+            Ok(v) if v > 0.0 && v.is_finite() => Ok(v),
+            _ => Err(format!("--resolutions: `{n}` is not a positive number")),
+        })
+        .collect()
+}
+
+/// Runs a study and writes its plots: error against wall time and against particles.
+pub fn run_study(scene: &Path, opts: &StudyOptions) -> Result<Vec<StudyRow>, String> {
+    let (rows, metric) = study(scene, opts)?;
+    let name = scene
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let mut schemes: Vec<&str> = Vec::new();
+    for r in &rows {
+        if !schemes.contains(&r.scheme.as_str()) {
+            schemes.push(&r.scheme);
+        }
+    }
+    let lines = |x: &dyn Fn(&StudyRow) -> f64| -> Vec<Series> {
+        schemes
+            .iter()
+            .map(|s| {
+                let mut pts: Vec<(f64, f64)> = rows
+                    .iter()
+                    .filter(|r| r.scheme == *s)
+                    .map(|r| (x(r), r.error))
+                    .collect();
+                pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+                Series {
+                    name: s.to_string(),
+                    points: pts,
+                    style: SeriesStyle::LineMarkers,
+                }
+            })
+            .collect()
+    };
+    for ext in ["png", "svg"] {
+        XyPlot {
+            title: format!("{name}: {metric} against wall time"),
+            x_label: "wall time (s)".into(),
+            y_label: metric.clone(),
+            log_x: true,
+            log_y: true,
+            series: lines(&|r| r.wall_s),
+            highlight: rows
+                .iter()
+                .filter(|r| r.pareto)
+                .map(|r| (r.wall_s, r.error))
+                .collect(),
+            highlight_label: Some("Pareto front".into()),
+        }
+        .save(&opts.out.join(format!("error_vs_time.{ext}")))
+        .map_err(|e| e.to_string())?;
+        XyPlot {
+            title: format!("{name}: {metric} against particles"),
+            x_label: "particles".into(),
+            y_label: metric.clone(),
+            log_x: true,
+            log_y: true,
+            series: lines(&|r| r.particles as f64),
+            highlight: Vec::new(),
+            highlight_label: None,
+        }
+        .save(&opts.out.join(format!("error_vs_particles.{ext}")))
+        .map_err(|e| e.to_string())?;
+    }
+    Ok(rows)
+}
+
+/// Plots a run's `profile.csv`: sigma_xx of the particles (markers) against the exact
+/// profile (dashed), like seed 000 fig 1 and seed 004 fig 2a.
+pub fn plot_profile(dir: &Path, out: Option<PathBuf>) -> Result<PathBuf, String> {
+    let path = dir.join("profile.csv");
+    let text = std::fs::read_to_string(&path).map_err(|e| {
+        format!(
+            "{}: {e} (only runs with an exact stress profile write it)",
+            path.display()
+        )
+    })?;
+    let mut sph = Vec::new();
+    let mut exact = Vec::new();
+    for line in text.lines().skip(1) {
+        let f: Vec<&str> = line.split(',').collect();
+        let x: f64 = f.first().and_then(|v| v.parse().ok()).unwrap_or(f64::NAN);
+        if let Some(v) = f.get(1).and_then(|v| v.parse::<f64>().ok()) {
+            sph.push((x, v));
+        }
+        exact.push((
+            x,
+            f.get(2)
+                .and_then(|v| v.parse::<f64>().ok())
+                .unwrap_or(f64::NAN),
+        ));
+    }
+    let name = dir
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let out = out.unwrap_or_else(|| dir.join("profile.png"));
+    XyPlot {
+        title: format!("{name}: sigma_xx against the exact solution"),
+        x_label: "x (m)".into(),
+        y_label: "sigma_xx (Pa)".into(),
+        log_x: false,
+        log_y: false,
+        series: vec![
+            Series {
+                name: "exact".into(),
+                points: exact,
+                style: SeriesStyle::Dashed,
+            },
+            Series {
+                name: "SPH".into(),
+                points: sph,
+                style: SeriesStyle::Markers,
+            },
+        ],
+        highlight: Vec::new(),
+        highlight_label: None,
+    }
+    .save(&out)
+    .map_err(|e| format!("{}: {e}", out.display()))?;
+    Ok(out)
+}
