@@ -44,3 +44,33 @@ fn l1_falls_as_resolution_doubles() {
         );
     }
 }
+
+/// ts2 has the lowest L1(sigma_xx) of av, pm, ts1 and ts2 at every resolution
+/// (100, 200 and 400 particles along x).
+#[test]
+fn ts2_is_the_most_accurate_at_every_resolution() {
+    for r in [1, 2, 4] {
+        let l1: Vec<(&str, f64)> = ["av", "pm", "ts1", "ts2"]
+            .iter()
+            .map(|s| {
+                (
+                    *s,
+                    num(
+                        &run_case(
+                            "riemann_al",
+                            &[&format!("scheme={s}"), &format!("resolution_scale={r}")],
+                        ),
+                        "l1_error",
+                    ),
+                )
+            })
+            .collect();
+        println!("{} particles: {l1:?}", 100 * r);
+        let ts2 = l1[3].1;
+        assert!(
+            l1[..3].iter().all(|(_, v)| ts2 < *v),
+            "ts2 not lowest at {} particles: {l1:?}",
+            100 * r
+        );
+    }
+}
