@@ -1,5 +1,5 @@
 # The two commands of the README. Both set up a fresh machine first (scripts/setup.sh).
-.PHONY: demo test setup
+.PHONY: demo test setup validate
 
 setup:
 	scripts/setup.sh
@@ -11,3 +11,7 @@ demo: setup
 # Runs the test suite (what CI runs).
 test:
 	scripts/test.sh
+
+# Full-size validation runs and figures (not CI; about 30 minutes): out/validation/.
+validate:
+	scripts/validate.sh
