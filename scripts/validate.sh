@@ -25,7 +25,7 @@ for r in 1 1.7127; do
   $g run cases/ring_collapse.toml --set resolution_scale=$r --out "$d"
   $g plot particles "$d" --field eps_p
   $g plot particles "$d" --field tau_xy
-  $g plot series "$d" --columns inner_radius,outer_radius,inner_radius_exact,outer_radius_exact
+  $g plot series "$d" --columns inner_radius,outer_radius,inner_radius_exact,outer_radius_exact --y-label "radius (m)"
 done
 for s in ts1 av; do
   d="$o/ring_${s}_1"

@@ -122,6 +122,9 @@ pub enum PlotCommand {
         /// Columns, comma-separated.
         #[arg(long)]
         columns: String,
+        /// Label of the y axis (default: the first column's name).
+        #[arg(long)]
+        y_label: Option<String>,
         /// Output file (default `DIR/series_<columns>.png`).
         #[arg(long)]
         out: Option<PathBuf>,
@@ -263,9 +266,14 @@ fn execute(cmd: Command) -> Result<(), String> {
             out!("wrote {}", path.display());
             Ok(())
         }
-        Command::Plot(PlotCommand::Series { dir, columns, out }) => {
+        Command::Plot(PlotCommand::Series {
+            dir,
+            columns,
+            y_label,
+            out,
+        }) => {
             let cols: Vec<String> = columns.split(',').map(|c| c.trim().to_string()).collect();
-            let path = crate::commands::plot_series(&dir, &cols, out)?;
+            let path = crate::commands::plot_series(&dir, &cols, y_label, out)?;
             out!("wrote {}", path.display());
             Ok(())
         }

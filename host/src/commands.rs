@@ -66,6 +66,7 @@ fn list(times: &[(u64, f64)]) -> String {
 pub fn plot_series(
     dir: &Path,
     columns: &[String],
+    y_label: Option<String>,
     out: Option<PathBuf>,
 ) -> Result<PathBuf, String> {
     let path = dir.join("series.csv");
@@ -111,7 +112,7 @@ pub fn plot_series(
     XyPlot {
         title: format!("{name}: {}", columns.join(", ")),
         x_label: "t (us)".into(),
-        y_label: columns.first().cloned().unwrap_or_default(),
+        y_label: y_label.unwrap_or_else(|| columns.first().cloned().unwrap_or_default()),
         log_x: false,
         log_y: false,
         series,
