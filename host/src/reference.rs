@@ -5,7 +5,7 @@ use crate::output::ParticleTable;
 use crate::scene::{EosSpec, ReferenceSpec, Scene, SceneError, StrengthSpec};
 use gsph_core::exact::{
     ElasticPlasticRiemann, EpRiemannParams, FlyerPlate, FlyerPlateParams, ShellCollapse,
-    ShellParams,
+    ShellParams, SoundPulse, SoundPulseParams,
 };
 
 /// A case's exact or analytic solution.
@@ -24,6 +24,15 @@ pub enum Reference {
     },
     /// Cylindrical shell collapse (ring, Verney).
     Shell(Shell),
+    /// Linear sound pulse (centred at `center` along x).
+    Sound {
+        /// The solution (centred at x = 0).
+        sol: SoundPulse,
+        /// Initial centre, m.
+        center: f64,
+        /// Lattice spacing of the first particle, m.
+        spacing: f64,
+    },
 }
 
 /// The shell-collapse reference with the particle rows that mark its surfaces.
@@ -172,6 +181,21 @@ impl Reference {
                     x_left: *x_left,
                 }
             }
+            ReferenceSpec::SoundWave { material, amplitude, k, center } => {
+                let m = find(material);
+                let EosSpec::Linear { c0, .. } = m.eos else {
+                    return Err(SceneError(format!(
+                        "reference.material: `{material}` must use the linear EOS for the sound-wave reference"
+                    )));
+                };
+                // Poisson ratio implied by the material's moduli (K = rho0 c0², G)
+                let (kb, g) = (m.rho0 * c0 * c0, m.shear_modulus);
+                let poisson = (3.0 * kb - 2.0 * g) / (2.0 * (3.0 * kb + g));
+                let sol =
+                    SoundPulse::new(SoundPulseParams { rho0: m.rho0, c0, poisson, amplitude: *amplitude, k: *k })
+                        .map_err(bad)?;
+                Reference::Sound { sol, center: *center, spacing: spacing.first().copied().unwrap_or(f64::NAN) }
+            }
             ReferenceSpec::ShellCollapse {
                 material,
                 center,
@@ -223,7 +247,7 @@ impl Reference {
                 interface,
                 x_left,
             } => (x >= sol.valid_from(*x_left, t)).then(|| sol.sample(x - interface, t).sigma_xx),
-            Reference::Shell(_) => None,
+            Reference::Shell(_) | Reference::Sound { .. } => None,
         }
     }
 
@@ -259,6 +283,30 @@ impl Reference {
     /// Shells: surface and row radii, their exact stopping values, relative errors,
     /// `radius_error` (the larger of the two) and the symmetry measure `inner_spread`.
     pub fn measures(&self, table: &ParticleTable, t: f64) -> Vec<(&'static str, f64)> {
+        if let Reference::Sound { sol, center, spacing } = self {
+            // L1 of the velocity over all particles (seed 004 §2.1.2) and the centroid of the
+            // right-going pulse, x > center, weighted by v_x
+            let n = table.len().max(1) as f64;
+            let l1 = (0..table.len()).map(|i| (table.vx[i] - sol.velocity(table.x[i] - center, t)).abs()).sum::<f64>() / n;
+            let (mut w, mut wx) = (0.0, 0.0);
+            for i in 0..table.len() {
+                if table.x[i] > *center {
+                    w += table.vx[i];
+                    wx += table.vx[i] * table.x[i];
+                }
+            }
+            let centre = wx / w;
+            let exact = center + sol.pulse_centres(t).1;
+            return vec![
+                ("l1_error", l1),
+                ("l1_error_relative", l1 / sol.params().amplitude.abs()),
+                ("pulse_centre", centre),
+                ("pulse_centre_exact", exact),
+                ("pulse_centre_error", centre - exact),
+                ("pulse_centre_error_spacings", (centre - exact) / spacing),
+                ("c_long", sol.c_long()),
+            ];
+        }
         if let Reference::Shell(s) = self {
             let r = s.radii(table);
             let (ei, eo) = s.sol.stopping_radii();
@@ -289,7 +337,7 @@ impl Reference {
         let scale = match self {
             Reference::Flyer(sol) => sol.final_stress().abs(),
             Reference::EpRiemann { sol, .. } => sol.params().sigma1.abs(),
-            Reference::Shell(_) => 1.0,
+            Reference::Shell(_) | Reference::Sound { .. } => 1.0,
         };
         let mut out = vec![
             ("l1_error", l1),

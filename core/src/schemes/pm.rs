@@ -25,7 +25,7 @@
 //! `Phi_r = Phi_j - minmod(grad Phi_j . r_ji, Phi_j - Phi_i)/2` (004 eqs 13–15).
 
 use super::common::{
-    advance_deviator, cauchy, for_each_pair, min_sym_eigenvalue, outer, refresh_eos,
+    advance_deviator, cauchy, for_each_pair, min_sym_eigenvalue, outer, refresh_eos, refresh_pressure,
 };
 use super::SchemeFamily;
 use crate::effects::{EffectSet, Effects};
@@ -193,47 +193,118 @@ impl SchemeFamily for Pm {
             if E::MUSCL {
                 gradient_pass::<D, E, X>(sysr, ws.corr, ws.grad, ws.grad_stress, params, exec);
             }
-            let corr: &[Correction<D>] = ws.corr;
-            let grad: &[Gradients<D>] = ws.grad;
-            let grad_s: &[[Vector<D>; 6]] = ws.grad_stress;
-            exec.run(&mut *ws.sums, |off, chunk: &mut [PairSums<D>]| {
-                for (k, out) in chunk.iter_mut().enumerate() {
-                    let i = off + k;
-                    *out = pair_sums::<D, E>(sysr, corr, grad, grad_s, params, i);
+        }
+        if E::MUSCL {
+            // With MUSCL the Riemann dissipation nearly vanishes in smooth flow, and the
+            // explicit Euler of the seed (forces and strain rates from the same old state)
+            // amplifies waves: a sound pulse gained 6 % kinetic energy in 1 us. So, as in
+            // `ts`, density and deviator are advanced first from the contact velocities of
+            // the old state, and the forces then use the new stresses (symplectic Euler);
+            // the reconstruction slopes of the second pass are those of the first.
+            pair_pass::<D, E, X, true, false>(sys, ws, params, exec);
+            exec.run((sys.reborrow(), &ws.sums[..]), |_, (mut s, sums): (System<'_, D>, &[PairSums<D>])| {
+                for k in 0..s.len() {
+                    let mat = &params.materials[s.mat[k] as usize];
+                    kinematic_update::<D, E>(&mut s, k, mat, &sums[k], dt);
+                    refresh_pressure(&mut s, k, mat);
+                }
+            });
+            pair_pass::<D, E, X, false, true>(sys, ws, params, exec);
+            exec.run((sys.reborrow(), &ws.sums[..]), |_, (mut s, sums): (System<'_, D>, &[PairSums<D>])| {
+                for k in 0..s.len() {
+                    let mat = &params.materials[s.mat[k] as usize];
+                    dynamic_update::<D, E>(&mut s, k, &sums[k], params);
+                    refresh_eos(&mut s, k, mat, params.h_factor);
+                }
+            });
+        } else {
+            pair_pass::<D, E, X, true, true>(sys, ws, params, exec);
+            exec.run((sys.reborrow(), &ws.sums[..]), |_, (mut s, sums): (System<'_, D>, &[PairSums<D>])| {
+                for k in 0..s.len() {
+                    let mat = &params.materials[s.mat[k] as usize];
+                    // explicit Euler (seed 000): every rate from the same old state
+                    dynamic_update::<D, E>(&mut s, k, &sums[k], params);
+                    kinematic_update::<D, E>(&mut s, k, mat, &sums[k], dt);
+                    refresh_eos(&mut s, k, mat, params.h_factor);
                 }
             });
         }
-        exec.run(
-            (sys.reborrow(), &ws.sums[..]),
-            |_, (mut s, sums): (System<'_, D>, &[PairSums<D>])| {
-                for k in 0..s.len() {
-                    let mat = &params.materials[s.mat[k] as usize];
-                    let ps = &sums[k];
-                    s.v[k] += ps.acc * dt;
-                    s.e[k] += ps.power * dt;
-                    s.rho[k] *= crate::math::real::exp(-dt * ps.div);
-                    if E::STRENGTH {
-                        let (snew, deps) = advance_deviator::<D, E>(&s.s[k], mat, &ps.grad_v, dt);
-                        s.s[k] = snew;
-                        if E::PLASTICITY {
-                            s.eps_p[k] += deps;
-                        }
-                    }
-                    s.x[k] += s.v[k] * dt;
-                    if E::PERIODIC {
-                        s.x[k] = params.periodic.wrap(s.x[k]);
-                    }
-                    refresh_eos(&mut s, k, mat, params.h_factor);
-                }
-            },
-        );
         Ok(())
     }
 }
 
-/// The pair sums of particle i.
+/// One pass over the pairs (see [`pair_sums`]).
+fn pair_pass<const D: usize, E: Effects, X: Executor, const KIN: bool, const DYN: bool>(
+    sys: &System<'_, D>,
+    ws: &mut Workspace<'_, D>,
+    params: &StepParams<'_, D>,
+    exec: &X,
+) {
+    let corr: &[Correction<D>] = ws.corr;
+    let grad: &[Gradients<D>] = ws.grad;
+    let grad_s: &[[Vector<D>; 6]] = ws.grad_stress;
+    exec.run(&mut *ws.sums, |off, chunk: &mut [PairSums<D>]| {
+        for (k, out) in chunk.iter_mut().enumerate() {
+            let i = off + k;
+            let new = pair_sums::<D, E, KIN, DYN>(sys, corr, grad, grad_s, params, i);
+            if KIN {
+                out.div = new.div;
+                out.grad_v = new.grad_v;
+            }
+            if DYN {
+                out.acc = new.acc;
+                out.power = new.power;
+            }
+        }
+    });
+}
+
+/// Density (eq 16) and deviator (Hooke + Jaumann + return) of local particle `k`.
 #[inline(always)]
-fn pair_sums<const D: usize, E: Effects>(
+fn kinematic_update<const D: usize, E: Effects>(
+    s: &mut System<'_, D>,
+    k: usize,
+    mat: &crate::material::Material,
+    ps: &PairSums<D>,
+    dt: Real,
+) {
+    s.rho[k] *= crate::math::real::exp(-dt * ps.div);
+    if E::STRENGTH {
+        let (snew, deps) = advance_deviator::<D, E>(&s.s[k], mat, &ps.grad_v, dt);
+        s.s[k] = snew;
+        if E::PLASTICITY {
+            s.eps_p[k] += deps;
+        }
+    }
+}
+
+/// Velocity, energy and position of local particle `k`. With correction the energy
+/// equation is seed 004's total energy, `E += dt sum f.V*`, which with
+/// `e = E - v²/2` is `de = dt (power - acc . (v + dv/2))`: exactly conservative.
+#[inline(always)]
+fn dynamic_update<const D: usize, E: Effects>(s: &mut System<'_, D>, k: usize, ps: &PairSums<D>, params: &StepParams<'_, D>) {
+    let dt = params.dt;
+    let dv = ps.acc * dt;
+    if E::CORRECTION {
+        let xdot = s.v[k] + dv * 0.5;
+        s.e[k] += dt * (ps.power - ps.acc.dot(&xdot));
+    } else {
+        s.e[k] += dt * ps.power;
+    }
+    s.v[k] += dv;
+    s.x[k] += s.v[k] * dt;
+    if E::PERIODIC {
+        s.x[k] = params.periodic.wrap(s.x[k]);
+    }
+}
+
+/// The pair sums of particle i: the kinematic sums (velocity divergence and gradient
+/// from the contact velocities) when `KIN`, the dynamic sums (acceleration and power at
+/// the contacts) when `DYN`. With correction (`tkc`, seed 004 eq 11) `power` is the total
+/// energy rate `sum f_ij . V*_ij`; otherwise (`pm`, seed 000 eq 16) the internal energy
+/// rate `sum f_ij . (V*_ij - v_i)`.
+#[inline(always)]
+fn pair_sums<const D: usize, E: Effects, const KIN: bool, const DYN: bool>(
     sys: &System<'_, D>,
     corr: &[Correction<D>],
     grad: &[Gradients<D>],
@@ -301,19 +372,19 @@ fn pair_sums<const D: usize, E: Effects>(
             rho_r * ct_r,
         );
         let mj = sys.m[j];
-        let f = -2.0 * mj * pr.dw / (rhoi * rhoj);
-        out.acc += ts * f;
         let dv = vs - vi;
-        out.power += f * ts.dot(&dv);
-        let gw = if E::CORRECTION {
-            corr[i].l_inv * pr.grad
-        } else {
-            pr.grad
-        };
-        let w = 2.0 * mj / rhoj;
-        out.div += w * dv.dot(&gw);
-        if E::STRENGTH {
-            out.grad_v += outer(&dv, &gw) * w;
+        if DYN {
+            let f = -2.0 * mj * pr.dw / (rhoi * rhoj);
+            out.acc += ts * f;
+            out.power += f * ts.dot(if E::CORRECTION { &vs } else { &dv });
+        }
+        if KIN {
+            let gw = if E::CORRECTION { corr[i].l_inv * pr.grad } else { pr.grad };
+            let w = 2.0 * mj / rhoj;
+            out.div += w * dv.dot(&gw);
+            if E::STRENGTH {
+                out.grad_v += outer(&dv, &gw) * w;
+            }
         }
     });
     out

@@ -53,8 +53,9 @@ pub fn parse(text: &str, origin: &str, overrides: &[String]) -> Result<Scene, Sc
     let blame = |msg: String, up: bool| {
         SceneError(format!("{}: {msg}", source_of(&msg, up, origin, overrides)))
     };
-    let scene = Scene::deserialize_table(value).map_err(|e| blame(e, true))?;
+    let mut scene = Scene::deserialize_table(value).map_err(|e| blame(e, true))?;
     validate::validate(&scene).map_err(|e| blame(e.0, false))?;
+    validate::resolve_poisson(&mut scene).map_err(|e| blame(e.0, false))?;
     build::check_build(&scene).map_err(|e| blame(e.0, false))?;
     Ok(scene)
 }

@@ -170,6 +170,10 @@ pub struct MaterialSpec {
     /// Shear modulus, Pa (omit or 0 for a fluid).
     #[serde(default)]
     pub shear_modulus: f64,
+    /// Poisson ratio, instead of `shear_modulus`: G = 3K(1 - 2 nu)/(2(1 + nu)) with the bulk
+    /// modulus K = rho0 c² of the EOS at the reference state (seed 004's sound wave).
+    #[serde(default)]
+    pub poisson_ratio: Option<f64>,
     /// Equation of state.
     pub eos: EosSpec,
     /// Strength model (default: elastic if shear_modulus > 0, else fluid).
@@ -379,6 +383,18 @@ pub enum ReferenceSpec {
         interface: f64,
         /// Free left end of the bar, m.
         x_left: f64,
+    },
+    /// Seed 004 §2.1.2: a Gaussian velocity pulse `amplitude exp(-k (x - center)²)` in a
+    /// linear elastic solid splits into two half-amplitude pulses at c_l.
+    SoundWave {
+        /// Material (linear EOS, elastic).
+        material: String,
+        /// Pulse amplitude, m/s.
+        amplitude: f64,
+        /// Width parameter k, 1/m².
+        k: f64,
+        /// Initial centre, m (along x).
+        center: f64,
     },
     /// Collapse of a cylindrical shell (2D): incompressible rigid-plastic stopping radii
     /// and radius history (ring of seed 000 §4.2, Verney cylinder of seed 004 §2.1.3).

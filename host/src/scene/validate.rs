@@ -199,7 +199,7 @@ pub fn validate(s: &Scene) -> R {
         validate_eos(&format!("{key}.eos"), &m.eos)?;
         match &m.strength {
             Some(StrengthSpec::Elastic {}) | Some(StrengthSpec::VonMises { .. })
-                if m.shear_modulus <= 0.0 =>
+                if m.shear_modulus <= 0.0 && m.poisson_ratio.is_none() =>
             {
                 return fail(
                     &format!("{key}.shear_modulus"),
@@ -306,6 +306,12 @@ pub fn validate(s: &Scene) -> R {
             finite("reference.sigma1", *sigma1)?;
             finite("reference.interface", *interface)?;
             finite("reference.x_left", *x_left)?;
+        }
+        Some(ReferenceSpec::SoundWave { material, amplitude, k, center }) => {
+            material_known(s, "reference.material", material)?;
+            finite("reference.amplitude", *amplitude)?;
+            positive("reference.k", *k)?;
+            finite("reference.center", *center)?;
         }
         Some(ReferenceSpec::ShellCollapse {
             material,
@@ -422,6 +428,29 @@ fn validate_shape(key: &str, sh: &ShapeSpec, dim: usize) -> R {
             if r_outer <= r_inner {
                 return fail(&format!("{key}.r_outer"), "must exceed r_inner");
             }
+        }
+    }
+    Ok(())
+}
+
+/// Replaces `poisson_ratio` by the shear modulus it implies with the EOS's bulk modulus
+/// at the reference state, `G = 3K(1 - 2 nu)/(2(1 + nu))`, `K = rho0 c²(rho0)`.
+pub fn resolve_poisson(s: &mut Scene) -> R {
+    for (k, m) in s.materials.iter_mut().enumerate() {
+        let Some(nu) = m.poisson_ratio else { continue };
+        let key = format!("materials[{k}].poisson_ratio");
+        if m.shear_modulus != 0.0 {
+            return fail(&key, "give either shear_modulus or poisson_ratio, not both");
+        }
+        if !(nu > -1.0 && nu < 0.5) {
+            return fail(&key, format!("must lie in (-1, 0.5) (got {nu})"));
+        }
+        let mat = crate::materials::material_of(m);
+        let bulk = m.rho0 * mat.eos(m.rho0, 0.0).c2;
+        m.shear_modulus = 3.0 * bulk * (1.0 - 2.0 * nu) / (2.0 * (1.0 + nu));
+        m.poisson_ratio = None;
+        if m.strength.is_none() {
+            m.strength = Some(StrengthSpec::Elastic {});
         }
     }
     Ok(())
