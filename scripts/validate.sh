@@ -32,4 +32,21 @@ for s in ts1 av; do
   $g run cases/ring_collapse.toml --set scheme=$s --out "$d"
   $g plot particles "$d" --field eps_p
 done
+
+echo "== seed 004 fig 2b: L1(sigma_xx) against particles along x, 2D Riemann problem, pm vs tkc"
+$g study cases/riemann_al_2d.toml --schemes pm,tkc --resolutions 1,2,4,8 --out "$o/riemann_2d_study"
+for s in pm tkc; do
+  $g run cases/riemann_al_2d.toml --set scheme=$s --set resolution_scale=2 --out "$o/riemann_2d_$s" --quiet
+  $g plot profile "$o/riemann_2d_$s"
+done
+
+echo "== seed 004 fig 3b: L1(U_x) against particles, sound wave, pm vs tkc (1D and 2D)"
+$g study cases/sound_cu.toml --schemes pm,tkc --resolutions 0.5,1,2,4 --out "$o/sound_study"
+$g study cases/sound_cu_2d.toml --schemes pm,tkc --resolutions 0.5,1,2 --out "$o/sound_2d_study"
+
+echo "== seed 004 fig 5: Verney stopping radius against particle size, pm vs tkc"
+$g study cases/verney_al.toml --schemes pm,tkc --resolutions 0.5,1,2 --metric inner_radius --out "$o/verney_study"
+$g run cases/verney_al.toml --set resolution_scale=2 --out "$o/verney_tkc_2"
+$g plot particles "$o/verney_tkc_2" --field von_mises
+$g plot series "$o/verney_tkc_2" --columns inner_radius,inner_radius_exact --y-label "radius (m)"
 echo "validation outputs in $o"

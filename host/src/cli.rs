@@ -354,7 +354,7 @@ fn execute(cmd: Command) -> Result<(), String> {
                 g("energy_rel_error").as_f64().unwrap_or(0.0),
                 s.get("l1_error")
                     .and_then(|v| v.as_f64())
-                    .map(|v| format!(", L1(sigma_xx) {v:.4e} Pa"))
+                    .map(|v| format!(", L1 error {v:.4e}"))
                     .unwrap_or_default()
             );
             out!("wrote {}", out.display());

@@ -181,7 +181,12 @@ impl Reference {
                     x_left: *x_left,
                 }
             }
-            ReferenceSpec::SoundWave { material, amplitude, k, center } => {
+            ReferenceSpec::SoundWave {
+                material,
+                amplitude,
+                k,
+                center,
+            } => {
                 let m = find(material);
                 let EosSpec::Linear { c0, .. } = m.eos else {
                     return Err(SceneError(format!(
@@ -191,10 +196,19 @@ impl Reference {
                 // Poisson ratio implied by the material's moduli (K = rho0 c0², G)
                 let (kb, g) = (m.rho0 * c0 * c0, m.shear_modulus);
                 let poisson = (3.0 * kb - 2.0 * g) / (2.0 * (3.0 * kb + g));
-                let sol =
-                    SoundPulse::new(SoundPulseParams { rho0: m.rho0, c0, poisson, amplitude: *amplitude, k: *k })
-                        .map_err(bad)?;
-                Reference::Sound { sol, center: *center, spacing: spacing.first().copied().unwrap_or(f64::NAN) }
+                let sol = SoundPulse::new(SoundPulseParams {
+                    rho0: m.rho0,
+                    c0,
+                    poisson,
+                    amplitude: *amplitude,
+                    k: *k,
+                })
+                .map_err(bad)?;
+                Reference::Sound {
+                    sol,
+                    center: *center,
+                    spacing: spacing.first().copied().unwrap_or(f64::NAN),
+                }
             }
             ReferenceSpec::ShellCollapse {
                 material,
@@ -283,11 +297,19 @@ impl Reference {
     /// Shells: surface and row radii, their exact stopping values, relative errors,
     /// `radius_error` (the larger of the two) and the symmetry measure `inner_spread`.
     pub fn measures(&self, table: &ParticleTable, t: f64) -> Vec<(&'static str, f64)> {
-        if let Reference::Sound { sol, center, spacing } = self {
+        if let Reference::Sound {
+            sol,
+            center,
+            spacing,
+        } = self
+        {
             // L1 of the velocity over all particles (seed 004 §2.1.2) and the centroid of the
             // right-going pulse, x > center, weighted by v_x
             let n = table.len().max(1) as f64;
-            let l1 = (0..table.len()).map(|i| (table.vx[i] - sol.velocity(table.x[i] - center, t)).abs()).sum::<f64>() / n;
+            let l1 = (0..table.len())
+                .map(|i| (table.vx[i] - sol.velocity(table.x[i] - center, t)).abs())
+                .sum::<f64>()
+                / n;
             let (mut w, mut wx) = (0.0, 0.0);
             for i in 0..table.len() {
                 if table.x[i] > *center {

@@ -25,7 +25,8 @@
 //! `Phi_r = Phi_j - minmod(grad Phi_j . r_ji, Phi_j - Phi_i)/2` (004 eqs 13–15).
 
 use super::common::{
-    advance_deviator, cauchy, for_each_pair, min_sym_eigenvalue, outer, refresh_eos, refresh_pressure,
+    advance_deviator, cauchy, for_each_pair, min_sym_eigenvalue, outer, refresh_eos,
+    refresh_pressure,
 };
 use super::SchemeFamily;
 use crate::effects::{EffectSet, Effects};
@@ -202,32 +203,41 @@ impl SchemeFamily for Pm {
             // the old state, and the forces then use the new stresses (symplectic Euler);
             // the reconstruction slopes of the second pass are those of the first.
             pair_pass::<D, E, X, true, false>(sys, ws, params, exec);
-            exec.run((sys.reborrow(), &ws.sums[..]), |_, (mut s, sums): (System<'_, D>, &[PairSums<D>])| {
-                for k in 0..s.len() {
-                    let mat = &params.materials[s.mat[k] as usize];
-                    kinematic_update::<D, E>(&mut s, k, mat, &sums[k], dt);
-                    refresh_pressure(&mut s, k, mat);
-                }
-            });
+            exec.run(
+                (sys.reborrow(), &ws.sums[..]),
+                |_, (mut s, sums): (System<'_, D>, &[PairSums<D>])| {
+                    for k in 0..s.len() {
+                        let mat = &params.materials[s.mat[k] as usize];
+                        kinematic_update::<D, E>(&mut s, k, mat, &sums[k], dt);
+                        refresh_pressure(&mut s, k, mat);
+                    }
+                },
+            );
             pair_pass::<D, E, X, false, true>(sys, ws, params, exec);
-            exec.run((sys.reborrow(), &ws.sums[..]), |_, (mut s, sums): (System<'_, D>, &[PairSums<D>])| {
-                for k in 0..s.len() {
-                    let mat = &params.materials[s.mat[k] as usize];
-                    dynamic_update::<D, E>(&mut s, k, &sums[k], params);
-                    refresh_eos(&mut s, k, mat, params.h_factor);
-                }
-            });
+            exec.run(
+                (sys.reborrow(), &ws.sums[..]),
+                |_, (mut s, sums): (System<'_, D>, &[PairSums<D>])| {
+                    for k in 0..s.len() {
+                        let mat = &params.materials[s.mat[k] as usize];
+                        dynamic_update::<D, E>(&mut s, k, &sums[k], params);
+                        refresh_eos(&mut s, k, mat, params.h_factor);
+                    }
+                },
+            );
         } else {
             pair_pass::<D, E, X, true, true>(sys, ws, params, exec);
-            exec.run((sys.reborrow(), &ws.sums[..]), |_, (mut s, sums): (System<'_, D>, &[PairSums<D>])| {
-                for k in 0..s.len() {
-                    let mat = &params.materials[s.mat[k] as usize];
-                    // explicit Euler (seed 000): every rate from the same old state
-                    dynamic_update::<D, E>(&mut s, k, &sums[k], params);
-                    kinematic_update::<D, E>(&mut s, k, mat, &sums[k], dt);
-                    refresh_eos(&mut s, k, mat, params.h_factor);
-                }
-            });
+            exec.run(
+                (sys.reborrow(), &ws.sums[..]),
+                |_, (mut s, sums): (System<'_, D>, &[PairSums<D>])| {
+                    for k in 0..s.len() {
+                        let mat = &params.materials[s.mat[k] as usize];
+                        // explicit Euler (seed 000): every rate from the same old state
+                        dynamic_update::<D, E>(&mut s, k, &sums[k], params);
+                        kinematic_update::<D, E>(&mut s, k, mat, &sums[k], dt);
+                        refresh_eos(&mut s, k, mat, params.h_factor);
+                    }
+                },
+            );
         }
         Ok(())
     }
@@ -282,7 +292,12 @@ fn kinematic_update<const D: usize, E: Effects>(
 /// equation is seed 004's total energy, `E += dt sum f.V*`, which with
 /// `e = E - v²/2` is `de = dt (power - acc . (v + dv/2))`: exactly conservative.
 #[inline(always)]
-fn dynamic_update<const D: usize, E: Effects>(s: &mut System<'_, D>, k: usize, ps: &PairSums<D>, params: &StepParams<'_, D>) {
+fn dynamic_update<const D: usize, E: Effects>(
+    s: &mut System<'_, D>,
+    k: usize,
+    ps: &PairSums<D>,
+    params: &StepParams<'_, D>,
+) {
     let dt = params.dt;
     let dv = ps.acc * dt;
     if E::CORRECTION {
@@ -379,7 +394,11 @@ fn pair_sums<const D: usize, E: Effects, const KIN: bool, const DYN: bool>(
             out.power += f * ts.dot(if E::CORRECTION { &vs } else { &dv });
         }
         if KIN {
-            let gw = if E::CORRECTION { corr[i].l_inv * pr.grad } else { pr.grad };
+            let gw = if E::CORRECTION {
+                corr[i].l_inv * pr.grad
+            } else {
+                pr.grad
+            };
             let w = 2.0 * mj / rhoj;
             out.div += w * dv.dot(&gw);
             if E::STRENGTH {

@@ -272,3 +272,94 @@ fn every_family_conserves_momentum_and_stays_finite() {
         );
     }
 }
+
+/// Free-surface detection of `tkc` (seed 004 §2): on a 10 x 10 block, edge particles
+/// have a small eigenvalue of L (about 0.5 across the surface) and are flagged; their
+/// neighbours within h use L = I; interior particles keep L^-1 ~ I. The seed's literal
+/// criterion, the smallest eigenvalue of L^-1 below 0.75, would flag nothing: truncating
+/// the kernel shrinks L, so L^-1 grows (its smallest eigenvalue stays near 1).
+#[test]
+fn tkc_free_surface_detection_uses_the_eigenvalues_of_l() {
+    use crate::math::{inverse, Matrix};
+    use crate::schemes::common::min_sym_eigenvalue;
+    const M: usize = 100;
+    let dx = 1.0;
+    let mut x = [Vector::<2>::zeros(); M];
+    for k in 0..M {
+        x[k] = Vector::<2>::new((k % 10) as Real * dx, (k / 10) as Real * dx);
+    }
+    let (mut v, m, mat) = ([Vector::<2>::zeros(); M], [1.0; M], [0u16; M]);
+    let (mut rho, mut e, mut p, mut c, mut cl, mut h) =
+        ([1.0; M], [0.0; M], [0.0; M], [1.0; M], [1.0; M], [1.2; M]);
+    let mut idx = [0u32; M * 32];
+    let mut cnt = [0u32; M];
+    let mut list = NeighborList::new(32, &mut idx, &mut cnt).unwrap();
+    build_naive(&x[..], &Periodic::none(), |_, _| 2.4, &mut list).unwrap();
+    let sys = System {
+        x: &mut x,
+        v: &mut v,
+        m: &m,
+        mat: &mat,
+        rho: &mut rho,
+        e: &mut e,
+        p: &mut p,
+        c: &mut c,
+        cl: &mut cl,
+        h: &mut h,
+        s: &mut [],
+        eps_p: &mut [],
+        damage: &mut [],
+        temp: &mut [],
+    };
+    let mats = [material()];
+    let params = StepParams {
+        dt: 0.0,
+        materials: &mats,
+        kernel: Kernel::WendlandC2,
+        h_factor: 1.2,
+        periodic: Periodic::none(),
+        nbrs: list.view(),
+        options: SchemeOptions::default(),
+    };
+    let mut corr = [Correction::<2>::default(); M];
+    let mut sums = [PairSums::<2>::default(); M];
+    super::pm::correction_pass::<2, PlasticTkc2, Serial>(
+        &sys, &mut corr, &mut sums, &params, &Serial,
+    );
+    let at = |i: usize, j: usize| i + 10 * j;
+    // an edge particle, its inner neighbour, and a centre particle
+    let (edge, second, centre) = (at(0, 5), at(1, 5), at(5, 5));
+    assert_eq!(
+        corr[edge].boundary, 2,
+        "edge lambda_min {}",
+        corr[edge].lambda_min
+    );
+    assert!(corr[edge].lambda_min < 0.75);
+    assert_eq!(corr[second].boundary, 1);
+    assert_eq!(corr[second].l_inv, Matrix::<2>::identity());
+    assert_eq!(corr[centre].boundary, 0);
+    assert!((corr[centre].l_inv - Matrix::<2>::identity()).norm() < 0.1);
+    // the literal criterion on L^-1 of the edge particle: its smallest eigenvalue is >= 1
+    let mut l = Matrix::<2>::zeros();
+    for &j in list.view().of(edge) {
+        let j = j as usize;
+        let rij = sys.x[edge] - sys.x[j];
+        let r = rij.norm();
+        let grad = rij * (params.kernel.dw::<2>(r, 1.2) / r);
+        l += grad * (sys.x[j] - sys.x[edge]).transpose();
+    }
+    assert!(min_sym_eigenvalue(&inverse(&l).unwrap()) > 0.9);
+}
+
+#[derive(Clone, Copy, Debug)]
+struct PlasticTkc2;
+impl Effects for PlasticTkc2 {
+    const STRENGTH: bool = false;
+    const PLASTICITY: bool = false;
+    const DAMAGE: bool = false;
+    const HEAT: bool = false;
+    const CORRECTION: bool = true;
+    const MUSCL: bool = true;
+    const PERIODIC: bool = false;
+    const SET: EffectSet = EffectSet::HYDRO;
+}

@@ -307,7 +307,12 @@ pub fn validate(s: &Scene) -> R {
             finite("reference.interface", *interface)?;
             finite("reference.x_left", *x_left)?;
         }
-        Some(ReferenceSpec::SoundWave { material, amplitude, k, center }) => {
+        Some(ReferenceSpec::SoundWave {
+            material,
+            amplitude,
+            k,
+            center,
+        }) => {
             material_known(s, "reference.material", material)?;
             finite("reference.amplitude", *amplitude)?;
             positive("reference.k", *k)?;
