@@ -9,10 +9,18 @@
 //!
 //! * [`von_mises`]: radial return for elastic–perfectly plastic (and, with the current flow
 //!   stress as `yield_stress`, Johnson–Cook) von Mises plasticity.
+//! * [`johnson_cook`]: Johnson–Cook flow stress (seed 000 eq 40) with an implicit return at
+//!   the updated plastic strain and rate, and adiabatic heating `chi W/(rho c_p)`.
+//! * [`jh1`]: Johnson–Holmquist JH1 ceramic model (intact and failed strength curves,
+//!   damage from seed 000 eq 41, tensile limit, Algorithm 1's no-tension pressure).
 use crate::math::{Real, Sym3};
 
+pub mod jh1;
+pub mod johnson_cook;
 pub mod von_mises;
 
+pub use jh1::{failed_pair_pressure, Jh1, Jh1Update};
+pub use johnson_cook::{JohnsonCook, JohnsonCookReturn};
 pub use von_mises::radial_return;
 
 /// Result of the plastic return mapping.
