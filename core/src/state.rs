@@ -256,6 +256,8 @@ pub struct AvRates<const D: usize> {
     pub drho: Real,
     /// dS/dt.
     pub ds: Sym3,
+    /// Equivalent strain rate, 1/s (rate-dependent strength).
+    pub rate: Real,
     /// Half-step velocity (scratch).
     pub v_half: Vector<D>,
     /// Half-step energy (scratch).
@@ -273,6 +275,7 @@ impl<const D: usize> Default for AvRates<D> {
             de: 0.0,
             drho: 0.0,
             ds: Sym3::ZERO,
+            rate: 0.0,
             v_half: Vector::<D>::zeros(),
             e_half: 0.0,
             rho_half: 0.0,

@@ -21,6 +21,10 @@ pub enum Strength {
         /// Yield stress Y, Pa.
         yield_stress: Real,
     },
+    /// Johnson–Cook flow stress with strain-rate and thermal softening (heat effect).
+    JohnsonCook(strength::JohnsonCook),
+    /// Johnson–Holmquist JH1 ceramic with scalar damage (damage effect).
+    Jh1(strength::Jh1),
 }
 
 /// One material of a scene.
@@ -58,6 +62,24 @@ impl Material {
     }
     /// True if the material can yield.
     pub fn has_plasticity(&self) -> bool {
-        matches!(self.strength, Strength::VonMises { .. })
+        matches!(
+            self.strength,
+            Strength::VonMises { .. } | Strength::JohnsonCook(_) | Strength::Jh1(_)
+        )
+    }
+    /// True if the material tracks temperature (Johnson–Cook thermal softening).
+    pub fn has_heat(&self) -> bool {
+        matches!(self.strength, Strength::JohnsonCook(_))
+    }
+    /// True if the material accumulates damage (JH1).
+    pub fn has_damage(&self) -> bool {
+        matches!(self.strength, Strength::Jh1(_))
+    }
+    /// Initial temperature of the material, K (Johnson–Cook room temperature; 0 otherwise).
+    pub fn initial_temperature(&self) -> Real {
+        match self.strength {
+            Strength::JohnsonCook(jc) => jc.t_room,
+            _ => 0.0,
+        }
     }
 }

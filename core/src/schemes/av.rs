@@ -15,7 +15,10 @@
 //! rate is the exact counterpart of the force, so total energy is conserved up to the
 //! time-integration error (leap-frog, second order).
 
-use super::common::{cauchy, deviator_rate, for_each_pair, outer, refresh_eos, return_map};
+use super::common::{
+    cauchy, deviator_rate, equivalent_strain_rate, for_each_pair, outer, refresh_eos,
+    return_deviator,
+};
 use super::SchemeFamily;
 use crate::effects::{EffectSet, Effects};
 use crate::exec::Executor;
@@ -71,6 +74,11 @@ fn rates<const D: usize, E: Effects, X: Executor>(
             out.acc = acc;
             out.de = de;
             out.drho = -rhoi * div;
+            out.rate = if E::STRENGTH {
+                equivalent_strain_rate(&grad_v)
+            } else {
+                0.0
+            };
             out.ds = if E::STRENGTH {
                 deviator_rate(&sys.s[i], &params.materials[sys.mat[i] as usize], &grad_v)
             } else {
@@ -119,7 +127,8 @@ impl SchemeFamily for Av {
                     s.rho[k] = a.rho_half + a.drho * hdt;
                     if E::STRENGTH {
                         a.s_half = s.s[k] + a.ds * hdt;
-                        s.s[k] = return_map::<E>(a.s_half + a.ds * hdt, mat).0;
+                        let (trial, rate) = (a.s_half + a.ds * hdt, a.rate);
+                        return_deviator::<D, E>(&mut s, k, mat, trial, rate, dt, false);
                     }
                     if E::PERIODIC {
                         s.x[k] = params.periodic.wrap(s.x[k]);
@@ -140,11 +149,8 @@ impl SchemeFamily for Av {
                     s.e[k] = a.e_half + a.de * hdt;
                     s.rho[k] = a.rho_half + a.drho * hdt;
                     if E::STRENGTH {
-                        let (snew, deps) = return_map::<E>(a.s_half + a.ds * hdt, mat);
-                        s.s[k] = snew;
-                        if E::PLASTICITY {
-                            s.eps_p[k] += deps;
-                        }
+                        let trial = a.s_half + a.ds * hdt;
+                        return_deviator::<D, E>(&mut s, k, mat, trial, a.rate, dt, true);
                     }
                     refresh_eos(&mut s, k, mat, params.h_factor);
                 }

@@ -65,39 +65,93 @@ pub(crate) fn outer<const D: usize>(a: &Vector<D>, b: &Vector<D>) -> Matrix<D> {
     a * b.transpose()
 }
 
-/// Advances the deviator over `dt` with the velocity gradient `grad_v` (`dv_a/dx_b`):
-/// hypoelastic Hooke's law on the full 3x3 deviator plus the Jaumann spin terms, then the
-/// plastic return. Returns the equivalent plastic strain increment (not yet added).
+/// Advances the deviator of local particle `k` over `dt` with the velocity gradient
+/// `grad_v` (`dv_a/dx_b`): hypoelastic Hooke's law on the full 3x3 deviator plus the
+/// Jaumann spin terms, then the material's return (see [`return_deviator`]).
 #[inline(always)]
 pub(crate) fn advance_deviator<const D: usize, E: Effects>(
-    s: &Sym3,
+    sys: &mut System<'_, D>,
+    k: usize,
     mat: &Material,
     grad_v: &Matrix<D>,
     dt: Real,
-) -> (Sym3, Real) {
-    let g = mat.shear_modulus;
-    let d = Sym3::sym_of(grad_v);
-    let rate = d.deviator() * (2.0 * g) + s.jaumann(grad_v);
-    let trial = *s + rate * dt;
-    if E::PLASTICITY {
-        if let Strength::VonMises { yield_stress } = mat.strength {
-            let r = strength::radial_return(trial, yield_stress, g);
-            return (r.s, r.d_eps_p);
-        }
-    }
-    (trial, 0.0)
+) {
+    let s = sys.s[k];
+    let rate = deviator_rate(&s, mat, grad_v);
+    let strain_rate = equivalent_strain_rate(grad_v);
+    return_deviator::<D, E>(sys, k, mat, s + rate * dt, strain_rate, dt, true);
 }
 
-/// Plastic return of a deviator that was advanced by other means (leap-frog).
+/// Equivalent (von Mises) strain rate `sqrt(2/3 e:e)` of the deviatoric strain rate.
 #[inline(always)]
-pub(crate) fn return_map<E: Effects>(s: Sym3, mat: &Material) -> (Sym3, Real) {
-    if E::PLASTICITY {
-        if let Strength::VonMises { yield_stress } = mat.strength {
-            let r = strength::radial_return(s, yield_stress, mat.shear_modulus);
-            return (r.s, r.d_eps_p);
-        }
+pub(crate) fn equivalent_strain_rate<const D: usize>(grad_v: &Matrix<D>) -> Real {
+    let e = Sym3::sym_of(grad_v).deviator();
+    real::sqrt(2.0 / 3.0 * e.ddot(&e))
+}
+
+/// Brings the trial deviator of local particle `k` back to the material's yield surface
+/// and stores it: von Mises radial return, Johnson–Cook (with the temperature rise of the
+/// plastic work, effect `heat`) or JH1 (with damage, effect `damage`). With `commit`, the
+/// plastic strain, temperature and damage increments are accumulated; without (the
+/// predictor stage of the leap-frog), only the deviator is updated.
+#[inline(always)]
+pub(crate) fn return_deviator<const D: usize, E: Effects>(
+    sys: &mut System<'_, D>,
+    k: usize,
+    mat: &Material,
+    trial: Sym3,
+    strain_rate: Real,
+    dt: Real,
+    commit: bool,
+) {
+    if !E::PLASTICITY {
+        sys.s[k] = trial;
+        return;
     }
-    (s, 0.0)
+    let g = mat.shear_modulus;
+    let (s, d_eps) = match mat.strength {
+        Strength::VonMises { yield_stress } => {
+            let r = strength::radial_return(trial, yield_stress, g);
+            (r.s, r.d_eps_p)
+        }
+        Strength::JohnsonCook(jc) => {
+            let temp = if E::HEAT { sys.temp[k] } else { jc.t_room };
+            let r = jc.return_map(trial, g, sys.rho[k], sys.eps_p[k], temp, dt);
+            if E::HEAT && commit {
+                sys.temp[k] += r.d_temperature;
+            }
+            (r.s, r.d_eps_p)
+        }
+        Strength::Jh1(jh) => {
+            let damage = if E::DAMAGE { sys.damage[k] } else { 0.0 };
+            let r = jh.update(trial, g, sys.p[k], damage, strain_rate);
+            if E::DAMAGE && commit {
+                sys.damage[k] = r.damage;
+            }
+            (r.s, r.d_eps_p)
+        }
+        Strength::Fluid | Strength::Elastic => (trial, 0.0),
+    };
+    sys.s[k] = s;
+    if commit {
+        sys.eps_p[k] += d_eps;
+    }
+}
+
+/// True if particle `i` has failed (damage 1; seed 000 Algorithm 1).
+#[inline(always)]
+pub(crate) fn failed<const D: usize, E: Effects>(sys: &System<'_, D>, i: usize) -> bool {
+    E::DAMAGE && sys.damage[i] >= 1.0
+}
+
+/// Pressure of particle `i` as a pair sees it: a failed particle carries no tension.
+#[inline(always)]
+pub(crate) fn pair_pressure<const D: usize, E: Effects>(sys: &System<'_, D>, i: usize) -> Real {
+    if failed::<D, E>(sys, i) {
+        real::max(sys.p[i], 0.0)
+    } else {
+        sys.p[i]
+    }
 }
 
 /// The deviator rate `2G dev(sym L) + W.S - S.W`.
@@ -135,10 +189,11 @@ pub(crate) fn refresh_pressure<const D: usize>(sys: &mut System<'_, D>, k: usize
 /// The Cauchy stress `S - P I` of particle `i` (just `-P I` without strength).
 #[inline(always)]
 pub(crate) fn cauchy<const D: usize, E: Effects>(sys: &System<'_, D>, i: usize) -> Sym3 {
+    let p = pair_pressure::<D, E>(sys, i);
     if E::STRENGTH {
-        sys.s[i] - Sym3::isotropic(sys.p[i])
+        sys.s[i] - Sym3::isotropic(p)
     } else {
-        Sym3::isotropic(-sys.p[i])
+        Sym3::isotropic(-p)
     }
 }
 

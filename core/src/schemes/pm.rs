@@ -25,7 +25,7 @@
 //! `Phi_r = Phi_j - minmod(grad Phi_j . r_ji, Phi_j - Phi_i)/2` (004 eqs 13–15).
 
 use super::common::{
-    advance_deviator, cauchy, for_each_pair, min_sym_eigenvalue, outer, refresh_eos,
+    advance_deviator, cauchy, failed, for_each_pair, min_sym_eigenvalue, outer, refresh_eos,
     refresh_pressure,
 };
 use super::SchemeFamily;
@@ -280,11 +280,7 @@ fn kinematic_update<const D: usize, E: Effects>(
 ) {
     s.rho[k] *= crate::math::real::exp(-dt * ps.div);
     if E::STRENGTH {
-        let (snew, deps) = advance_deviator::<D, E>(&s.s[k], mat, &ps.grad_v, dt);
-        s.s[k] = snew;
-        if E::PLASTICITY {
-            s.eps_p[k] += deps;
-        }
+        advance_deviator::<D, E>(s, k, mat, &ps.grad_v, dt);
     }
 }
 
@@ -344,7 +340,8 @@ fn pair_sums<const D: usize, E: Effects, const KIN: bool, const DYN: bool>(
         let (mut ct_l, mut ct_r) = (ct_i, ct_j);
         let (mut v_l, mut v_r) = (vi, sys.v[j]);
         let (mut s_l, mut s_r) = (sig_i, sig_j);
-        if E::MUSCL {
+        let failed_pair = failed::<D, E>(sys, i) || failed::<D, E>(sys, j);
+        if E::MUSCL && !failed_pair {
             let rji = pr.n * pr.r;
             let (gi, gj) = (&grad[i], &grad[j]);
             (rho_l, rho_r) = muscl_pair(rhoi, rhoj, gi.rho.dot(&rji), gj.rho.dot(&rji));
@@ -375,7 +372,7 @@ fn pair_sums<const D: usize, E: Effects, const KIN: bool, const DYN: bool>(
         };
         let t_l = s_l.dot_vec(&axis);
         let t_r = s_r.dot_vec(&axis);
-        let (vs, ts) = acoustic_star_vector(
+        let (vs, mut ts) = acoustic_star_vector(
             &pr.n,
             &v_l,
             &t_l,
@@ -386,6 +383,14 @@ fn pair_sums<const D: usize, E: Effects, const KIN: bool, const DYN: bool>(
             rho_r * cl_r,
             rho_r * ct_r,
         );
+        if failed_pair {
+            // seed 000 Algorithm 1, in the full-stress Riemann problem: no tension across
+            // the contact of a failed particle
+            let tn = ts.dot(&pr.n);
+            if tn > 0.0 {
+                ts -= pr.n * tn;
+            }
+        }
         let mj = sys.m[j];
         let dv = vs - vi;
         if DYN {

@@ -45,7 +45,9 @@
 //! Failed particles (damage = 1; seed 000 Algorithm 1) are handled in
 //! `riemann_states`: the place where first order is forced and tension is cut.
 
-use super::common::{advance_deviator, for_each_pair, outer, refresh_eos, refresh_pressure};
+use super::common::{
+    advance_deviator, failed, for_each_pair, outer, pair_pressure, refresh_eos, refresh_pressure,
+};
 use super::SchemeFamily;
 use crate::effects::{EffectSet, Effects};
 use crate::exec::{Executor, Optional};
@@ -146,7 +148,7 @@ fn star<const D: usize, E: Effects>(
     r: Real,
 ) -> (Real, Real) {
     let ([ul, pl, rl], [ur, pr_, rr]) = riemann_states::<D, E>(sys, grad, params, time, i, j, n, r);
-    match params.options.riemann {
+    let (us, ps) = match params.options.riemann {
         RiemannSolver::Acoustic => pressure_star(
             PressureSide {
                 u: ul,
@@ -178,6 +180,12 @@ fn star<const D: usize, E: Effects>(
                 },
             )
         }
+    };
+    // seed 000 Algorithm 1: no tension across a pair with a failed particle
+    if failed::<D, E>(sys, i) || failed::<D, E>(sys, j) {
+        (us, real::max(ps, 0.0))
+    } else {
+        (us, ps)
     }
 }
 
@@ -275,11 +283,14 @@ fn riemann_states<const D: usize, E: Effects>(
     n: &Vector<D>,
     r: Real,
 ) -> ([Real; 3], [Real; 3]) {
-    if !E::MUSCL {
-        return (
-            [sys.v[i].dot(n), sys.p[i], sys.rho[i]],
-            [sys.v[j].dot(n), sys.p[j], sys.rho[j]],
-        );
+    // Failed particles (seed 000 Algorithm 1): no reconstruction for the pair, and a failed
+    // side carries no tension.
+    let first_order = (
+        [sys.v[i].dot(n), pair_pressure::<D, E>(sys, i), sys.rho[i]],
+        [sys.v[j].dot(n), pair_pressure::<D, E>(sys, j), sys.rho[j]],
+    );
+    if !E::MUSCL || failed::<D, E>(sys, i) || failed::<D, E>(sys, j) {
+        return first_order;
     }
     let lim = params.options.limiter;
     let dt = params.dt;
@@ -312,10 +323,7 @@ fn riemann_states<const D: usize, E: Effects>(
     }
     // a reconstructed density must stay positive; otherwise that pair falls back to first order
     if !(l[2] > 0.0 && rr[2] > 0.0) {
-        return (
-            [sys.v[i].dot(n), sys.p[i], sys.rho[i]],
-            [sys.v[j].dot(n), sys.p[j], sys.rho[j]],
-        );
+        return first_order;
     }
     (l, rr)
 }
@@ -384,12 +392,7 @@ impl SchemeFamily for Ts {
                     let mat = &params.materials[s.mat[k] as usize];
                     s.rho[k] *= real::exp(-dt * sums[k].div);
                     if E::STRENGTH {
-                        let (snew, deps) =
-                            advance_deviator::<D, E>(&s.s[k], mat, &sums[k].grad_v, dt);
-                        s.s[k] = snew;
-                        if E::PLASTICITY {
-                            s.eps_p[k] += deps;
-                        }
+                        advance_deviator::<D, E>(&mut s, k, mat, &sums[k].grad_v, dt);
                     }
                     refresh_pressure(&mut s, k, mat);
                 }

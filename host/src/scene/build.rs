@@ -306,6 +306,13 @@ fn initial_state(mat: &Material, init: Option<&InitialSpec>) -> Result<(f64, f64
                     Strength::VonMises { yield_stress } => {
                         elastic.clamp(-2.0 * yield_stress / 3.0, 2.0 * yield_stress / 3.0)
                     }
+                    // quasi-static loading at room temperature: the initial yield stress A
+                    Strength::JohnsonCook(jc) => elastic.clamp(-2.0 * jc.a / 3.0, 2.0 * jc.a / 3.0),
+                    // the intact strength at zero pressure bounds the deviator
+                    Strength::Jh1(jh) => {
+                        let y = jh.intact_strength(0.0);
+                        elastic.clamp(-2.0 * y / 3.0, 2.0 * y / 3.0)
+                    }
                 }
             };
             let sigma = |rho: f64| -mat.eos(rho, 0.0).p + sxx_of(rho) - sigma_xx;
