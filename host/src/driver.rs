@@ -95,7 +95,9 @@ pub fn run_particles(
 /// (`x,sigma_xx,sigma_xx_exact`; the exact value is empty where it does not hold), or
 /// `None` for references that are not stress profiles.
 fn profile_csv(r: &Reference, table: &crate::output::ParticleTable, t: f64) -> Option<String> {
-    r.sigma_xx(table.x.first().copied().unwrap_or(0.0), t)?;
+    if !r.is_profile() {
+        return None;
+    }
     let mut rows: Vec<(f64, f64, Option<f64>)> = (0..table.len())
         .map(|i| {
             (

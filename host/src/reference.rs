@@ -265,6 +265,11 @@ impl Reference {
         }
     }
 
+    /// True for references that are a sigma_xx profile (profile.csv, `l1_error` of stress).
+    pub fn is_profile(&self) -> bool {
+        matches!(self, Reference::Flyer(_) | Reference::EpRiemann { .. })
+    }
+
     /// Names of the time-series columns this reference adds to series.csv.
     pub fn series_names(&self) -> &'static [&'static str] {
         match self {
