@@ -119,6 +119,13 @@ pub fn resolve_effects(scene: &Scene, materials: &[Material]) -> EffectSet {
     if scene.periodic.is_some() {
         e = e.union(EffectSet::PERIODIC);
     }
+    // pm-family options (validated: only with pm or tkc).
+    if scene.options.correction {
+        e = e.union(EffectSet::CORRECTION);
+    }
+    if scene.options.muscl {
+        e = e.union(EffectSet::MUSCL);
+    }
     e.closed()
 }
 

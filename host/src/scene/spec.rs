@@ -110,6 +110,14 @@ pub struct OptionsSpec {
     /// det L threshold (tkc).
     #[serde(default)]
     pub det_epsilon: Option<f64>,
+    /// Kernel gradient correction for the pm family (adds the `correction` effect; implied
+    /// by tkc). Only with scheme pm or tkc.
+    #[serde(default)]
+    pub correction: bool,
+    /// MUSCL reconstruction for the pm family (adds the `muscl` effect; implied by tkc).
+    /// Only with scheme pm or tkc.
+    #[serde(default)]
+    pub muscl: bool,
 }
 
 impl Default for OptionsSpec {
@@ -122,6 +130,8 @@ impl Default for OptionsSpec {
             muscl_time: None,
             surface_lambda: None,
             det_epsilon: None,
+            correction: false,
+            muscl: false,
         }
     }
 }

@@ -159,6 +159,17 @@ pub fn validate(s: &Scene) -> R {
     if let Some(v) = o.det_epsilon {
         non_negative("options.det_epsilon", v)?;
     }
+    for (key, on) in [
+        ("options.correction", o.correction),
+        ("options.muscl", o.muscl),
+    ] {
+        if on && s.scheme != "pm" && s.scheme != "tkc" {
+            return fail(
+                key,
+                format!("only with scheme pm or tkc (scheme is {})", s.scheme),
+            );
+        }
+    }
     if let Some(p) = &s.periodic {
         dims("periodic.lo", &p.lo, s.dim)?;
         dims("periodic.hi", &p.hi, s.dim)?;
