@@ -12,6 +12,6 @@ demo: setup
 test:
 	scripts/test.sh
 
-# Full-size validation runs and figures (not CI; about 30 minutes): out/validation/.
+# Full-size validation runs and figures (not CI; about 90 minutes): out/validation/.
 validate:
 	scripts/validate.sh

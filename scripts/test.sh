@@ -9,6 +9,7 @@ echo "== cargo fmt --check"
 cargo fmt --all -- --check
 echo "== cargo clippy"
 cargo clippy --workspace --all-targets -- -D warnings
+cargo clippy -p gsph --all-targets --no-default-features --features dim1,scheme-ts,effects-strength -- -D warnings
 echo "== cargo test (release: the validation tests run simulations)"
 cargo test --workspace --release
 echo "== no_std: gsph-core for thumbv7em-none-eabihf"
@@ -17,6 +18,17 @@ cargo build -p gsph-core --release --target thumbv7em-none-eabihf --no-default-f
 cargo rustc -p gsph-core --release --example firmware_flyer --target thumbv7em-none-eabihf -- -C link-arg=--entry=gsph_flyer_main
 echo "== firmware runner on the host (fails if stepping allocates)"
 cargo run -q -p gsph-core --release --example firmware_flyer
+echo "== one-specialisation build: runs what it contains, refuses the rest in one line"
+# README "Compile-time-selected builds". Dev profile, own target dir (about 2 minutes).
+cargo build -q -p gsph --no-default-features --features dim1,scheme-ts,effects-strength --target-dir target/one-spec
+one=target/one-spec/debug/gsph
+ok=$("$one" check cases/flyer_plate.toml --set scheme=ts1)
+grep -qx 'kernel    step_1d_ts_strength_plasticity (compiled; this build contains 3 of 252 specialisations)' <<<"$ok"
+if refused=$("$one" check cases/riemann_al_2d.toml 2>&1); then
+    echo "the one-specialisation build accepted cases/riemann_al_2d.toml"; exit 1
+fi
+echo "$refused"
+grep -qx 'error: cases/riemann_al_2d.toml: this gsph was built without the specialisation 2D tkc (strength+plasticity+correction+muscl+periodic) `step_2d_pm_strength_plasticity_correction_muscl_periodic` (it contains 3 of 252); rebuild with `--features dim2,scheme-pm,effects-strength,effects-correction,effects-muscl,effects-periodic` or the default features' <<<"$refused"
 echo "== docs"
 RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps -q
 echo "all checks passed"

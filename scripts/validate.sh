@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Full-size validation runs (not part of CI): the figures and tables of the seeds.
-# Writes everything under out/validation/. Takes about 30 minutes on 2 cores.
+# Writes everything under out/validation/. Takes about 90 minutes on 2 cores.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
@@ -49,4 +49,19 @@ $g study cases/verney_al.toml --schemes pm,tkc --resolutions 0.5,1,2 --metric in
 $g run cases/verney_al.toml --set resolution_scale=2 --out "$o/verney_tkc_2"
 $g plot particles "$o/verney_tkc_2" --field von_mises
 $g plot series "$o/verney_tkc_2" --columns inner_radius,inner_radius_exact --y-label "radius (m)"
+echo "== seed 000 §5: steel -> SiC impact (51,200 particles, 15 us), av, ts1, ts2, tkc, pm; damage and v_x at 5, 10, 15 us"
+for s in av ts1 ts2 tkc pm; do
+  d="$o/impact_$s"
+  $g run cases/steel_sic_impact.toml --set scheme=$s --out "$d" --quiet
+  for t in 5e-6 1e-5 1.5e-5; do
+    $g plot particles "$d" --field damage --time $t --highlight-material 0 --range 0,1 --out "$d/damage_$t.png"
+    $g plot particles "$d" --field vx --time $t --highlight-material 0 --out "$d/vx_$t.png"
+  done
+  $g plot series "$d" --columns back_face_velocity --y-label "back-face v_x (m/s)"
+done
+
+echo "== 3D steel -> SiC impact (50,000 particles), every scheme"
+for s in av pm ts1 ts2 tkc; do
+  $g run cases/steel_sic_impact_3d.toml --set scheme=$s --out "$o/impact_3d_$s" --quiet
+done
 echo "validation outputs in $o"

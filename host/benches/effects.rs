@@ -93,6 +93,20 @@ const ROWS: &[Row] = &[
             "periodic.hi=[8.0e-3, 8.0e-3]",
         ],
     },
+    // Heat and damage replace the von Mises model of "+ plasticity" (they come with their
+    // strength models): Johnson–Cook (seed 000 table 4 steel, yield lowered so that the
+    // block yields) tracks temperature; JH1 (table 4 SiC, strengths lowered likewise)
+    // accumulates damage.
+    Row {
+        label: "+ heat (Johnson-Cook)",
+        extends: Some("+ strength"),
+        set: &["materials.0.strength={ type = \"johnson_cook\", a = 1.0e7, b = 1.0e8, n = 0.65, c = 0.07, m = 1.0, t_room = 298.0, t_melt = 1673.0, specific_heat = 440.0, taylor_quinney = 0.9 }"],
+    },
+    Row {
+        label: "+ damage (JH1)",
+        extends: Some("+ strength"),
+        set: &["materials.0.strength={ type = \"jh1\", sigma_i1 = 1.0e7, p1 = 2.5e9, sigma_i2 = 1.7e7, p2 = 10.0e9, sigma_f_max = 1.3e6, c_f = 0.4, tensile_limit = -0.75e9, eps_f_max = 0.8, p_max = 99.75e9, c = 0.009 }"],
+    },
 ];
 
 /// The base scene: a hydro-only (fluid) block, scheme pm.

@@ -295,19 +295,32 @@ fn execute(cmd: Command) -> Result<(), String> {
             out!("particles {}", parts.len());
             for (b, body) in sc.bodies.iter().enumerate() {
                 let n = parts.body.iter().filter(|&&k| k as usize == b).count();
-                out!("  body {b} ({}): {n}", body.material);
+                match &body.pores {
+                    Some(pores) => out!(
+                        "  body {b} ({}): {n}, porosity m = {:.4} as built ({:.4} from the pore geometry)",
+                        body.material,
+                        parts.porosity[b],
+                        crate::scene::pores::geometric_porosity(pores)
+                    ),
+                    None => out!("  body {b} ({}): {n}", body.material),
+                }
             }
             out!("effects   {effects}");
             let dim = sc.dim;
-            let family = gsph_core::schemes::Scheme::from_name(&sc.scheme)
-                .expect("validated")
-                .family();
-            let spec = gsph_core::dispatch::CATALOGUE
-                .iter()
-                .find(|s| s.dim == dim && s.family == family && s.effects == effects.kernel_part());
-            match spec {
-                Some(s) if s.compiled => out!("kernel    {} (compiled)", s.name),
-                Some(s) => return Err(format!("{} is not compiled into this build", s.name)),
+            let scheme = gsph_core::schemes::Scheme::from_name(&sc.scheme).expect("validated");
+            let (n, all) = crate::specs::compiled();
+            match crate::specs::find(dim, scheme.family(), effects) {
+                Some(s) if s.compiled => out!(
+                    "kernel    {} (compiled; this build contains {n} of {all} specialisations)",
+                    s.name
+                ),
+                Some(_) => {
+                    return Err(at(&SimError::NotCompiled {
+                        dim,
+                        scheme,
+                        effects,
+                    }))
+                }
                 None => {
                     return Err(format!(
                         "no specialisation exists for {dim}D {} with effects {effects}",

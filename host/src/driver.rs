@@ -1,5 +1,6 @@
 //! The run loop: time-step control, output schedule, diagnostics, progress, summary.
 
+use crate::monitor::Monitor;
 use crate::output::{write_atomic, write_csv, Frame, OutputError, SnapshotWriter};
 use crate::reference::Reference;
 use crate::scene::{build_particles, InitialParticles, Scene, SceneError};
@@ -154,6 +155,7 @@ fn run_dim<const D: usize>(
     let t_total = Instant::now();
     let reference = Reference::from_scene(scene, &parts.x, &parts.spacing)?;
     let mut sim = Sim::<D>::new(scene, parts)?;
+    let mut monitor = Monitor::new(scene, parts, &sim.materials);
     if let Some(dir) = &opts.out {
         clear_outputs(dir)?;
     }
@@ -169,7 +171,7 @@ fn run_dim<const D: usize>(
     let mut series =
         String::from("t,step,dt,kinetic,internal,total,momentum_x,momentum_y,momentum_z");
     let extra = reference.as_ref().map_or(&[][..], |r| r.series_names());
-    for name in extra {
+    for name in extra.iter().chain(monitor.series_names().iter()) {
         series.push(',');
         series.push_str(name);
     }
@@ -191,8 +193,13 @@ fn run_dim<const D: usize>(
             p[1],
             p[2]
         ));
-        if let Some(r) = reference.as_ref().filter(|_| !extra.is_empty()) {
-            for v in r.series_values(&sim.table(), sim.t) {
+        if !extra.is_empty() || monitor.samples() {
+            let table = sim.table();
+            let mut values = reference
+                .as_ref()
+                .map_or_else(Vec::new, |r| r.series_values(&table, sim.t));
+            values.extend(monitor.sample(&table, sim.t));
+            for v in values {
                 series.push_str(&format!(",{v:e}"));
             }
         }
@@ -300,6 +307,9 @@ fn run_dim<const D: usize>(
         for (k, v) in r.measures(&table, sim.t) {
             s.insert(k.into(), json!(v));
         }
+    }
+    for (k, v) in monitor.measures(&table) {
+        s.insert(k.into(), json!(v));
     }
     if let Some(dir) = &opts.out {
         write_csv(dir.join("final.csv"), &table)?;

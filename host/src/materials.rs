@@ -4,6 +4,7 @@ use crate::scene::{EosSpec, MaterialSpec, StrengthSpec};
 use gsph_core::material::eos::{
     Eos, Hugoniot, Linear, Logarithmic, MieGruneisen, Polynomial, TwoCurve,
 };
+use gsph_core::material::strength::{Jh1, JohnsonCook};
 use gsph_core::material::{Material, Strength};
 
 /// The core material of a (validated) scene material.
@@ -33,6 +34,54 @@ pub fn material_of(m: &MaterialSpec) -> Material {
         Some(StrengthSpec::Fluid {}) => Strength::Fluid,
         Some(StrengthSpec::Elastic {}) => Strength::Elastic,
         Some(StrengthSpec::VonMises { yield_stress }) => Strength::VonMises { yield_stress },
+        Some(StrengthSpec::JohnsonCook {
+            a,
+            b,
+            n,
+            c,
+            m: exponent,
+            eps_dot0,
+            t_room,
+            t_melt,
+            specific_heat,
+            taylor_quinney,
+        }) => Strength::JohnsonCook(JohnsonCook {
+            a,
+            b,
+            n,
+            c,
+            m: exponent,
+            eps_dot0,
+            t_room,
+            t_melt,
+            specific_heat,
+            taylor_quinney,
+        }),
+        Some(StrengthSpec::Jh1 {
+            sigma_i1,
+            p1,
+            sigma_i2,
+            p2,
+            sigma_f_max,
+            c_f,
+            tensile_limit,
+            eps_f_max,
+            p_max,
+            c,
+            eps_dot0,
+        }) => Strength::Jh1(Jh1 {
+            sigma_i1,
+            p1,
+            sigma_i2,
+            p2,
+            sigma_f_max,
+            c_f,
+            tensile_limit,
+            eps_f_max,
+            p_max,
+            c,
+            eps_dot0,
+        }),
         None if m.shear_modulus > 0.0 => Strength::Elastic,
         None => Strength::Fluid,
     };

@@ -77,14 +77,26 @@ impl std::fmt::Display for SimError {
             ),
             SimError::Step { step, t, cause } => write!(f, "step {step} (t = {t:.6e} s): {cause}"),
             SimError::Rebuild { step, t, cause } => write!(f, "step {step} (t = {t:.6e} s): {cause}"),
-            SimError::NotCompiled { dim, scheme, effects } => write!(
-                f,
-                "this build does not contain the specialisation {dim}D {} with effects {effects}; rebuild with the features that select it (see `gsph check` and the README)",
-                scheme.name()
-            ),
-            SimError::Unsupported { scheme, effects } => {
-                write!(f, "scheme {} does not support the effects {effects}", scheme.name())
+            SimError::NotCompiled { dim, scheme, effects } => {
+                // One line: what is missing, and the features that compile it (README
+                // "Compile-time-selected builds").
+                let (family, effects) = (scheme.family(), effects.kernel_part());
+                let features = crate::specs::features(*dim, family, effects).join(",");
+                let name = crate::specs::find(*dim, family, effects).map_or("", |s| s.name);
+                let (n, all) = crate::specs::compiled();
+                write!(
+                    f,
+                    "this gsph was built without the specialisation {dim}D {} ({effects}) `{name}` (it contains {n} of {all}); rebuild with `--features {features}` or the default features",
+                    scheme.name()
+                )
             }
+            SimError::Unsupported { scheme, effects } => write!(
+                f,
+                "scheme {} cannot run the effects {effects} (no build has that specialisation; the {} family supports {})",
+                scheme.name(),
+                crate::specs::family_name(scheme.family()),
+                gsph_core::schemes::supported(scheme.family())
+            ),
         }
     }
 }
@@ -115,6 +127,12 @@ pub fn resolve_effects(scene: &Scene, materials: &[Material]) -> EffectSet {
     }
     if materials.iter().any(|m| m.has_plasticity()) {
         e = e.union(EffectSet::PLASTICITY);
+    }
+    if materials.iter().any(|m| m.has_heat()) {
+        e = e.union(EffectSet::HEAT);
+    }
+    if materials.iter().any(|m| m.has_damage()) {
+        e = e.union(EffectSet::DAMAGE);
     }
     if scene.periodic.is_some() {
         e = e.union(EffectSet::PERIODIC);
@@ -152,6 +170,8 @@ pub fn default_capacity(dim: usize, kernel: Kernel, h_factor: f64) -> usize {
 pub struct Sim<const D: usize> {
     /// Particle ids.
     pub ids: Vec<u32>,
+    /// Driven particles (bodies with `driven = true`) and the velocity they keep.
+    pub driven: Vec<(usize, Vector<D>)>,
     /// Positions.
     pub x: Vec<Vector<D>>,
     /// Velocities.
@@ -302,6 +322,10 @@ impl<const D: usize> Sim<D> {
             .unwrap_or_else(|| default_capacity(D, kernel, scene.h_factor));
         let mut sim = Sim {
             ids: (0..n as u32).collect(),
+            driven: (0..n)
+                .filter(|&i| scene.bodies[parts.body[i] as usize].driven)
+                .map(|i| (i, vec_of::<D>(&parts.v[i])))
+                .collect(),
             x: parts
                 .x
                 .iter()
@@ -328,7 +352,11 @@ impl<const D: usize> Sim<D> {
                 Vec::new()
             },
             temp: if has(EffectSet::HEAT) {
-                vec![0.0; n]
+                parts
+                    .mat
+                    .iter()
+                    .map(|&k| materials[k as usize].initial_temperature())
+                    .collect()
             } else {
                 Vec::new()
             },
@@ -577,6 +605,9 @@ impl<const D: usize> Sim<D> {
         let fail = |cause| SimError::Step { step, t: t0, cause };
         (self.step_fn)(&mut sys, &mut ws, &params, &self.exec).map_err(fail)?;
         check_finite(&sys).map_err(fail)?;
+        for &(i, v0) in &self.driven {
+            self.v[i] = v0;
+        }
         self.primed = ws.primed;
         self.t += dt;
         self.step = step;

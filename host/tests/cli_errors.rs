@@ -20,6 +20,10 @@ fn case_text(name: &str) -> String {
     std::fs::read_to_string(&p).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
 }
 
+fn impact() -> String {
+    case_text("steel_sic_impact.toml")
+}
+
 fn flyer() -> String {
     case_text("flyer_plate.toml")
 }
@@ -137,6 +141,11 @@ fn cases() -> Vec<Case> {
         case("zero threads", f(), "run", &["--threads", "0"], &["--threads must be at least 1"]),
         case("usage: threads not a number", f(), "run", &["--threads", "many"], &["'many'", "--threads"]),
         case("nonexistent scene file", None, "check", &[], &["missing.toml: cannot read scene"]),
+        case("JH1 tensile limit not a tension", impact(), "check", &["--set", "materials.1.strength.tensile_limit=7.5e8"], &["materials[1].strength.tensile_limit: must be negative"]),
+        case("Johnson-Cook melt below room temperature", impact(), "check", &["--set", "materials.0.strength.t_melt=200"], &["materials[0].strength.t_melt: must exceed t_room = 298 K (got 200)"]),
+        case("Taylor-Quinney factor above 1", impact(), "check", &["--set", "materials.0.strength.taylor_quinney=1.5"], &["materials[0].strength.taylor_quinney: must lie in [0, 1] (got 1.5)"]),
+        case("unknown strength model", impact().replacen("\"jh1\"", "\"jh2\"", 1), "check", &[], &["materials[1].strength.type: unknown type `jh2`"]),
+        case("monitor on an unknown material", impact(), "check", &["--set", "monitor.back_face.material=alumina"], &["monitor.back_face.material: unknown material `alumina`"]),
     ]
 }
 

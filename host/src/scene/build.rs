@@ -29,6 +29,9 @@ pub struct InitialParticles {
     pub body: Vec<u16>,
     /// Lattice spacing of the particle's body, m.
     pub spacing: Vec<f64>,
+    /// Porosity of each body as built, m = V_lattice / V_particles (1 without pores): the
+    /// volume of the whole lattice over that of the particles kept outside the pores.
+    pub porosity: Vec<f64>,
 }
 
 impl InitialParticles {
@@ -113,7 +116,13 @@ pub fn build_particles(scene: &Scene) -> Result<InitialParticles, SceneError> {
                 "{key}.spacing: spacing {dx:e} m (spacing / resolution_scale) makes about {total:.2e} particles, more than the limit {MAX_PARTICLES:.0e}"
             )));
         }
-        let pts = lattice(scene.dim, &body.shape, dx, polar);
+        let mut pts = lattice(scene.dim, &body.shape, dx, polar);
+        let full: f64 = pts.iter().map(|p| p.1).sum();
+        if let Some(pores) = &body.pores {
+            pts.retain(|(x, _)| !super::pores::inside(pores, x));
+        }
+        out.porosity
+            .push(full / pts.iter().map(|p| p.1).sum::<f64>().max(f64::MIN_POSITIVE));
         if pts.is_empty() {
             return Err(SceneError(format!(
                 "{key}: the shape holds no particle at spacing {dx:e} m (spacing / resolution_scale); the shape must be at least half a spacing across"

@@ -7,6 +7,7 @@
 
 mod build;
 mod de;
+pub mod pores;
 mod spec;
 mod validate;
 

@@ -74,6 +74,67 @@ pub struct Scene {
     /// Exact or analytic reference of the case.
     #[serde(default)]
     pub reference: Option<ReferenceSpec>,
+    /// Quantities recorded during the run (series columns and summary keys).
+    #[serde(default)]
+    pub monitor: Option<MonitorSpec>,
+}
+
+/// Quantities recorded during a run.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MonitorSpec {
+    /// The free back face of a target, for its peak (spall) velocity: the particles of
+    /// `material` that start within one lattice spacing of the plane `x[axis] = position`.
+    /// Series column `back_face_velocity` (their largest velocity component along `axis`,
+    /// signed so that motion away from the target is positive); summary key
+    /// `back_face_velocity_peak` (its maximum over the run).
+    #[serde(default)]
+    pub back_face: Option<BackFaceSpec>,
+    /// A wave front moving along +`axis`: see [`FrontSpec`].
+    #[serde(default)]
+    pub front: Option<FrontSpec>,
+}
+
+/// The position of a wave front driven from the low end of `axis`: particles are binned
+/// along `axis` (bins `bin` wide, default two spacings of the finest body) and the front is
+/// the far end of the first run of bins (from the low end) whose mean velocity along `axis`
+/// reaches `velocity`. Series column `front_position`; summary
+/// keys `front_speed` (least-squares slope over the samples after `fit_from` of the run,
+/// default 0.5) and `behind_front_velocity` (mean particle velocity along `axis` in the
+/// bins behind the front at the end, over `behind` m, default 10 bins).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FrontSpec {
+    /// Axis of propagation (0 = x).
+    #[serde(default)]
+    pub axis: usize,
+    /// Velocity threshold that marks the front, m/s (e.g. half the particle velocity).
+    pub velocity: f64,
+    /// Bin width, m.
+    #[serde(default)]
+    pub bin: Option<f64>,
+    /// Fraction of t_end after which the front speed is fitted.
+    #[serde(default)]
+    pub fit_from: Option<f64>,
+    /// Length behind the front over which the particle velocity is averaged, m.
+    #[serde(default)]
+    pub behind: Option<f64>,
+}
+
+/// A back face (see [`MonitorSpec::back_face`]).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BackFaceSpec {
+    /// Material of the target.
+    pub material: String,
+    /// Axis normal to the face (0 = x).
+    #[serde(default)]
+    pub axis: usize,
+    /// Position of the face along `axis`, m.
+    pub position: f64,
+    /// Direction of the outward normal along `axis`: +1 or -1 (default +1).
+    #[serde(default = "one")]
+    pub normal: f64,
 }
 
 impl Scene {
@@ -259,6 +320,59 @@ pub enum StrengthSpec {
         /// Yield stress, Pa.
         yield_stress: f64,
     },
+    /// Johnson–Cook flow stress with strain hardening, strain-rate and thermal softening;
+    /// temperature from plastic work (adds the `heat` effect). Seed 000 eq 40.
+    JohnsonCook {
+        /// Initial yield stress A, Pa.
+        a: f64,
+        /// Hardening modulus B, Pa.
+        b: f64,
+        /// Hardening exponent n.
+        n: f64,
+        /// Strain-rate coefficient C.
+        c: f64,
+        /// Thermal softening exponent m.
+        m: f64,
+        /// Reference plastic strain rate, 1/s (default 1).
+        #[serde(default = "one")]
+        eps_dot0: f64,
+        /// Room (reference and initial) temperature T0, K.
+        t_room: f64,
+        /// Melting temperature Tm, K.
+        t_melt: f64,
+        /// Specific heat c_p, J/(kg K).
+        specific_heat: f64,
+        /// Taylor–Quinney factor chi (fraction of plastic work turned into heat, 0..1).
+        taylor_quinney: f64,
+    },
+    /// JH1 ceramic (Johnson–Holmquist 1992): piecewise-linear intact and failed strength,
+    /// damage from plastic strain over a pressure-dependent failure strain (adds the
+    /// `damage` effect). Seed 000 §5.
+    Jh1 {
+        /// Intact strength at `p1`, Pa.
+        sigma_i1: f64,
+        /// First pressure of the intact curve, Pa.
+        p1: f64,
+        /// Intact strength at `p2`, Pa.
+        sigma_i2: f64,
+        /// Second pressure of the intact curve, Pa (> p1).
+        p2: f64,
+        /// Maximum strength of the failed material, Pa.
+        sigma_f_max: f64,
+        /// Slope of the failed strength against pressure.
+        c_f: f64,
+        /// Hydrostatic tensile limit T, Pa (negative).
+        tensile_limit: f64,
+        /// Failure strain at and above `p_max`.
+        eps_f_max: f64,
+        /// Pressure where the failure strain reaches `eps_f_max`, Pa.
+        p_max: f64,
+        /// Strain-rate coefficient C.
+        c: f64,
+        /// Reference strain rate, 1/s (default 1).
+        #[serde(default = "one")]
+        eps_dot0: f64,
+    },
 }
 
 /// A body: a shape filled with a lattice of particles of one material.
@@ -280,6 +394,29 @@ pub struct BodySpec {
     /// Initial mechanical state (default: unstressed at rho0).
     #[serde(default)]
     pub initial: Option<InitialSpec>,
+    /// Pores cut out of the lattice (porous samples, seed 004 §4).
+    #[serde(default)]
+    pub pores: Option<PoresSpec>,
+    /// A driven body (a piston): its particles keep their initial velocity for the whole
+    /// run, whatever acts on them (external work: energy is not conserved).
+    #[serde(default)]
+    pub driven: bool,
+}
+
+/// Circular (2D) or spherical (3D) pores repeated on a periodic cell: a particle is removed
+/// when its centre lies within `radius` of a pore centre or of any periodic image of one.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PoresSpec {
+    /// Period of the pore pattern along each axis, m.
+    pub cell: Vec<f64>,
+    /// Pore centres within one cell, m (relative to `origin`).
+    pub centers: Vec<Vec<f64>>,
+    /// Pore radius, m.
+    pub radius: f64,
+    /// Corner of the first cell, m (default: the origin).
+    #[serde(default)]
+    pub origin: Option<Vec<f64>>,
 }
 
 /// Shapes.

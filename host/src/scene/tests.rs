@@ -345,3 +345,51 @@ fn keys_are_written_with_brackets() {
     assert_eq!(bracketed("t_end"), "t_end");
     assert_eq!(bracketed("0"), "0");
 }
+
+const POROUS: &str = include_str!("../../../cases/porous_cu_piston.toml");
+
+#[test]
+fn porous_sample_has_the_seed_porosity() {
+    let s = parse(POROUS, "porous.toml", &[]).unwrap();
+    let parts = build_particles(&s).unwrap();
+    // body 1 is the porous sample: m = V / V_solid, as built on the 1 um lattice and from
+    // the geometry of two 4.06 um pores per 20 um cell (seed 004: m = 1.35)
+    assert!(
+        (parts.porosity[1] - 1.35).abs() < 0.01,
+        "{}",
+        parts.porosity[1]
+    );
+    assert_eq!(parts.porosity[0], 1.0);
+    let pores = s.bodies[1].pores.as_ref().unwrap();
+    assert!((pores::geometric_porosity(pores) - 1.3494).abs() < 1e-3);
+    // no particle centre inside a pore
+    for i in 0..parts.len() {
+        if parts.body[i] == 1 {
+            assert!(!pores::inside(pores, &parts.x[i]));
+        }
+    }
+}
+
+#[test]
+fn pore_errors_name_the_key() {
+    let e = parse_err(POROUS, &["bodies.1.pores.radius=1.2e-5"]);
+    assert!(
+        e.contains("bodies[1].pores.radius: must be below half the smallest cell side"),
+        "{e}"
+    );
+    let e = parse_err(POROUS, &["bodies.1.pores.cell=[2e-5]"]);
+    assert!(
+        e.contains("bodies[1].pores.cell: must have 2 components (got 1)"),
+        "{e}"
+    );
+    let e = parse_err(POROUS, &["bodies.1.pores.centers=[]"]);
+    assert!(
+        e.contains("bodies[1].pores.centers: at least one pore centre"),
+        "{e}"
+    );
+    let e = parse_err(POROUS, &["monitor.front.velocity=0"]);
+    assert!(
+        e.contains("monitor.front.velocity: must be positive"),
+        "{e}"
+    );
+}

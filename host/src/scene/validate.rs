@@ -209,9 +209,12 @@ pub fn validate(s: &Scene) -> R {
         non_negative(&format!("{key}.shear_modulus"), m.shear_modulus)?;
         validate_eos(&format!("{key}.eos"), &m.eos)?;
         match &m.strength {
-            Some(StrengthSpec::Elastic {}) | Some(StrengthSpec::VonMises { .. })
-                if m.shear_modulus <= 0.0 && m.poisson_ratio.is_none() =>
-            {
+            Some(
+                StrengthSpec::Elastic {}
+                | StrengthSpec::VonMises { .. }
+                | StrengthSpec::JohnsonCook { .. }
+                | StrengthSpec::Jh1 { .. },
+            ) if m.shear_modulus <= 0.0 && m.poisson_ratio.is_none() => {
                 return fail(
                     &format!("{key}.shear_modulus"),
                     "must be positive for a material with strength",
@@ -219,6 +222,9 @@ pub fn validate(s: &Scene) -> R {
             }
             Some(StrengthSpec::VonMises { yield_stress }) => {
                 positive(&format!("{key}.strength.yield_stress"), *yield_stress)?
+            }
+            Some(strength @ (StrengthSpec::JohnsonCook { .. } | StrengthSpec::Jh1 { .. })) => {
+                validate_strength(&format!("{key}.strength"), strength)?
             }
             Some(StrengthSpec::Fluid {}) if m.shear_modulus > 0.0 => {
                 return fail(
@@ -240,6 +246,12 @@ pub fn validate(s: &Scene) -> R {
         material_known(s, &format!("{key}.material"), &b.material)?;
         positive(&format!("{key}.spacing"), b.spacing)?;
         validate_shape(&format!("{key}.shape"), &b.shape, s.dim)?;
+        if let Some(p) = &b.pores {
+            if s.dim == 1 {
+                return fail(&format!("{key}.pores"), "pores need 2 or 3 dimensions");
+            }
+            super::pores::validate(&format!("{key}.pores"), p, s.dim)?;
+        }
         match b.lattice.as_deref() {
             None | Some("square") => {}
             Some("polar") => {
@@ -295,6 +307,45 @@ pub fn validate(s: &Scene) -> R {
                 finite(&format!("{key}.initial.e"), *e)?;
             }
             None => {}
+        }
+    }
+    if let Some(bf) = s.monitor.as_ref().and_then(|m| m.back_face.as_ref()) {
+        material_known(s, "monitor.back_face.material", &bf.material)?;
+        if bf.axis >= s.dim {
+            return fail(
+                "monitor.back_face.axis",
+                format!("must be below dim = {} (got {})", s.dim, bf.axis),
+            );
+        }
+        finite("monitor.back_face.position", bf.position)?;
+        if bf.normal != 1.0 && bf.normal != -1.0 {
+            return fail(
+                "monitor.back_face.normal",
+                format!("must be 1 or -1 (got {})", bf.normal),
+            );
+        }
+    }
+    if let Some(fr) = s.monitor.as_ref().and_then(|m| m.front.as_ref()) {
+        if fr.axis >= s.dim {
+            return fail(
+                "monitor.front.axis",
+                format!("must be below dim = {} (got {})", s.dim, fr.axis),
+            );
+        }
+        positive("monitor.front.velocity", fr.velocity)?;
+        if let Some(b) = fr.bin {
+            positive("monitor.front.bin", b)?;
+        }
+        if let Some(b) = fr.behind {
+            positive("monitor.front.behind", b)?;
+        }
+        if let Some(f) = fr.fit_from {
+            if !(0.0..1.0).contains(&f) {
+                return fail(
+                    "monitor.front.fit_from",
+                    format!("must lie in [0, 1) (got {f})"),
+                );
+            }
         }
     }
     match &s.reference {
@@ -468,6 +519,80 @@ pub fn resolve_poisson(s: &mut Scene) -> R {
         if m.strength.is_none() {
             m.strength = Some(StrengthSpec::Elastic {});
         }
+    }
+    Ok(())
+}
+
+/// The parameters of the Johnson–Cook and JH1 models.
+fn validate_strength(key: &str, strength: &StrengthSpec) -> R {
+    let k = |name: &str| format!("{key}.{name}");
+    match *strength {
+        StrengthSpec::JohnsonCook {
+            a,
+            b,
+            n,
+            c,
+            m,
+            eps_dot0,
+            t_room,
+            t_melt,
+            specific_heat,
+            taylor_quinney,
+        } => {
+            positive(&k("a"), a)?;
+            non_negative(&k("b"), b)?;
+            positive(&k("n"), n)?;
+            non_negative(&k("c"), c)?;
+            positive(&k("m"), m)?;
+            positive(&k("eps_dot0"), eps_dot0)?;
+            positive(&k("t_room"), t_room)?;
+            positive(&k("specific_heat"), specific_heat)?;
+            if !t_melt.is_finite() || t_melt <= t_room {
+                return fail(
+                    &k("t_melt"),
+                    format!("must exceed t_room = {t_room} K (got {t_melt})"),
+                );
+            }
+            if !(0.0..=1.0).contains(&taylor_quinney) {
+                return fail(
+                    &k("taylor_quinney"),
+                    format!("must lie in [0, 1] (got {taylor_quinney})"),
+                );
+            }
+        }
+        StrengthSpec::Jh1 {
+            sigma_i1,
+            p1,
+            sigma_i2,
+            p2,
+            sigma_f_max,
+            c_f,
+            tensile_limit,
+            eps_f_max,
+            p_max,
+            c,
+            eps_dot0,
+        } => {
+            positive(&k("sigma_i1"), sigma_i1)?;
+            positive(&k("p1"), p1)?;
+            positive(&k("sigma_i2"), sigma_i2)?;
+            if !p2.is_finite() || p2 <= p1 {
+                return fail(&k("p2"), format!("must exceed p1 = {p1} Pa (got {p2})"));
+            }
+            non_negative(&k("sigma_f_max"), sigma_f_max)?;
+            non_negative(&k("c_f"), c_f)?;
+            if !tensile_limit.is_finite() || tensile_limit >= 0.0 {
+                return fail(
+                    &k("tensile_limit"),
+                    format!("must be negative (a hydrostatic tension; got {tensile_limit})"),
+                );
+            }
+            positive(&k("eps_f_max"), eps_f_max)?;
+            positive(&k("p_max"), p_max)?;
+            non_negative(&k("c"), c)?;
+            positive(&k("eps_dot0"), eps_dot0)?;
+        }
+        _ => {}
     }
     Ok(())
 }

@@ -1,0 +1,146 @@
+//! Steel -> SiC impact (seed 000 §5) at reduced resolution, in 2D (the bundled plane-strain
+//! case) and 3D, for every scheme: the run reaches t_end with finite fields and positive
+//! density, conserves momentum to round-off and energy within the scheme's bound, the
+//! ceramic is damaged (but not all of it) and the steel is not, the steel heats from its
+//! plastic work, and the back face moves away from the impact slower than the projectile.
+//! The full-size case is `gsph run cases/steel_sic_impact.toml` (see scripts/validate.sh).
+
+use gsph::driver::{run, RunOptions};
+use serde_json::Value;
+
+const CASES: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../cases");
+
+fn run_case(
+    file: &str,
+    scheme: &str,
+    scale: f64,
+) -> (
+    serde_json::Map<String, Value>,
+    gsph::output::table::ParticleTable,
+) {
+    let text = std::fs::read_to_string(format!("{CASES}/{file}")).unwrap();
+    let sets = [
+        format!("scheme={scheme}"),
+        format!("resolution_scale={scale}"),
+    ];
+    let scene = gsph::scene::parse(&text, file, &sets).unwrap_or_else(|e| panic!("{e}"));
+    let r = run(
+        &scene,
+        file,
+        &RunOptions {
+            out: None,
+            progress: false,
+        },
+    )
+    .unwrap_or_else(|e| panic!("{file} {scheme}: {e}"));
+    (r.summary, r.table)
+}
+
+fn check(file: &str, scale: f64, schemes: &[&str]) {
+    for &scheme in schemes {
+        let (s, tab) = run_case(file, scheme, scale);
+        let num = |k: &str| s[k].as_f64().unwrap_or_else(|| panic!("{scheme}: no {k}"));
+        let what = format!("{file} {scheme}");
+        println!(
+            "{what}: {} particles, {} steps, energy {:.2e}, damaged {:.3}, back face {:.1} m/s, T_max {:.0} K, rho_min {:.0}",
+            s["particles"], s["steps"], num("energy_rel_error"), num("damaged_area_fraction"),
+            num("back_face_velocity_peak"), num("temperature_max"), num("density_min")
+        );
+        assert!(
+            (num("t_end") - 15.0e-6).abs() < 1e-12,
+            "{what}: stopped at {}",
+            num("t_end")
+        );
+        for (name, col) in gsph::output::table::FLOAT_COLUMNS
+            .iter()
+            .zip(tab.float_columns())
+        {
+            assert!(
+                col.iter().all(|v| v.is_finite()),
+                "{what}: non-finite {name}"
+            );
+        }
+        assert!(num("density_min") > 0.0, "{what}");
+        // momentum: round-off of the initial x momentum
+        let p0: Vec<f64> = s["momentum_initial"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect();
+        let p1: Vec<f64> = s["momentum_final"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect();
+        for a in 0..p0.len() {
+            assert!(
+                (p1[a] - p0[a]).abs() <= 1e-12 * p0[0].abs(),
+                "{what}: momentum {a}: {p0:?} -> {p1:?}"
+            );
+        }
+        // energy: round-off for the time-split schemes (exactly conservative); the others
+        // drift (av: time integration; pm/tkc: the explicit contact step gains energy, as in
+        // seed 000 table 2), bounded at about twice the largest drift measured here
+        let bound = match scheme {
+            "ts1" | "ts2" => 1e-10,
+            "av" => 1e-3,
+            _ => 6e-2,
+        };
+        assert!(
+            num("energy_rel_error").abs() < bound,
+            "{what}: energy error {}",
+            num("energy_rel_error")
+        );
+        // the ceramic is damaged near the impact and the back face, not everywhere
+        let frac = num("damaged_area_fraction");
+        assert!(
+            frac > 0.005 && frac < 0.9,
+            "{what}: damaged area fraction {frac}"
+        );
+        for i in 0..tab.len() {
+            let d = tab.damage[i];
+            if tab.material[i] == 0 {
+                assert_eq!(d, 0.0, "{what}: steel particle {} damaged", tab.id[i]);
+                assert!(
+                    tab.temperature[i] >= 298.0,
+                    "{what}: steel below room temperature"
+                );
+            } else {
+                assert!((0.0..=1.0).contains(&d), "{what}: damage {d}");
+            }
+        }
+        // plastic work heats the steel; the back face moves, slower than the projectile
+        assert!(
+            num("temperature_max") > 350.0,
+            "{what}: T_max {}",
+            num("temperature_max")
+        );
+        let v_back = num("back_face_velocity_peak");
+        assert!(
+            v_back > 10.0 && v_back < 800.0,
+            "{what}: back face {v_back} m/s"
+        );
+    }
+}
+
+#[test]
+fn impact_2d_every_scheme() {
+    // 1 mm spacing: 3,200 particles
+    check(
+        "steel_sic_impact.toml",
+        0.25,
+        &["av", "pm", "ts1", "ts2", "tkc"],
+    );
+}
+
+#[test]
+fn impact_3d_every_scheme() {
+    // 2.5 mm spacing: 3,200 particles; the 3D pair kernels of every scheme
+    check(
+        "steel_sic_impact_3d.toml",
+        0.4,
+        &["av", "pm", "ts1", "ts2", "tkc"],
+    );
+}
