@@ -15,5 +15,6 @@ pub mod plot;
 pub mod reference;
 pub mod scene;
 pub mod sim;
+pub mod sim_error;
 pub mod specs;
 pub mod study;

@@ -9,99 +9,12 @@ use gsph_core::kernel::Kernel;
 use gsph_core::limiter::Limiter;
 use gsph_core::material::Material;
 use gsph_core::math::{Real, Sym3, Vector};
-use gsph_core::neighbors::{NeighborError, Neighbors, Periodic};
+use gsph_core::neighbors::{Neighbors, Periodic};
 use gsph_core::schemes::{Scheme, StepFn};
 use gsph_core::state::*;
 use std::any::Any;
 
-/// Why a simulation stopped or could not start. `Display` is one line.
-#[derive(Debug, Clone, PartialEq)]
-pub enum SimError {
-    /// Neighbour lists overflowed.
-    Neighbors(NeighborError),
-    /// Two particles closer than half a lattice spacing.
-    Overlap {
-        /// First particle id.
-        i: u32,
-        /// Second particle id.
-        j: u32,
-        /// Distance, m.
-        distance: f64,
-        /// Where, m.
-        at: [f64; 3],
-    },
-    /// A step failed.
-    Step {
-        /// Step number (1-based).
-        step: u64,
-        /// Time at the start of the step, s.
-        t: f64,
-        /// Cause.
-        cause: StepError,
-    },
-    /// Neighbour lists overflowed when they were rebuilt during the run.
-    Rebuild {
-        /// Step number (1-based).
-        step: u64,
-        /// Time at the start of the step, s.
-        t: f64,
-        /// Cause.
-        cause: NeighborError,
-    },
-    /// The specialisation for this scene is not compiled into this build.
-    NotCompiled {
-        /// Dimension.
-        dim: usize,
-        /// Scheme.
-        scheme: Scheme,
-        /// Effects.
-        effects: EffectSet,
-    },
-    /// The scheme family cannot run an effect the scene needs.
-    Unsupported {
-        /// Scheme.
-        scheme: Scheme,
-        /// The effects it cannot run.
-        effects: EffectSet,
-    },
-}
-
-impl std::fmt::Display for SimError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            SimError::Neighbors(e) => write!(f, "{e}"),
-            SimError::Overlap { i, j, distance, at } => write!(
-                f,
-                "particles {i} and {j} overlap: {distance:.3e} m apart at ({:.4e}, {:.4e}, {:.4e}) (less than half the lattice spacing; do two bodies overlap?)",
-                at[0], at[1], at[2]
-            ),
-            SimError::Step { step, t, cause } => write!(f, "step {step} (t = {t:.6e} s): {cause}"),
-            SimError::Rebuild { step, t, cause } => write!(f, "step {step} (t = {t:.6e} s): {cause}"),
-            SimError::NotCompiled { dim, scheme, effects } => {
-                // One line: what is missing, and the features that compile it (README
-                // "Compile-time-selected builds").
-                let (family, effects) = (scheme.family(), effects.kernel_part());
-                let features = crate::specs::features(*dim, family, effects).join(",");
-                let name = crate::specs::find(*dim, family, effects).map_or("", |s| s.name);
-                let (n, all) = crate::specs::compiled();
-                write!(
-                    f,
-                    "this gsph was built without the specialisation {dim}D {} ({effects}) `{name}` (it contains {n} of {all}); rebuild with `--features {features}` or the default features",
-                    scheme.name()
-                )
-            }
-            SimError::Unsupported { scheme, effects } => write!(
-                f,
-                "scheme {} cannot run the effects {effects} (no build has that specialisation; the {} family supports {})",
-                scheme.name(),
-                crate::specs::family_name(scheme.family()),
-                gsph_core::schemes::supported(scheme.family())
-            ),
-        }
-    }
-}
-
-impl std::error::Error for SimError {}
+pub use crate::sim_error::SimError;
 
 /// The step function for dimension `D` (looked up once per run).
 fn select<const D: usize>(scheme: Scheme, effects: EffectSet) -> Option<StepFn<D, Rayon>> {
