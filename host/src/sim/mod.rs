@@ -16,6 +16,8 @@ use std::any::Any;
 
 pub use crate::sim_error::SimError;
 
+mod edit;
+
 /// The step function for dimension `D` (looked up once per run).
 fn select<const D: usize>(scheme: Scheme, effects: EffectSet) -> Option<StepFn<D, Rayon>> {
     use gsph_core::dispatch::{select_1d, select_2d, select_3d};

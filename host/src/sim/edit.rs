@@ -1,0 +1,136 @@
+//! Removing and inserting particles during a run (the moving window of seed 004 §3 removes
+//! particles past its exit and feeds new ones through its entry). Both keep every
+//! per-particle array (state, effect storage, workspace) in step and force a neighbour-list
+//! rebuild before the next step.
+
+use super::{vec_of, Sim};
+use crate::scene::InitialParticles;
+use gsph_core::effects::EffectSet;
+use gsph_core::math::Vector;
+use gsph_core::state::{smoothing_length, AvRates, Correction, Gradients, Layout, PairSums};
+
+/// Keeps the elements of `v` whose mask entry is true (an empty `v`, storage of an absent
+/// effect, stays empty).
+fn filter<T>(v: &mut Vec<T>, keep: &[bool]) {
+    if v.is_empty() {
+        return;
+    }
+    let mut k = 0;
+    v.retain(|_| {
+        k += 1;
+        keep[k - 1]
+    });
+}
+
+impl<const D: usize> Sim<D> {
+    /// Removes the particles whose `keep` entry is false. Ids of the others are unchanged;
+    /// driven particles stay driven. Panics if `keep.len() != self.len()`.
+    pub fn retain(&mut self, keep: &[bool]) {
+        assert_eq!(keep.len(), self.len(), "one mask entry per particle");
+        let mut new_index = vec![usize::MAX; keep.len()];
+        let mut n = 0;
+        for (i, &k) in keep.iter().enumerate() {
+            if k {
+                new_index[i] = n;
+                n += 1;
+            }
+        }
+        self.driven = self
+            .driven
+            .iter()
+            .filter(|(i, _)| keep[*i])
+            .map(|&(i, v)| (new_index[i], v))
+            .collect();
+        filter(&mut self.ids, keep);
+        filter(&mut self.x, keep);
+        filter(&mut self.v, keep);
+        filter(&mut self.m, keep);
+        filter(&mut self.mat, keep);
+        filter(&mut self.rho, keep);
+        filter(&mut self.e, keep);
+        filter(&mut self.p, keep);
+        filter(&mut self.c, keep);
+        filter(&mut self.cl, keep);
+        filter(&mut self.h, keep);
+        filter(&mut self.s, keep);
+        filter(&mut self.eps_p, keep);
+        filter(&mut self.damage, keep);
+        filter(&mut self.temp, keep);
+        filter(&mut self.sums, keep);
+        filter(&mut self.grad, keep);
+        filter(&mut self.grad_stress, keep);
+        filter(&mut self.corr, keep);
+        filter(&mut self.av, keep);
+        self.resize_lists();
+    }
+
+    /// Appends the particles of `parts` (state as built: density, energy, deviator,
+    /// velocity; zero plastic strain and damage; room temperature), with new ids after the
+    /// largest one in use. Returns the first new id.
+    pub fn append(&mut self, parts: &InitialParticles) -> u32 {
+        let first = self.ids.iter().max().map_or(0, |&m| m + 1);
+        let has = |e: EffectSet| self.effects.contains(e);
+        let (strength, plasticity, damage, heat) = (
+            has(EffectSet::STRENGTH),
+            has(EffectSet::PLASTICITY),
+            has(EffectSet::DAMAGE),
+            has(EffectSet::HEAT),
+        );
+        let layout = Layout::of(self.scheme.family(), self.effects);
+        for i in 0..parts.len() {
+            let mat = self.materials[parts.mat[i] as usize];
+            let st = mat.eos(parts.rho[i], parts.e[i]);
+            self.ids.push(first + i as u32);
+            self.x.push(self.periodic.wrap(vec_of::<D>(&parts.x[i])));
+            self.v.push(vec_of::<D>(&parts.v[i]));
+            self.m.push(parts.m[i]);
+            self.mat.push(parts.mat[i]);
+            self.rho.push(parts.rho[i]);
+            self.e.push(parts.e[i]);
+            self.p.push(st.p);
+            self.c.push(st.c2.max(0.0).sqrt());
+            self.cl.push(mat.c_long(parts.rho[i], st.c2.max(0.0)));
+            self.h.push(smoothing_length::<D>(
+                self.h_factor,
+                parts.m[i],
+                parts.rho[i],
+            ));
+            if strength {
+                self.s.push(parts.s[i]);
+            }
+            if plasticity {
+                self.eps_p.push(0.0);
+            }
+            if damage {
+                self.damage.push(0.0);
+            }
+            if heat {
+                self.temp.push(mat.initial_temperature());
+            }
+            self.sums.push(PairSums::default());
+            if layout.grad {
+                self.grad.push(Gradients::default());
+            }
+            if layout.grad_stress {
+                self.grad_stress.push([Vector::<D>::zeros(); 6]);
+            }
+            if layout.corr {
+                self.corr.push(Correction::default());
+            }
+            if layout.av {
+                self.av.push(AvRates::default());
+            }
+        }
+        self.resize_lists();
+        first
+    }
+
+    /// Sizes the neighbour lists for the current particle count and marks them stale.
+    fn resize_lists(&mut self) {
+        let n = self.len();
+        self.nbr_index.resize(n * self.capacity, 0);
+        self.nbr_count.resize(n, 0);
+        self.build_x.clear();
+        self.build_h.clear();
+    }
+}
