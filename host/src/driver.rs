@@ -155,7 +155,7 @@ fn run_dim<const D: usize>(
     let t_total = Instant::now();
     let reference = Reference::from_scene(scene, &parts.x, &parts.spacing)?;
     let mut sim = Sim::<D>::new(scene, parts)?;
-    let mut monitor = Monitor::new(scene, parts, &sim.materials);
+    let mut monitor = Monitor::new(scene, parts, &sim.materials)?;
     if let Some(dir) = &opts.out {
         clear_outputs(dir)?;
     }

@@ -4,7 +4,7 @@
 //! computed from the final state (peaks: over the sampled series).
 
 use crate::output::table::ParticleTable;
-use crate::scene::{InitialParticles, Scene};
+use crate::scene::{InitialParticles, Scene, SceneError};
 use gsph_core::material::Material;
 
 /// The particles of a back face and the running peak of their velocity.
@@ -104,7 +104,11 @@ pub struct Monitor {
 
 impl Monitor {
     /// The monitor of a (validated) scene.
-    pub fn new(scene: &Scene, parts: &InitialParticles, materials: &[Material]) -> Monitor {
+    pub fn new(
+        scene: &Scene,
+        parts: &InitialParticles,
+        materials: &[Material],
+    ) -> Result<Monitor, SceneError> {
         let back_face = scene
             .monitor
             .as_ref()
@@ -115,20 +119,27 @@ impl Monitor {
                     .iter()
                     .position(|m| m.name == bf.material)
                     .unwrap_or(usize::MAX);
-                let member = (0..parts.x.len())
+                let member: Vec<bool> = (0..parts.x.len())
                     .map(|i| {
                         parts.mat[i] as usize == mat
                             && (parts.x[i][bf.axis] - bf.position).abs() < parts.spacing[i]
                     })
                     .collect();
-                BackFace {
+                if !member.contains(&true) {
+                    return Err(SceneError(format!(
+                        "monitor.back_face: no particle of `{}` starts within one spacing of x[{}] = {:e} m",
+                        bf.material, bf.axis, bf.position
+                    )));
+                }
+                Ok(BackFace {
                     member,
                     axis: bf.axis,
                     normal: bf.normal,
                     peak: f64::NEG_INFINITY,
                     peak_time: 0.0,
-                }
-            });
+                })
+            })
+            .transpose()?;
         let finest = parts.spacing.iter().copied().fold(f64::INFINITY, f64::min);
         let front = scene
             .monitor
@@ -145,13 +156,13 @@ impl Monitor {
                     samples: Vec::new(),
                 }
             });
-        Monitor {
+        Ok(Monitor {
             back_face,
             front,
             t_end: scene.t_end,
             damaging: materials.iter().map(Material::has_damage).collect(),
             heat: materials.iter().any(Material::has_heat),
-        }
+        })
     }
 
     /// True if the series needs a particle table at each sample.

@@ -145,6 +145,7 @@ fn cases() -> Vec<Case> {
         case("Johnson-Cook melt below room temperature", impact(), "check", &["--set", "materials.0.strength.t_melt=200"], &["materials[0].strength.t_melt: must exceed t_room = 298 K (got 200)"]),
         case("Taylor-Quinney factor above 1", impact(), "check", &["--set", "materials.0.strength.taylor_quinney=1.5"], &["materials[0].strength.taylor_quinney: must lie in [0, 1] (got 1.5)"]),
         case("unknown strength model", impact().replacen("\"jh1\"", "\"jh2\"", 1), "check", &[], &["materials[1].strength.type: unknown type `jh2`"]),
+        case("back face with no particle on it", impact(), "run", &["--set", "monitor.back_face.position=0.5"], &["monitor.back_face: no particle of `sic` starts within one spacing of x[0] = 5e-1 m"]),
         case("monitor on an unknown material", impact(), "check", &["--set", "monitor.back_face.material=alumina"], &["monitor.back_face.material: unknown material `alumina`"]),
     ]
 }
