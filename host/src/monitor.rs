@@ -228,6 +228,13 @@ impl Monitor {
                     .fold((0.0, 0usize), |(s, c), &(bs, bc)| (s + bs, c + bc))
             });
             out.push(("behind_front_velocity", sum / count.max(1) as f64));
+            // and ahead of it (the state the front runs into)
+            let (sum, count) = k.map_or((f64::NAN, 1), |k| {
+                bins[(k + 1).min(bins.len())..(k + 1 + behind).min(bins.len())]
+                    .iter()
+                    .fold((0.0, 0usize), |(s, c), &(bs, bc)| (s + bs, c + bc))
+            });
+            out.push(("ahead_front_velocity", sum / count.max(1) as f64));
         }
         if self.damaging.iter().any(|&d| d) {
             // areas (volumes in 3D) m/rho of the particles of damage-bearing materials

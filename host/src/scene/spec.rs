@@ -100,8 +100,8 @@ pub struct MonitorSpec {
 /// the far end of the first run of bins (from the low end) whose mean velocity along `axis`
 /// reaches `velocity`. Series column `front_position`; summary
 /// keys `front_speed` (least-squares slope over the samples after `fit_from` of the run,
-/// default 0.5) and `behind_front_velocity` (mean particle velocity along `axis` in the
-/// bins behind the front at the end, over `behind` m, default 10 bins).
+/// default 0.5), `behind_front_velocity` and `ahead_front_velocity` (mean particle velocity
+/// along `axis` over `behind` m, default 10 bins, behind and ahead of the front at the end).
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct FrontSpec {
