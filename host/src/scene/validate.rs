@@ -3,6 +3,7 @@
 use super::spec::*;
 use super::SceneError;
 use gsph_core::limiter::Limiter;
+use gsph_core::material::Strength;
 use gsph_core::schemes::Scheme;
 
 type R = Result<(), SceneError>;
@@ -523,74 +524,56 @@ pub fn resolve_poisson(s: &mut Scene) -> R {
     Ok(())
 }
 
-/// The parameters of the Johnson–Cook and JH1 models.
+/// The parameters of the Johnson–Cook and JH1 models (checked on the core structs they
+/// become, so the field lists are written once, in `materials::strength_of`).
 fn validate_strength(key: &str, strength: &StrengthSpec) -> R {
     let k = |name: &str| format!("{key}.{name}");
-    match *strength {
-        StrengthSpec::JohnsonCook {
-            a,
-            b,
-            n,
-            c,
-            m,
-            eps_dot0,
-            t_room,
-            t_melt,
-            specific_heat,
-            taylor_quinney,
-        } => {
-            positive(&k("a"), a)?;
-            non_negative(&k("b"), b)?;
-            positive(&k("n"), n)?;
-            non_negative(&k("c"), c)?;
-            positive(&k("m"), m)?;
-            positive(&k("eps_dot0"), eps_dot0)?;
-            positive(&k("t_room"), t_room)?;
-            positive(&k("specific_heat"), specific_heat)?;
+    match crate::materials::strength_of(strength) {
+        Strength::JohnsonCook(jc) => {
+            positive(&k("a"), jc.a)?;
+            non_negative(&k("b"), jc.b)?;
+            positive(&k("n"), jc.n)?;
+            non_negative(&k("c"), jc.c)?;
+            positive(&k("m"), jc.m)?;
+            positive(&k("eps_dot0"), jc.eps_dot0)?;
+            positive(&k("t_room"), jc.t_room)?;
+            positive(&k("specific_heat"), jc.specific_heat)?;
+            let (t_room, t_melt) = (jc.t_room, jc.t_melt);
             if !t_melt.is_finite() || t_melt <= t_room {
                 return fail(
                     &k("t_melt"),
                     format!("must exceed t_room = {t_room} K (got {t_melt})"),
                 );
             }
-            if !(0.0..=1.0).contains(&taylor_quinney) {
+            let chi = jc.taylor_quinney;
+            if !(0.0..=1.0).contains(&chi) {
                 return fail(
                     &k("taylor_quinney"),
-                    format!("must lie in [0, 1] (got {taylor_quinney})"),
+                    format!("must lie in [0, 1] (got {chi})"),
                 );
             }
         }
-        StrengthSpec::Jh1 {
-            sigma_i1,
-            p1,
-            sigma_i2,
-            p2,
-            sigma_f_max,
-            c_f,
-            tensile_limit,
-            eps_f_max,
-            p_max,
-            c,
-            eps_dot0,
-        } => {
-            positive(&k("sigma_i1"), sigma_i1)?;
-            positive(&k("p1"), p1)?;
-            positive(&k("sigma_i2"), sigma_i2)?;
+        Strength::Jh1(jh) => {
+            positive(&k("sigma_i1"), jh.sigma_i1)?;
+            positive(&k("p1"), jh.p1)?;
+            positive(&k("sigma_i2"), jh.sigma_i2)?;
+            let (p1, p2) = (jh.p1, jh.p2);
             if !p2.is_finite() || p2 <= p1 {
                 return fail(&k("p2"), format!("must exceed p1 = {p1} Pa (got {p2})"));
             }
-            non_negative(&k("sigma_f_max"), sigma_f_max)?;
-            non_negative(&k("c_f"), c_f)?;
-            if !tensile_limit.is_finite() || tensile_limit >= 0.0 {
+            non_negative(&k("sigma_f_max"), jh.sigma_f_max)?;
+            non_negative(&k("c_f"), jh.c_f)?;
+            let t = jh.tensile_limit;
+            if !t.is_finite() || t >= 0.0 {
                 return fail(
                     &k("tensile_limit"),
-                    format!("must be negative (a hydrostatic tension; got {tensile_limit})"),
+                    format!("must be negative (a hydrostatic tension; got {t})"),
                 );
             }
-            positive(&k("eps_f_max"), eps_f_max)?;
-            positive(&k("p_max"), p_max)?;
-            non_negative(&k("c"), c)?;
-            positive(&k("eps_dot0"), eps_dot0)?;
+            positive(&k("eps_f_max"), jh.eps_f_max)?;
+            positive(&k("p_max"), jh.p_max)?;
+            non_negative(&k("c"), jh.c)?;
+            positive(&k("eps_dot0"), jh.eps_dot0)?;
         }
         _ => {}
     }

@@ -183,7 +183,6 @@ impl<const D: usize> Sim<D> {
         })?;
         let n = parts.len();
         let kernel = kernel_of(&scene.kernel);
-        let layout = Layout::of(scheme.family(), effects);
         let opt = &scene.options;
         let mut options = SchemeOptions {
             av_alpha: opt.av_alpha,
@@ -230,75 +229,37 @@ impl<const D: usize> Sim<D> {
                 }
             }
         };
-        let has = |e: EffectSet| effects.contains(e);
-        let opt_vec = |on: bool, v: &[Sym3]| if on { v.to_vec() } else { Vec::new() };
         let capacity = scene
             .neighbor_capacity
             .unwrap_or_else(|| default_capacity(D, kernel, scene.h_factor));
         let mut sim = Sim {
-            ids: (0..n as u32).collect(),
+            ids: Vec::with_capacity(n),
             driven: (0..n)
                 .filter(|&i| scene.bodies[parts.body[i] as usize].driven)
                 .map(|i| (i, vec_of::<D>(&parts.v[i])))
                 .collect(),
-            x: parts
-                .x
-                .iter()
-                .map(|p| periodic.wrap(vec_of::<D>(p)))
-                .collect(),
-            v: parts.v.iter().map(vec_of::<D>).collect(),
-            m: parts.m.clone(),
-            mat: parts.mat.clone(),
-            rho: parts.rho.clone(),
-            e: parts.e.clone(),
-            p: vec![0.0; n],
-            c: vec![0.0; n],
-            cl: vec![0.0; n],
-            h: vec![0.0; n],
-            s: opt_vec(has(EffectSet::STRENGTH), &parts.s),
-            eps_p: if has(EffectSet::PLASTICITY) {
-                vec![0.0; n]
-            } else {
-                Vec::new()
-            },
-            damage: if has(EffectSet::DAMAGE) {
-                vec![0.0; n]
-            } else {
-                Vec::new()
-            },
-            temp: if has(EffectSet::HEAT) {
-                parts
-                    .mat
-                    .iter()
-                    .map(|&k| materials[k as usize].initial_temperature())
-                    .collect()
-            } else {
-                Vec::new()
-            },
-            sums: vec![PairSums::default(); n],
-            grad: if layout.grad {
-                vec![Gradients::default(); n]
-            } else {
-                Vec::new()
-            },
-            grad_stress: if layout.grad_stress {
-                vec![[Vector::<D>::zeros(); 6]; n]
-            } else {
-                Vec::new()
-            },
-            corr: if layout.corr {
-                vec![Correction::default(); n]
-            } else {
-                Vec::new()
-            },
-            av: if layout.av {
-                vec![AvRates::default(); n]
-            } else {
-                Vec::new()
-            },
+            x: Vec::with_capacity(n),
+            v: Vec::with_capacity(n),
+            m: Vec::with_capacity(n),
+            mat: Vec::with_capacity(n),
+            rho: Vec::with_capacity(n),
+            e: Vec::with_capacity(n),
+            p: Vec::with_capacity(n),
+            c: Vec::with_capacity(n),
+            cl: Vec::with_capacity(n),
+            h: Vec::with_capacity(n),
+            s: Vec::new(),
+            eps_p: Vec::new(),
+            damage: Vec::new(),
+            temp: Vec::new(),
+            sums: Vec::with_capacity(n),
+            grad: Vec::new(),
+            grad_stress: Vec::new(),
+            corr: Vec::new(),
+            av: Vec::new(),
             primed: false,
-            nbr_index: vec![0; n * capacity],
-            nbr_count: vec![0; n],
+            nbr_index: Vec::new(),
+            nbr_count: Vec::new(),
             capacity,
             build_x: Vec::new(),
             build_h: Vec::new(),
@@ -317,14 +278,9 @@ impl<const D: usize> Sim<D> {
             pair_interactions: 0,
             rebuilds: 0,
         };
-        for i in 0..n {
-            let mat = sim.materials[sim.mat[i] as usize];
-            let st = mat.eos(sim.rho[i], sim.e[i]);
-            sim.p[i] = st.p;
-            sim.c[i] = st.c2.max(0.0).sqrt();
-            sim.cl[i] = mat.c_long(sim.rho[i], st.c2.max(0.0));
-            sim.h[i] = smoothing_length::<D>(sim.h_factor, sim.m[i], sim.rho[i]);
-        }
+        // the per-particle state, effect storage and workspace: one code path with the
+        // particles a moving window feeds in later
+        sim.append(parts);
         sim.rebuild()?;
         sim.check_overlap(&parts.spacing)?;
         Ok(sim)
