@@ -51,6 +51,40 @@ pub enum Command {
         #[arg(long)]
         threads: Option<usize>,
     },
+    /// Shock Hugoniot of a moving-window scene (seed 004 §3.1): u_s for each u_p by
+    /// bisection, stress behind the wave and in the precursor, averaged profiles
+    /// (hugoniot.csv, hugoniot.png, profile_up*.csv/png).
+    Hugoniot {
+        /// Scene file with a [window] section.
+        scene: PathBuf,
+        /// Particle velocities u_p, m/s, comma-separated.
+        #[arg(long, default_value = "50,75,100,125,150,200")]
+        up: String,
+        /// Initial bracket of u_s, m/s, `LO,HI` (default 0.85 and 2 times m u_p/(m-1)).
+        #[arg(long)]
+        bracket: Option<String>,
+        /// Bisection stops below this bracket width, m/s.
+        #[arg(long, default_value_t = 1.0)]
+        tolerance: f64,
+        /// Feed lengths entering during each trial (seed: 3).
+        #[arg(long, default_value_t = 3.0)]
+        samples: f64,
+        /// Feed lengths over which the production profiles are averaged.
+        #[arg(long, default_value_t = 4.5)]
+        average: f64,
+        /// Override a scene key (dotted path).
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        /// Output directory (default `out/<scene name>_hugoniot`).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Worker threads (default: all cores).
+        #[arg(long)]
+        threads: Option<usize>,
+        /// No per-trial progress lines.
+        #[arg(long)]
+        quiet: bool,
+    },
     /// Pictures of a run's output directory.
     #[command(subcommand)]
     Plot(PlotCommand),
@@ -328,6 +362,58 @@ fn execute(cmd: Command) -> Result<(), String> {
                     ))
                 }
             }
+            Ok(())
+        }
+        Command::Hugoniot {
+            scene: path,
+            up,
+            bracket,
+            tolerance,
+            samples,
+            average,
+            set,
+            out,
+            threads,
+            quiet,
+        } => {
+            let sc = scene::load(&path, &set).map_err(|e| e.to_string())?;
+            if sc.window.is_none() {
+                return Err(format!(
+                    "{}: no [window] section: `gsph hugoniot` needs a moving-window scene",
+                    path.display()
+                ));
+            }
+            let name = scene_name(&sc, &path);
+            let bracket = match bracket {
+                None => None,
+                Some(b) => match crate::commands::parse_positive("--bracket", &b)?[..] {
+                    [lo, hi] if lo < hi => Some((lo, hi)),
+                    _ => return Err(format!("--bracket: `{b}` must be LO,HI with LO < HI")),
+                },
+            };
+            for (flag, v) in [
+                ("--tolerance", tolerance),
+                ("--samples", samples),
+                ("--average", average),
+            ] {
+                if !(v.is_finite() && v > 0.0) {
+                    return Err(format!("{flag}: must be positive (got {v})"));
+                }
+            }
+            let opts = crate::window::hugoniot::HugoniotOptions {
+                ups: crate::commands::parse_positive("--up", &up)?,
+                bracket,
+                tolerance,
+                samples,
+                average,
+                verbose: !quiet,
+                ..Default::default()
+            };
+            let out = out.unwrap_or_else(|| PathBuf::from("out").join(format!("{name}_hugoniot")));
+            let pool = pool(threads)?;
+            pool.install(|| crate::commands::run_hugoniot(&sc, &opts, &out))
+                .map_err(|e| format!("{}: {e}", path.display()))?;
+            out!("wrote {}", out.display());
             Ok(())
         }
         Command::Run {

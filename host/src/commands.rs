@@ -137,12 +137,43 @@ pub fn parse_schemes(s: &str) -> Result<Vec<Scheme>, String> {
 
 /// Parses a comma-separated list of positive resolution scales.
 pub fn parse_resolutions(s: &str) -> Result<Vec<f64>, String> {
+    parse_positive("--resolutions", s)
+}
+
+/// Parses the comma-separated list of positive numbers given to `flag`.
+pub fn parse_positive(flag: &str, s: &str) -> Result<Vec<f64>, String> {
     s.split(',')
         .map(|n| match n.trim().parse::<f64>() {
             Ok(v) if v > 0.0 && v.is_finite() => Ok(v),
-            _ => Err(format!("--resolutions: `{n}` is not a positive number")),
+            _ => Err(format!("{flag}: `{n}` is not a positive number")),
         })
         .collect()
+}
+
+/// `gsph hugoniot`: the Hugoniot points of a window scene, written into `out`.
+pub fn run_hugoniot(
+    scene: &crate::scene::Scene,
+    opts: &crate::window::hugoniot::HugoniotOptions,
+    out: &Path,
+) -> Result<Vec<crate::window::hugoniot::HugoniotPoint>, String> {
+    use crate::window::hugoniot::{hugoniot, seed_fit, write_outputs};
+    let points = hugoniot(scene, opts)?;
+    write_outputs(out, &points)?;
+    println!("   u_p     u_s   fit   diff   -sxx behind  precursor  wall");
+    for p in &points {
+        let fit = seed_fit(p.up);
+        println!(
+            "{:6.1} {:7.1} {:5.1} {:+5.1}%  {:8.3} GPa {:6.3} GPa {:5.0} s",
+            p.up,
+            p.us,
+            fit,
+            100.0 * (p.us - fit) / fit,
+            p.stress_behind * 1e-9,
+            p.stress_precursor * 1e-9,
+            p.wall_s
+        );
+    }
+    Ok(points)
 }
 
 /// Runs a study and writes its plots: error against wall time and against particles.

@@ -5,6 +5,7 @@ use crate::output::{write_atomic, write_csv, Frame, OutputError, SnapshotWriter}
 use crate::reference::Reference;
 use crate::scene::{build_particles, InitialParticles, Scene, SceneError};
 use crate::sim::{Sim, SimError};
+use crate::window::Window;
 use serde_json::{json, Map, Value};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
@@ -156,6 +157,10 @@ fn run_dim<const D: usize>(
     let reference = Reference::from_scene(scene, &parts.x, &parts.spacing)?;
     let mut sim = Sim::<D>::new(scene, parts)?;
     let mut monitor = Monitor::new(scene, parts, &sim.materials)?;
+    let mut window = match &scene.window {
+        Some(w) => Some(Window::new(scene, w.geometry(scene)?, parts, &mut sim)),
+        None => None,
+    };
     if let Some(dir) = &opts.out {
         clear_outputs(dir)?;
     }
@@ -171,13 +176,22 @@ fn run_dim<const D: usize>(
     let mut series =
         String::from("t,step,dt,kinetic,internal,total,momentum_x,momentum_y,momentum_z");
     let extra = reference.as_ref().map_or(&[][..], |r| r.series_names());
-    for name in extra.iter().chain(monitor.series_names().iter()) {
+    let window_names = if window.is_some() {
+        &Window::<D>::series_names()[..]
+    } else {
+        &[]
+    };
+    for name in extra
+        .iter()
+        .chain(monitor.series_names().iter())
+        .chain(window_names)
+    {
         series.push(',');
         series.push_str(name);
     }
     series.push('\n');
     let mut kinetic_max: f64 = 0.0;
-    let mut push_series = |sim: &Sim<D>, dt: f64| {
+    let mut push_series = |sim: &Sim<D>, window: &Option<Window<D>>, dt: f64| {
         let (k, i) = sim.energy();
         kinetic_max = kinetic_max.max(k);
         let p = sim.momentum();
@@ -203,9 +217,14 @@ fn run_dim<const D: usize>(
                 series.push_str(&format!(",{v:e}"));
             }
         }
+        if let Some(w) = window {
+            for v in w.series_values(sim) {
+                series.push_str(&format!(",{v:e}"));
+            }
+        }
         series.push('\n');
     };
-    push_series(&sim, 0.0);
+    push_series(&sim, &window, 0.0);
     if let Some(w) = writer.as_mut() {
         w.append(&Frame {
             time: 0.0,
@@ -238,9 +257,12 @@ fn run_dim<const D: usize>(
         if sim.t + dt >= t_out {
             dt = t_out - sim.t;
         }
-        sim.step(dt)?;
+        match window.as_mut() {
+            Some(w) => w.step(&mut sim, dt)?,
+            None => sim.step(dt)?,
+        }
         if sim.t >= t_end * next_series as f64 / n_series as f64 {
-            push_series(&sim, dt);
+            push_series(&sim, &window, dt);
             while sim.t >= t_end * next_series as f64 / n_series as f64 {
                 next_series += 1;
             }
@@ -310,6 +332,16 @@ fn run_dim<const D: usize>(
     }
     for (k, v) in monitor.measures(&table) {
         s.insert(k.into(), json!(v));
+    }
+    if let Some(w) = &window {
+        for (k, v) in Window::<D>::series_names()
+            .iter()
+            .zip(w.series_values(&sim))
+        {
+            s.insert((*k).into(), json!(v));
+        }
+        s.insert("window_u_in".into(), json!(w.u_in));
+        s.insert("window_u_out".into(), json!(w.u_out()));
     }
     if let Some(dir) = &opts.out {
         write_csv(dir.join("final.csv"), &table)?;

@@ -18,3 +18,4 @@ pub mod sim;
 pub mod sim_error;
 pub mod specs;
 pub mod study;
+pub mod window;

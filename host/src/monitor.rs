@@ -76,18 +76,23 @@ impl Front {
             .copied()
             .filter(|&(t, x)| t >= t0 && x.is_finite())
             .collect();
-        let n = pts.len() as f64;
-        if pts.len() < 3 {
-            return f64::NAN;
-        }
-        let (mt, mx) = (
-            pts.iter().map(|p| p.0).sum::<f64>() / n,
-            pts.iter().map(|p| p.1).sum::<f64>() / n,
-        );
-        let cov: f64 = pts.iter().map(|p| (p.0 - mt) * (p.1 - mx)).sum();
-        let var: f64 = pts.iter().map(|p| (p.0 - mt).powi(2)).sum();
-        cov / var
+        slope(&pts)
     }
+}
+
+/// Least-squares slope dy/dx of the points `(x, y)` (NaN for fewer than three points).
+pub fn slope(pts: &[(f64, f64)]) -> f64 {
+    let n = pts.len() as f64;
+    if pts.len() < 3 {
+        return f64::NAN;
+    }
+    let (mt, mx) = (
+        pts.iter().map(|p| p.0).sum::<f64>() / n,
+        pts.iter().map(|p| p.1).sum::<f64>() / n,
+    );
+    let cov: f64 = pts.iter().map(|p| (p.0 - mt) * (p.1 - mx)).sum();
+    let var: f64 = pts.iter().map(|p| (p.0 - mt).powi(2)).sum();
+    cov / var
 }
 
 /// What a scene asks to record (see [`crate::scene::MonitorSpec`]) plus the measures every

@@ -10,9 +10,11 @@ mod de;
 pub mod pores;
 mod spec;
 mod validate;
+mod window;
 
 pub use build::{build_particles, InitialParticles};
 pub use spec::*;
+pub use window::{WindowGeometry, WindowSpec};
 
 use std::path::Path;
 

@@ -77,6 +77,9 @@ pub struct Scene {
     /// Quantities recorded during the run (series columns and summary keys).
     #[serde(default)]
     pub monitor: Option<MonitorSpec>,
+    /// A moving observation window (seed 004 §3): see [`super::WindowSpec`].
+    #[serde(default)]
+    pub window: Option<super::WindowSpec>,
 }
 
 /// Quantities recorded during a run.

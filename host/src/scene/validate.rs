@@ -349,6 +349,9 @@ pub fn validate(s: &Scene) -> R {
             }
         }
     }
+    if let Some(w) = &s.window {
+        w.geometry(s)?;
+    }
     match &s.reference {
         Some(ReferenceSpec::FlyerPlate {
             material,

@@ -134,3 +134,59 @@ impl<const D: usize> Sim<D> {
         self.build_h.clear();
     }
 }
+
+/// A particle's material state: everything but position, velocity and mass (exit region 2
+/// of a moving window holds it fixed).
+#[derive(Debug, Clone, Copy)]
+pub struct HeldState {
+    rho: f64,
+    e: f64,
+    p: f64,
+    c: f64,
+    cl: f64,
+    h: f64,
+    s: Option<gsph_core::math::Sym3>,
+    eps_p: Option<f64>,
+    damage: Option<f64>,
+    temp: Option<f64>,
+}
+
+impl<const D: usize> Sim<D> {
+    /// The material state of particle `i`.
+    pub fn held_state(&self, i: usize) -> HeldState {
+        let opt = |v: &Vec<f64>| v.get(i).copied();
+        HeldState {
+            rho: self.rho[i],
+            e: self.e[i],
+            p: self.p[i],
+            c: self.c[i],
+            cl: self.cl[i],
+            h: self.h[i],
+            s: self.s.get(i).copied(),
+            eps_p: opt(&self.eps_p),
+            damage: opt(&self.damage),
+            temp: opt(&self.temp),
+        }
+    }
+
+    /// Puts back a state taken by [`Sim::held_state`].
+    pub fn restore_state(&mut self, i: usize, st: &HeldState) {
+        self.rho[i] = st.rho;
+        self.e[i] = st.e;
+        self.p[i] = st.p;
+        self.c[i] = st.c;
+        self.cl[i] = st.cl;
+        self.h[i] = st.h;
+        let put = |v: &mut Vec<f64>, x: Option<f64>| {
+            if let Some(x) = x {
+                v[i] = x;
+            }
+        };
+        if let Some(s) = st.s {
+            self.s[i] = s;
+        }
+        put(&mut self.eps_p, st.eps_p);
+        put(&mut self.damage, st.damage);
+        put(&mut self.temp, st.temp);
+    }
+}

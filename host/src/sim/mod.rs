@@ -17,6 +17,7 @@ use std::any::Any;
 pub use crate::sim_error::SimError;
 
 mod edit;
+pub use edit::HeldState;
 
 /// The step function for dimension `D` (looked up once per run).
 fn select<const D: usize>(scheme: Scheme, effects: EffectSet) -> Option<StepFn<D, Rayon>> {
@@ -81,7 +82,9 @@ pub fn default_capacity(dim: usize, kernel: Kernel, h_factor: f64) -> usize {
     }
 }
 
-/// A running simulation in dimension `D`.
+/// A running simulation in dimension `D`. Cloning it saves the whole state (the moving
+/// window restarts its trials from a clone).
+#[derive(Clone)]
 pub struct Sim<const D: usize> {
     /// Particle ids.
     pub ids: Vec<u32>,

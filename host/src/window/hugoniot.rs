@@ -1,0 +1,488 @@
+//! The shock Hugoniot of a porous sample from a moving window (seed 004 §3.1 steps 1–6,
+//! §4): for each particle velocity u_p, the shock speed u_s at which the front stands
+//! still in the window, found by bisection on the mean slope of
+//! ω = (N − N0)/(ν N0).
+//!
+//! 1. Stage 1: the window starts in the frame where the exit regions are at rest
+//!    (u_out = 0, u_in = −u_p: a piston seen from the piston), so the compaction front runs
+//!    into the window; it stops when ω = 1, with ν chosen so that this happens when the
+//!    front has crossed `target` of the window (ν = target (ρ1/ρ0 − 1), ρ1/ρ0 = u_s/(u_s − u_p)
+//!    from mass balance at the middle of the bracket). The state is saved.
+//! 2. Bisection 1: each trial restarts from the saved state in the frame of the trial u_s
+//!    (a Galilean shift of every velocity) and runs until `samples` feed lengths have
+//!    entered; the least-squares slope of ω(t) decides the side (positive: the front moves
+//!    towards the entry, u_s too small). The bracket's ends must give opposite signs.
+//! 3. Settling: from the saved state at the found u_s until half the window length has
+//!    entered; the state is saved again.
+//! 4. Bisection 2 around the found value (±max(8 tol, 2 %), widened if needed).
+//! 5. Production: at the final u_s for `average` feed lengths, averaging `profiles`
+//!    instantaneous 1D profiles (fig 9).
+
+use super::{Profile, Window};
+use crate::monitor::slope;
+use crate::scene::{build_particles, InitialParticles, Scene, WindowGeometry};
+use crate::sim::Sim;
+use std::time::Instant;
+
+/// Controls of a Hugoniot computation.
+#[derive(Debug, Clone)]
+pub struct HugoniotOptions {
+    /// Particle velocities, m/s.
+    pub ups: Vec<f64>,
+    /// Initial bracket of u_s, m/s (default 0.85 and 2 times the full-compaction bound
+    /// m u_p/(m − 1)).
+    pub bracket: Option<(f64, f64)>,
+    /// Bisection stops when the bracket is narrower than this, m/s.
+    pub tolerance: f64,
+    /// Feed lengths entering during one trial (seed: n = 3).
+    pub samples: f64,
+    /// Fraction of the window the front has crossed when stage 1 ends.
+    pub target: f64,
+    /// Feed lengths over which the production profiles are averaged.
+    pub average: f64,
+    /// Instantaneous profiles averaged.
+    pub profiles: usize,
+    /// Most bisections (the first from stage 1, each later one after settling); they
+    /// stop when u_s changes by less than max(2 tolerance, 0.5 %).
+    pub max_rounds: usize,
+    /// Print one line per stage and trial on stderr.
+    pub verbose: bool,
+}
+
+impl Default for HugoniotOptions {
+    fn default() -> Self {
+        HugoniotOptions {
+            ups: vec![100.0],
+            bracket: None,
+            tolerance: 1.0,
+            samples: 3.0,
+            target: 0.5,
+            average: 4.5,
+            profiles: 75,
+            max_rounds: 4,
+            verbose: true,
+        }
+    }
+}
+
+/// One point of the Hugoniot.
+#[derive(Debug, Clone)]
+pub struct HugoniotPoint {
+    /// Particle velocity jump, m/s.
+    pub up: f64,
+    /// Shock speed found, m/s.
+    pub us: f64,
+    /// Final bracket width, m/s.
+    pub bracket: f64,
+    /// u_s after each bisection round, m/s.
+    pub rounds: Vec<f64>,
+    /// Mean −σ_xx behind the compaction front, Pa.
+    pub stress_behind: f64,
+    /// Mean −σ_xx between the front and the entry (the elastic precursor), Pa.
+    pub stress_precursor: f64,
+    /// Bulk density behind the front over the bulk density fed in.
+    pub compression: f64,
+    /// Front position at the end of the production run (window frame), m.
+    pub front: f64,
+    /// Slope of ω during the production run, 1/s.
+    pub omega_slope: f64,
+    /// Trials run (both bisections).
+    pub trials: usize,
+    /// Steps in all stages.
+    pub steps: u64,
+    /// Wall time for the point, s.
+    pub wall_s: f64,
+    /// The averaged profiles of the production run.
+    pub profile: Profile,
+}
+
+/// The seed's fit of the porous-copper Hugoniot (seed 004 §4): linear up to 130 m/s,
+/// quadratic above.
+pub fn seed_fit(up: f64) -> f64 {
+    if up <= 130.0 {
+        226.8 + 1.886 * up
+    } else {
+        14.58 + 3.573 * up - 0.0003967 * up * up
+    }
+}
+
+/// Computes the points for `opts.ups` (a window scene, validated).
+pub fn hugoniot(scene: &Scene, opts: &HugoniotOptions) -> Result<Vec<HugoniotPoint>, String> {
+    let w = scene
+        .window
+        .as_ref()
+        .ok_or("the scene has no [window] section")?;
+    let geo = w.geometry(scene).map_err(|e| e.0)?;
+    let parts = build_particles(scene).map_err(|e| e.0)?;
+    let mut out = Vec::new();
+    for &up in &opts.ups {
+        let p = match scene.dim {
+            1 => point::<1>(scene, geo, &parts, up, opts),
+            2 => point::<2>(scene, geo, &parts, up, opts),
+            _ => point::<3>(scene, geo, &parts, up, opts),
+        }?;
+        out.push(p);
+    }
+    Ok(out)
+}
+
+struct Run<'a, const D: usize> {
+    scene: &'a Scene,
+    up: f64,
+    nu: f64,
+    opts: &'a HugoniotOptions,
+    trials: usize,
+    steps: u64,
+}
+
+type State<const D: usize> = (Sim<D>, Window<D>);
+
+impl<const D: usize> Run<'_, D> {
+    fn say(&self, msg: String) {
+        if self.opts.verbose {
+            eprintln!("[u_p {:.1} m/s] {msg}", self.up);
+        }
+    }
+
+    fn omega(&self, s: &State<D>) -> f64 {
+        s.1.excess(&s.0) / self.nu
+    }
+
+    /// Advances `s` by `duration` at its current frame; `each` sees the state after every
+    /// step.
+    fn advance(
+        &mut self,
+        s: &mut State<D>,
+        duration: f64,
+        mut each: impl FnMut(&State<D>) -> bool,
+    ) -> Result<(), String> {
+        let t_end = s.0.t + duration;
+        while s.0.t < t_end {
+            let dt = s.0.checked_dt(self.scene.cfl).map_err(|e| e.to_string())?;
+            s.1.step(&mut s.0, dt).map_err(|e| e.to_string())?;
+            self.steps += 1;
+            if !each(s) {
+                break;
+            }
+        }
+        Ok(())
+    }
+
+    /// The mean slope of ω over one trial at `us`, from `saved`.
+    fn trial(&mut self, saved: &State<D>, us: f64) -> Result<f64, String> {
+        let mut s = saved.clone();
+        s.1.set_entry_velocity(&mut s.0, -us);
+        let duration = self.opts.samples * s.1.geo.feed / us;
+        let mut pts = Vec::new();
+        let nu = self.nu;
+        self.advance(&mut s, duration, |s| {
+            pts.push((s.0.t, s.1.excess(&s.0) / nu));
+            true
+        })?;
+        self.trials += 1;
+        Ok(slope(&pts))
+    }
+
+    /// Bisection on the sign of the ω slope over [lo, hi]. With `widen`, an end that gives
+    /// the wrong sign moves outwards (by the bracket width, doubling, at most 4 times).
+    fn bisect(
+        &mut self,
+        saved: &State<D>,
+        stage: &str,
+        (mut lo, mut hi): (f64, f64),
+        widen: bool,
+    ) -> Result<(f64, f64), String> {
+        let mut s_lo = self.trial(saved, lo)?;
+        let mut s_hi = self.trial(saved, hi)?;
+        let mut step = hi - lo;
+        for _ in 0..if widen { 4 } else { 0 } {
+            if s_lo > 0.0 && s_hi < 0.0 {
+                break;
+            }
+            if s_lo <= 0.0 {
+                (hi, s_hi) = (lo, s_lo);
+                lo = (lo - step).max(self.up + 1.0);
+                s_lo = self.trial(saved, lo)?;
+            } else {
+                (lo, s_lo) = (hi, s_hi);
+                hi += step;
+                s_hi = self.trial(saved, hi)?;
+            }
+            step *= 2.0;
+        }
+        self.say(format!(
+            "{stage}: bracket ends u_s {lo:.1} -> dω/dt {s_lo:+.3e} 1/s, {hi:.1} -> {s_hi:+.3e} 1/s"
+        ));
+        if !(s_lo > 0.0 && s_hi < 0.0) {
+            return Err(format!(
+                "u_p {} m/s, {stage}: the bracket u_s in [{lo:.1}, {hi:.1}] m/s does not hold the root (dω/dt {s_lo:+.3e} and {s_hi:+.3e} 1/s; the low end must give a positive slope, the high end a negative one): widen it with --bracket",
+                self.up
+            ));
+        }
+        while hi - lo > self.opts.tolerance {
+            let mid = 0.5 * (lo + hi);
+            let sl = self.trial(saved, mid)?;
+            if sl > 0.0 {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+            self.say(format!(
+                "{stage} trial {}: u_s {mid:.2} -> dω/dt {sl:+.3e} 1/s; bracket [{lo:.2}, {hi:.2}]",
+                self.trials
+            ));
+        }
+        Ok((lo, hi))
+    }
+}
+
+fn point<const D: usize>(
+    scene: &Scene,
+    geo: WindowGeometry,
+    parts: &InitialParticles,
+    up: f64,
+    opts: &HugoniotOptions,
+) -> Result<HugoniotPoint, String> {
+    let t0 = Instant::now();
+    let m = parts.porosity.first().copied().unwrap_or(1.0);
+    let (lo, hi) = match opts.bracket {
+        Some(b) => b,
+        None if m > 1.0 => {
+            let bound = m * up / (m - 1.0);
+            (0.85 * bound, 2.0 * bound)
+        }
+        None => return Err("a sample without pores needs --bracket".into()),
+    };
+    let us_est = 0.5 * (lo + hi);
+    let mut sc = scene.clone();
+    if let Some(w) = sc.window.as_mut() {
+        w.up = up;
+        w.us = up.max(1e-9);
+    }
+    let mut sim = Sim::<D>::new(&sc, parts).map_err(|e| e.to_string())?;
+    let win = Window::new(&sc, geo, parts, &mut sim);
+    let mut run = Run {
+        scene,
+        up,
+        nu: opts.target * (us_est / (us_est - up) - 1.0),
+        opts,
+        trials: 0,
+        steps: 0,
+    };
+    // stage 1: the front runs into the window until ω = 1
+    let len = geo.x_r - geo.x_l;
+    let cap = 4.0 * opts.target * len / (0.5 * lo).max(1e-9);
+    let mut s: State<D> = (sim, win);
+    let nu = run.nu;
+    run.advance(&mut s, cap, |s| s.1.excess(&s.0) / nu < 1.0)?;
+    if run.omega(&s) < 1.0 {
+        return Err(format!(
+            "u_p {up} m/s, stage 1: ω reached only {:.3} in {cap:.3e} s (the front did not enter the window)",
+            run.omega(&s)
+        ));
+    }
+    run.say(format!(
+        "stage 1: ω = 1 at t = {:.3e} s, front at {:.1} um",
+        s.0.t,
+        s.1.front(&s.0) * 1e6
+    ));
+    let (mut a, mut b) = run.bisect(&s, "bisection 1", (lo, hi), false)?;
+    let mut us = 0.5 * (a + b);
+    let mut rounds = vec![us];
+    // steps 5-6, repeated until the speed settles: run at the found speed while half the
+    // window length enters (the relaxation zone keeps densifying after stage 1, which
+    // biases the first bisection), then bisect again around it
+    for round in 2..=opts.max_rounds {
+        s.1.set_entry_velocity(&mut s.0, -us);
+        run.advance(&mut s, 0.5 * len / us, |_| true)?;
+        run.say(format!(
+            "settled at u_s {us:.2}: t = {:.3e} s, ω = {:.3}, front at {:.1} um",
+            s.0.t,
+            run.omega(&s),
+            s.1.front(&s.0) * 1e6
+        ));
+        let w = (4.0 * opts.tolerance).max(0.03 * us);
+        (a, b) = run.bisect(&s, &format!("bisection {round}"), (us - w, us + w), true)?;
+        let new = 0.5 * (a + b);
+        let change = new - us;
+        us = new;
+        rounds.push(us);
+        if change.abs() <= (2.0 * opts.tolerance).max(0.005 * us) {
+            break;
+        }
+    }
+    // production: averaged profiles at the final speed
+    s.1.set_entry_velocity(&mut s.0, -us);
+    let duration = opts.average * geo.feed / us;
+    let every = (duration / opts.profiles.max(1) as f64).max(0.0);
+    let mut profile = Profile::new(&geo, geo.dx);
+    let mut pts = Vec::new();
+    let mut next = s.0.t + every;
+    run.advance(&mut s, duration, |s| {
+        pts.push((s.0.t, s.1.excess(&s.0) / nu));
+        if s.0.t >= next {
+            profile.add(&s.0);
+            next += every;
+        }
+        true
+    })?;
+    let u_in = -us;
+    let front = profile.front(u_in + 0.5 * up);
+    let margin = 2.0 * geo.feed;
+    let behind_lo = geo.x_l + geo.d_out1 + geo.feed;
+    let stress_behind = profile.mean(behind_lo, front - margin, |b| b.stress);
+    let stress_precursor = profile.mean(front + margin, geo.x_r - geo.d_in - geo.dx, |b| b.stress);
+    let rho_behind = profile.mean(behind_lo, front - margin, |b| b.rho_bulk);
+    let rho_ahead = profile.mean(front + margin, geo.x_r - geo.d_in - geo.dx, |b| b.rho_bulk);
+    let point = HugoniotPoint {
+        up,
+        us,
+        bracket: b - a,
+        rounds,
+        stress_behind,
+        stress_precursor,
+        compression: rho_behind / rho_ahead,
+        front,
+        omega_slope: slope(&pts),
+        trials: run.trials,
+        steps: run.steps,
+        wall_s: t0.elapsed().as_secs_f64(),
+        profile,
+    };
+    run.say(format!(
+        "u_s = {us:.2} m/s (fit {:.1}), −σ_xx behind {:.3} GPa, precursor {:.3} GPa, {} trials, {:.0} s",
+        seed_fit(up),
+        stress_behind * 1e-9,
+        stress_precursor * 1e-9,
+        point.trials,
+        point.wall_s
+    ));
+    Ok(point)
+}
+
+/// `hugoniot.csv`: one row per point.
+pub fn to_csv(points: &[HugoniotPoint]) -> String {
+    let mut s = String::from(
+        "up,us,us_fit,us_rel_diff,bracket,us_rounds,stress_behind_pa,stress_precursor_pa,compression,mass_balance_compression,front_m,omega_slope,trials,steps,wall_s\n",
+    );
+    for p in points {
+        let fit = seed_fit(p.up);
+        s.push_str(&format!(
+            "{},{:.3},{:.3},{:.5},{:.3},{},{:.6e},{:.6e},{:.5},{:.5},{:.6e},{:.4e},{},{},{:.1}\n",
+            p.up,
+            p.us,
+            fit,
+            (p.us - fit) / fit,
+            p.bracket,
+            p.rounds
+                .iter()
+                .map(|u| format!("{u:.2}"))
+                .collect::<Vec<_>>()
+                .join(";"),
+            p.stress_behind,
+            p.stress_precursor,
+            p.compression,
+            p.us / (p.us - p.up),
+            p.front,
+            p.omega_slope,
+            p.trials,
+            p.steps,
+            p.wall_s
+        ));
+    }
+    s
+}
+
+/// Writes `hugoniot.csv`, `hugoniot.png`/`.svg` (u_s against u_p with the seed's fits) and,
+/// per point, `profile_up<UP>.csv` with `profile_up<UP>_stress.png` and
+/// `profile_up<UP>_density.png` (fig 9) into `dir`.
+pub fn write_outputs(dir: &std::path::Path, points: &[HugoniotPoint]) -> Result<(), String> {
+    use crate::output::write_atomic;
+    use crate::plot::xy::{Series, SeriesStyle, XyPlot};
+    let io = |e: std::io::Error| format!("{}: {e}", dir.display());
+    std::fs::create_dir_all(dir).map_err(io)?;
+    for p in points {
+        let stem = format!("profile_up{}", p.up);
+        write_atomic(
+            dir.join(format!("{stem}.csv")),
+            p.profile.to_csv().as_bytes(),
+        )
+        .map_err(io)?;
+        let bins = p.profile.bins();
+        let line = |name: &str, f: &dyn Fn(&super::profile::Bin) -> f64| Series {
+            name: name.into(),
+            points: bins.iter().map(|b| (b.x * 1e6, f(b))).collect(),
+            style: SeriesStyle::Line,
+        };
+        let title = format!(
+            "u_p = {} m/s, u_s = {:.1} m/s: averaged over {} profiles",
+            p.up, p.us, p.profile.instants
+        );
+        let stress = XyPlot {
+            title: title.clone(),
+            x_label: "x in the window, um".into(),
+            y_label: "-sigma_xx, GPa".into(),
+            series: vec![line("-sigma_xx (mean over particles)", &|b| {
+                b.stress * 1e-9
+            })],
+            ..Default::default()
+        };
+        let density = XyPlot {
+            title,
+            x_label: "x in the window, um".into(),
+            y_label: "density, kg/m3".into(),
+            series: vec![
+                line("mean particle density", &|b| b.rho),
+                line("bulk density (pores included)", &|b| b.rho_bulk),
+            ],
+            ..Default::default()
+        };
+        for ext in ["png", "svg"] {
+            stress
+                .save(&dir.join(format!("{stem}_stress.{ext}")))
+                .map_err(|e| e.to_string())?;
+            density
+                .save(&dir.join(format!("{stem}_density.{ext}")))
+                .map_err(|e| e.to_string())?;
+        }
+    }
+    let curve = |a: f64, b: f64| -> Vec<(f64, f64)> {
+        (0..=40)
+            .map(|k| a + (b - a) * k as f64 / 40.0)
+            .map(|u| (u, seed_fit(u)))
+            .collect()
+    };
+    let top = points.iter().map(|p| p.up).fold(200.0, f64::max);
+    let plot = XyPlot {
+        title: "Shock Hugoniot of porous copper (m = 1.35)".into(),
+        x_label: "u_p, m/s".into(),
+        y_label: "u_s, m/s".into(),
+        series: vec![
+            Series {
+                name: "gsph moving window".into(),
+                points: points.iter().map(|p| (p.up, p.us)).collect(),
+                style: SeriesStyle::Markers,
+            },
+            Series {
+                name: "seed 004 fit, 226.8 + 1.886 u_p".into(),
+                points: curve(
+                    0.0_f64.min(points.iter().map(|p| p.up).fold(40.0, f64::min)),
+                    130.0,
+                ),
+                style: SeriesStyle::Dashed,
+            },
+            Series {
+                name: "seed 004 fit, 14.58 + 3.573 u_p - 0.0003967 u_p^2".into(),
+                points: curve(130.0, top),
+                style: SeriesStyle::Dashed,
+            },
+        ],
+        ..Default::default()
+    };
+    for ext in ["png", "svg"] {
+        plot.save(&dir.join(format!("hugoniot.{ext}")))
+            .map_err(|e| e.to_string())?;
+    }
+    write_atomic(dir.join("hugoniot.csv"), to_csv(points).as_bytes()).map_err(io)?;
+    Ok(())
+}
