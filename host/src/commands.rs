@@ -159,17 +159,22 @@ pub fn run_hugoniot(
     use crate::window::hugoniot::{hugoniot, seed_fit, write_outputs};
     let points = hugoniot(scene, opts)?;
     write_outputs(out, &points)?;
-    println!("   u_p     u_s   fit   diff   -sxx behind  precursor  wall");
+    println!(
+        "   u_p     u_s    fit    diff  -sxx behind  precursor  u_prec  mass/RH  mom/RH   wall"
+    );
     for p in &points {
         let fit = seed_fit(p.up);
         println!(
-            "{:6.1} {:7.1} {:5.1} {:+5.1}%  {:8.3} GPa {:6.3} GPa {:5.0} s",
+            "{:6.1} {:7.1} {:6.1} {:+6.1}%  {:7.3} GPa  {:5.3} GPa {:5.1}   {:6.3}   {:6.3} {:5.0} s",
             p.up,
             p.us,
             fit,
             100.0 * (p.us - fit) / fit,
             p.stress_behind * 1e-9,
             p.stress_precursor * 1e-9,
+            p.precursor_velocity,
+            p.mass_jump_ratio(),
+            p.momentum_jump_ratio(),
             p.wall_s
         );
     }

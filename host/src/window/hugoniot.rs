@@ -80,8 +80,13 @@ pub struct HugoniotPoint {
     pub stress_behind: f64,
     /// Mean −σ_xx between the front and the entry (the elastic precursor), Pa.
     pub stress_precursor: f64,
-    /// Bulk density behind the front over the bulk density fed in.
-    pub compression: f64,
+    /// Bulk density (pores included) behind the front and ahead of it, kg/m³.
+    pub rho_behind: f64,
+    /// Bulk density ahead of the front (in the precursor), kg/m³.
+    pub rho_ahead: f64,
+    /// Velocity of the material ahead of the front relative to the entry velocity, m/s
+    /// (what the elastic precursor adds; the entry region holds u_in).
+    pub precursor_velocity: f64,
     /// Front position at the end of the production run (window frame), m.
     pub front: f64,
     /// Slope of ω during the production run, 1/s.
@@ -94,6 +99,24 @@ pub struct HugoniotPoint {
     pub wall_s: f64,
     /// The averaged profiles of the production run.
     pub profile: Profile,
+}
+
+impl HugoniotPoint {
+    /// Measured compression over the one the mass jump condition requires of a steady
+    /// wave, ρ_b/ρ_a against (u_s − δ)/(u_s − u_p), with δ the precursor velocity (1 for a
+    /// steady wave).
+    pub fn mass_jump_ratio(&self) -> f64 {
+        let d = self.precursor_velocity;
+        (self.rho_behind / self.rho_ahead) / ((self.us - d) / (self.us - self.up))
+    }
+
+    /// Measured stress jump over the momentum jump condition ρ_a (u_s − δ)(u_p − δ)
+    /// (1 for a steady wave).
+    pub fn momentum_jump_ratio(&self) -> f64 {
+        let d = self.precursor_velocity;
+        (self.stress_behind - self.stress_precursor)
+            / (self.rho_ahead * (self.us - d) * (self.up - d))
+    }
 }
 
 /// The seed's fit of the porous-copper Hugoniot (seed 004 §4): linear up to 130 m/s,
@@ -332,8 +355,10 @@ fn point<const D: usize>(
     let behind_lo = geo.x_l + geo.d_out1 + geo.feed;
     let stress_behind = profile.mean(behind_lo, front - margin, |b| b.stress);
     let stress_precursor = profile.mean(front + margin, geo.x_r - geo.d_in - geo.dx, |b| b.stress);
+    let ahead_hi = geo.x_r - geo.d_in - geo.dx;
     let rho_behind = profile.mean(behind_lo, front - margin, |b| b.rho_bulk);
-    let rho_ahead = profile.mean(front + margin, geo.x_r - geo.d_in - geo.dx, |b| b.rho_bulk);
+    let rho_ahead = profile.mean(front + margin, ahead_hi, |b| b.rho_bulk);
+    let precursor_velocity = profile.mean(front + margin, ahead_hi, |b| b.vx) - u_in;
     let point = HugoniotPoint {
         up,
         us,
@@ -341,7 +366,9 @@ fn point<const D: usize>(
         rounds,
         stress_behind,
         stress_precursor,
-        compression: rho_behind / rho_ahead,
+        rho_behind,
+        rho_ahead,
+        precursor_velocity,
         front,
         omega_slope: slope(&pts),
         trials: run.trials,
@@ -363,12 +390,12 @@ fn point<const D: usize>(
 /// `hugoniot.csv`: one row per point.
 pub fn to_csv(points: &[HugoniotPoint]) -> String {
     let mut s = String::from(
-        "up,us,us_fit,us_rel_diff,bracket,us_rounds,stress_behind_pa,stress_precursor_pa,compression,mass_balance_compression,front_m,omega_slope,trials,steps,wall_s\n",
+        "up,us,us_fit,us_rel_diff,bracket,us_rounds,stress_behind_pa,stress_precursor_pa,precursor_velocity,rho_ahead,rho_behind,mass_jump_ratio,momentum_jump_ratio,front_m,omega_slope,trials,steps,wall_s\n",
     );
     for p in points {
         let fit = seed_fit(p.up);
         s.push_str(&format!(
-            "{},{:.3},{:.3},{:.5},{:.3},{},{:.6e},{:.6e},{:.5},{:.5},{:.6e},{:.4e},{},{},{:.1}\n",
+            "{},{:.3},{:.3},{:.5},{:.3},{},{:.6e},{:.6e},{:.3},{:.2},{:.2},{:.5},{:.5},{:.6e},{:.4e},{},{},{:.1}\n",
             p.up,
             p.us,
             fit,
@@ -381,8 +408,11 @@ pub fn to_csv(points: &[HugoniotPoint]) -> String {
                 .join(";"),
             p.stress_behind,
             p.stress_precursor,
-            p.compression,
-            p.us / (p.us - p.up),
+            p.precursor_velocity,
+            p.rho_ahead,
+            p.rho_behind,
+            p.mass_jump_ratio(),
+            p.momentum_jump_ratio(),
             p.front,
             p.omega_slope,
             p.trials,
