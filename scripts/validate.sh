@@ -64,7 +64,10 @@ echo "== 3D steel -> SiC impact (50,000 particles), every scheme"
 for s in av pm ts1 ts2 tkc; do
   $g run cases/steel_sic_impact_3d.toml --set scheme=$s --out "$o/impact_3d_$s" --quiet
 done
-echo "== seed 004 §4 (cross-check of the moving window): piston-driven compaction of porous copper, u_p = 100 m/s"
+echo "== seed 004 §3-4: Hugoniot of porous copper from the moving window (2 um spacing)"
+$g hugoniot cases/porous_cu_window.toml --up 50,75,100,125,150,200 --set resolution_scale=0.5 --out "$o/hugoniot_2um"
+echo "== seed 004 §4 (cross-check of the moving window): piston-driven compaction of porous copper, u_p = 100 m/s, 2 mm sample"
+$g run cases/porous_cu_piston.toml --set resolution_scale=0.5 --out "$o/porous_piston_2um" --quiet
 $g run cases/porous_cu_piston.toml --out "$o/porous_piston" --quiet
 $g plot series "$o/porous_piston" --columns front_position --y-label "front (m)"
 $g plot particles "$o/porous_piston" --field vx

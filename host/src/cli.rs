@@ -60,7 +60,7 @@ pub enum Command {
         /// Particle velocities u_p, m/s, comma-separated.
         #[arg(long, default_value = "50,75,100,125,150,200")]
         up: String,
-        /// Initial bracket of u_s, m/s, `LO,HI` (default 0.85 and 2 times m u_p/(m-1)).
+        /// Initial bracket of u_s, m/s, `LO,HI` (default from the full-compaction bound B = m u_p/(m-1): 0.85 B and max(2 B, B + 300)); widened if it misses the root.
         #[arg(long)]
         bracket: Option<String>,
         /// Bisection stops below this bracket width, m/s.

@@ -97,6 +97,12 @@ fn cases() -> Vec<Case> {
     let f = flyer;
     let riemann_b0 =
         case_text("riemann_al.toml").replacen("bulk_modulus = 73.0e9", "bulk_modulus = 0.0", 1);
+    let window = || case_text("porous_cu_window.toml");
+    let window_open = window().replacen(
+        "[periodic]\naxes = [1]\nlo = [0.0, 0.0]\nhi = [0.0, 2.0e-5]\n",
+        "",
+        1,
+    );
     let second_metal = flyer_with(
         "[[bodies]]",
         "[[materials]]\nname = \"metal\"\nrho0 = 1.0\neos = { type = \"linear\", c0 = 1.0 }\n\n[[bodies]]",
@@ -147,6 +153,14 @@ fn cases() -> Vec<Case> {
         case("unknown strength model", impact().replacen("\"jh1\"", "\"jh2\"", 1), "check", &[], &["materials[1].strength.type: unknown type `jh2`"]),
         case("back face with no particle on it", impact(), "run", &["--set", "monitor.back_face.position=0.5"], &["monitor.back_face: no particle of `sic` starts within one spacing of x[0] = 5e-1 m"]),
         case("monitor on an unknown material", impact(), "check", &["--set", "monitor.back_face.material=alumina"], &["monitor.back_face.material: unknown material `alumina`"]),
+        case("window not periodic across the flow", window_open, "check", &[], &["periodic.axes: a window must be periodic across the flow (axis 1 missing)"]),
+        case("window feed not whole spacings", window(), "check", &["--set", "window.feed=2.05e-5"], &["window.feed: must be a whole number of lattice spacings"]),
+        case("window sample driven", window(), "run", &["--set", "bodies.0.driven=true"], &["bodies[0]: a window's sample takes its velocity from the window"]),
+        case("window shock speed negative", window(), "check", &["--set", "window.us=-5"], &["window.us: must be positive and finite (got -5)"]),
+        case("window exit regions too wide", window(), "check", &["--set", "window.d_out1=5e-4"], &["window.d_out1: entry and exit regions plus one feed length must leave room"]),
+        case("hugoniot without a window", f(), "hugoniot", &[], &["no [window] section"]),
+        case("hugoniot bracket not LO,HI", window(), "hugoniot", &["--bracket", "500"], &["--bracket: `500` must be LO,HI with LO < HI"]),
+        case("hugoniot negative u_p", window(), "hugoniot", &["--up", "100,-5"], &["--up: `-5` is not a positive number"]),
     ]
 }
 

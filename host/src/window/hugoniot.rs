@@ -29,8 +29,9 @@ use std::time::Instant;
 pub struct HugoniotOptions {
     /// Particle velocities, m/s.
     pub ups: Vec<f64>,
-    /// Initial bracket of u_s, m/s (default 0.85 and 2 times the full-compaction bound
-    /// m u_p/(m − 1)).
+    /// Initial bracket of u_s, m/s (default 0.85 times the full-compaction bound
+    /// B = m u_p/(m − 1), and max(2 B, B + 300 m/s)); an end that gives the wrong sign moves
+    /// outwards.
     pub bracket: Option<(f64, f64)>,
     /// Bisection stops when the bracket is narrower than this, m/s.
     pub tolerance: f64,
@@ -272,7 +273,7 @@ fn point<const D: usize>(
         Some(b) => b,
         None if m > 1.0 => {
             let bound = m * up / (m - 1.0);
-            (0.85 * bound, 2.0 * bound)
+            (0.85 * bound, (2.0 * bound).max(bound + 300.0))
         }
         None => return Err("a sample without pores needs --bracket".into()),
     };
@@ -309,7 +310,7 @@ fn point<const D: usize>(
         s.0.t,
         s.1.front(&s.0) * 1e6
     ));
-    let (mut a, mut b) = run.bisect(&s, "bisection 1", (lo, hi), false)?;
+    let (mut a, mut b) = run.bisect(&s, "bisection 1", (lo, hi), true)?;
     let mut us = 0.5 * (a + b);
     let mut rounds = vec![us];
     // steps 5-6, repeated until the speed settles: run at the found speed while half the
@@ -387,27 +388,25 @@ fn point<const D: usize>(
     Ok(point)
 }
 
-/// `hugoniot.csv`: one row per point.
+/// `hugoniot.csv`: one row per point (DESIGN §6 contract: `up, us, sigma_behind,
+/// sigma_precursor, …`; velocities m/s, stresses −σ_xx in Pa, densities kg/m³).
 pub fn to_csv(points: &[HugoniotPoint]) -> String {
     let mut s = String::from(
-        "up,us,us_fit,us_rel_diff,bracket,us_rounds,stress_behind_pa,stress_precursor_pa,precursor_velocity,rho_ahead,rho_behind,mass_jump_ratio,momentum_jump_ratio,front_m,omega_slope,trials,steps,wall_s\n",
+        "up,us,sigma_behind,sigma_precursor,us_fit,us_rel_diff,bracket,us_rounds,precursor_velocity,rho_ahead,rho_behind,mass_jump_ratio,momentum_jump_ratio,front_m,omega_slope,trials,steps,wall_s\n",
     );
     for p in points {
         let fit = seed_fit(p.up);
+        let rounds: Vec<String> = p.rounds.iter().map(|u| format!("{u:.2}")).collect();
         s.push_str(&format!(
-            "{},{:.3},{:.3},{:.5},{:.3},{},{:.6e},{:.6e},{:.3},{:.2},{:.2},{:.5},{:.5},{:.6e},{:.4e},{},{},{:.1}\n",
+            "{},{:.3},{:.6e},{:.6e},{:.3},{:.5},{:.3},{},{:.3},{:.2},{:.2},{:.5},{:.5},{:.6e},{:.4e},{},{},{:.1}\n",
             p.up,
             p.us,
+            p.stress_behind,
+            p.stress_precursor,
             fit,
             (p.us - fit) / fit,
             p.bracket,
-            p.rounds
-                .iter()
-                .map(|u| format!("{u:.2}"))
-                .collect::<Vec<_>>()
-                .join(";"),
-            p.stress_behind,
-            p.stress_precursor,
+            rounds.join(";"),
             p.precursor_velocity,
             p.rho_ahead,
             p.rho_behind,
@@ -423,15 +422,14 @@ pub fn to_csv(points: &[HugoniotPoint]) -> String {
     s
 }
 
-/// Writes `hugoniot.csv`, `hugoniot.png`/`.svg` (u_s against u_p with the seed's fits) and,
-/// per point, `profile_up<UP>.csv` with `profile_up<UP>_stress.png` and
-/// `profile_up<UP>_density.png` (fig 9) into `dir`.
-pub fn write_outputs(dir: &std::path::Path, points: &[HugoniotPoint]) -> Result<(), String> {
+/// Writes the files of one point into `dir`: `profile_up<UP>.csv` with
+/// `profile_up<UP>_stress.png` and `profile_up<UP>_density.png` (fig 9), PNG and SVG.
+pub fn write_point(dir: &std::path::Path, p: &HugoniotPoint) -> Result<(), String> {
     use crate::output::write_atomic;
     use crate::plot::xy::{Series, SeriesStyle, XyPlot};
     let io = |e: std::io::Error| format!("{}: {e}", dir.display());
     std::fs::create_dir_all(dir).map_err(io)?;
-    for p in points {
+    {
         let stem = format!("profile_up{}", p.up);
         write_atomic(
             dir.join(format!("{stem}.csv")),
@@ -476,6 +474,16 @@ pub fn write_outputs(dir: &std::path::Path, points: &[HugoniotPoint]) -> Result<
                 .map_err(|e| e.to_string())?;
         }
     }
+    Ok(())
+}
+
+/// Writes `hugoniot.csv` and `hugoniot.png`/`.svg` (u_s against u_p with the seed's fits)
+/// into `dir`, after all points are done.
+pub fn write_outputs(dir: &std::path::Path, points: &[HugoniotPoint]) -> Result<(), String> {
+    use crate::output::write_atomic;
+    use crate::plot::xy::{Series, SeriesStyle, XyPlot};
+    let io = |e: std::io::Error| format!("{}: {e}", dir.display());
+    std::fs::create_dir_all(dir).map_err(io)?;
     let curve = |a: f64, b: f64| -> Vec<(f64, f64)> {
         (0..=40)
             .map(|k| a + (b - a) * k as f64 / 40.0)

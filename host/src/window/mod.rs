@@ -196,7 +196,7 @@ impl<const D: usize> Window<D> {
         }
         self.feed_x += self.u_in * dt;
         self.steps += 1;
-        if self.steps.is_multiple_of(self.every) {
+        if self.steps % self.every == 0 {
             self.exchange(sim);
         }
         Ok(())
