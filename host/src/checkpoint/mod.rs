@@ -24,6 +24,7 @@
 //! the older checkpoint needs.
 
 pub mod codec;
+pub mod setup;
 
 use crate::output::atomic::{commit_tmp, tmp_path};
 use crate::output::{read_frame, read_snapshot_times, write_atomic, Frame, SnapshotWriter};
