@@ -96,7 +96,7 @@ pub fn run_particles(
         _ => run_dim::<3>(scene, scene_name, &parts, opts, None),
     }?;
     match outcome {
-        Outcome::Finished(r) => Ok(r),
+        Outcome::Finished(r) => Ok(*r),
         // only a checkpoint policy stops a run early
         Outcome::Stopped { .. } => unreachable!("a run without checkpoints stopped"),
     }
@@ -106,7 +106,7 @@ pub fn run_particles(
 #[derive(Debug, Clone)]
 pub enum Outcome {
     /// It reached t_end (or max_steps) and wrote its outputs.
-    Finished(RunResult),
+    Finished(Box<RunResult>),
     /// It stopped after a checkpoint at this step (`Policy::stop_after_steps`), as if
     /// interrupted: no outputs but the checkpoint.
     Stopped {
@@ -510,5 +510,5 @@ fn run_dim<const D: usize>(
         let text = serde_json::to_string_pretty(&Value::Object(s.clone())).expect("json");
         write_atomic(dir.join("summary.json"), text.as_bytes())?;
     }
-    Ok(Outcome::Finished(RunResult { summary: s, table }))
+    Ok(Outcome::Finished(Box::new(RunResult { summary: s, table })))
 }

@@ -26,7 +26,7 @@ pub struct Enc {
 
 impl Enc {
     /// Appends `v`.
-    pub fn put<T: Codec + ?Sized>(&mut self, v: &T) {
+    pub fn put<T: Codec>(&mut self, v: &T) {
         v.put(self);
     }
     fn raw(&mut self, b: &[u8]) {
