@@ -8,7 +8,7 @@ macro_rules! out {
     }};
 }
 
-use crate::driver::{run, RunError, RunOptions};
+use crate::driver::{run_checkpointed, CheckpointOptions, Outcome, RunError, RunOptions};
 use crate::reference::Reference;
 use crate::scene::{self, build_particles};
 use crate::sim::{Sim, SimError};
@@ -98,8 +98,9 @@ pub enum Command {
     },
     /// Run a scene.
     Run {
-        /// Scene file.
-        scene: PathBuf,
+        /// Scene file (not with --restart).
+        #[arg(required_unless_present = "restart")]
+        scene: Option<PathBuf>,
         /// Output directory (default `out/<scene name>`).
         #[arg(long)]
         out: Option<PathBuf>,
@@ -112,6 +113,18 @@ pub enum Command {
         /// No progress bar.
         #[arg(long)]
         quiet: bool,
+        /// Write OUT/checkpoint.bin every K steps (docs/checkpoint.md).
+        #[arg(long, value_name = "K")]
+        checkpoint_every_steps: Option<u64>,
+        /// Write OUT/checkpoint.bin every S seconds of wall time.
+        #[arg(long, value_name = "S")]
+        checkpoint_every_seconds: Option<f64>,
+        /// Continue the run checkpointed in DIR to t_end; its outputs go to DIR.
+        #[arg(long, value_name = "DIR", conflicts_with_all = ["scene", "out", "set"])]
+        restart: Option<PathBuf>,
+        /// Write a checkpoint after step N and stop, as if interrupted (tests).
+        #[arg(long, value_name = "N", hide = true)]
+        stop_after_steps: Option<u64>,
     },
 }
 
@@ -417,30 +430,69 @@ fn execute(cmd: Command) -> Result<(), String> {
             Ok(())
         }
         Command::Run {
-            scene: path,
+            scene,
             out,
             set,
             threads,
             quiet,
+            checkpoint_every_steps,
+            checkpoint_every_seconds,
+            restart,
+            stop_after_steps,
         } => {
-            if let Some(dir) = &out {
-                clear_results(dir)?;
-            }
-            let sc = scene::load(&path, &set).map_err(|e| e.to_string())?;
-            let name = scene_name(&sc, &path);
-            let out = out.unwrap_or_else(|| PathBuf::from("out").join(&name));
-            clear_results(&out)?;
+            use crate::checkpoint::{setup, Policy};
+            let flags = Policy {
+                every_steps: checkpoint_every_steps,
+                every_seconds: checkpoint_every_seconds,
+                stop_after_steps,
+            };
+            setup::check_flags(&flags)?;
+            let (sc, out, ckpt) = match (restart, scene) {
+                (Some(dir), _) => setup::restart(&dir, flags)?,
+                (None, Some(path)) => {
+                    if let Some(dir) = &out {
+                        clear_results(dir)?;
+                    }
+                    let (sc, source) = setup::load(&path, &set)?;
+                    let out = out.unwrap_or_else(|| PathBuf::from("out").join(&source.name));
+                    clear_results(&out)?;
+                    let policy = setup::merge(flags, &sc);
+                    (
+                        sc,
+                        out,
+                        CheckpointOptions {
+                            policy,
+                            source,
+                            resume: None,
+                        },
+                    )
+                }
+                (None, None) => return Err("a scene file or --restart DIR is needed".into()),
+            };
+            let name = ckpt.source.name.clone();
+            let origin = ckpt.source.origin.clone();
             let pool = pool(threads)?;
             let opts = RunOptions {
                 out: Some(out.clone()),
                 progress: !quiet,
             };
-            let res = pool
-                .install(|| run(&sc, &name, &opts))
+            let outcome = pool
+                .install(|| run_checkpointed(&sc, &name, &opts, &ckpt))
                 .map_err(|e| match e {
                     RunError::Output(e) => format!("{}: cannot write output: {e}", out.display()),
-                    e => format!("{}: {e}", path.display()),
+                    e @ RunError::Checkpoint(_) => e.to_string(),
+                    e => format!("{origin}: {e}"),
                 })?;
+            let res = match outcome {
+                Outcome::Finished(res) => res,
+                Outcome::Stopped { step } => {
+                    out!(
+                        "{name}: stopped after step {step}; checkpoint in {}",
+                        out.display()
+                    );
+                    return Ok(());
+                }
+            };
             let s = &res.summary;
             let g = |k: &str| s.get(k).cloned().unwrap_or_default();
             out!(

@@ -1,5 +1,6 @@
 //! The run loop: time-step control, output schedule, diagnostics, progress, summary.
 
+use crate::checkpoint::{Checkpoint, CheckpointError, Control, DriverState, Policy, SceneSource};
 use crate::monitor::Monitor;
 use crate::output::{write_atomic, write_csv, Frame, OutputError, SnapshotWriter};
 use crate::reference::Reference;
@@ -20,6 +21,8 @@ pub enum RunError {
     Sim(SimError),
     /// Writing output failed.
     Output(String),
+    /// A checkpoint cannot be used.
+    Checkpoint(String),
 }
 
 impl std::fmt::Display for RunError {
@@ -28,6 +31,7 @@ impl std::fmt::Display for RunError {
             RunError::Scene(e) => write!(f, "{e}"),
             RunError::Sim(e) => write!(f, "{e}"),
             RunError::Output(e) => write!(f, "output: {e}"),
+            RunError::Checkpoint(e) => write!(f, "checkpoint: {e}"),
         }
     }
 }
@@ -86,10 +90,79 @@ pub fn run_particles(
     parts: InitialParticles,
     opts: &RunOptions,
 ) -> Result<RunResult, RunError> {
+    let outcome = match scene.dim {
+        1 => run_dim::<1>(scene, scene_name, &parts, opts, None),
+        2 => run_dim::<2>(scene, scene_name, &parts, opts, None),
+        _ => run_dim::<3>(scene, scene_name, &parts, opts, None),
+    }?;
+    match outcome {
+        Outcome::Finished(r) => Ok(*r),
+        // only a checkpoint policy stops a run early
+        Outcome::Stopped { .. } => unreachable!("a run without checkpoints stopped"),
+    }
+}
+
+/// How a checkpointed run ended.
+#[derive(Debug, Clone)]
+pub enum Outcome {
+    /// It reached t_end (or max_steps) and wrote its outputs.
+    Finished(Box<RunResult>),
+    /// It stopped after a checkpoint at this step (`Policy::stop_after_steps`), as if
+    /// interrupted: no outputs but the checkpoint.
+    Stopped {
+        /// The last step taken.
+        step: u64,
+    },
+}
+
+/// What a checkpointed run is given besides [`RunOptions`].
+#[derive(Debug, Clone, Default)]
+pub struct CheckpointOptions {
+    /// When to write checkpoints.
+    pub policy: Policy,
+    /// The scene as given (stored in each checkpoint).
+    pub source: SceneSource,
+    /// The checkpoint to continue from (its directory is the output directory).
+    pub resume: Option<Checkpoint>,
+}
+
+fn ckpt_err(e: CheckpointError) -> RunError {
+    RunError::Checkpoint(e.to_string())
+}
+
+/// Runs a validated scene writing checkpoints into `opts.out` on the schedule of
+/// `ckpt.policy`, or continues from `ckpt.resume`. Moving-window scenes are refused.
+pub fn run_checkpointed(
+    scene: &Scene,
+    scene_name: &str,
+    opts: &RunOptions,
+    ckpt: &CheckpointOptions,
+) -> Result<Outcome, RunError> {
+    if scene.window.is_some() && (ckpt.policy.active() || ckpt.resume.is_some()) {
+        return Err(RunError::Checkpoint(
+            "checkpoints are not supported for moving-window scenes".into(),
+        ));
+    }
+    if opts.out.is_none() && ckpt.policy.active() {
+        return Err(RunError::Checkpoint(
+            "checkpoints need an output directory".into(),
+        ));
+    }
+    if let Some(ck) = &ckpt.resume {
+        if ck.dim != scene.dim {
+            return Err(RunError::Checkpoint(format!(
+                "{}: {}D checkpoint of a {}D scene",
+                ck.dir.display(),
+                ck.dim,
+                scene.dim
+            )));
+        }
+    }
+    let parts = build_particles(scene)?;
     match scene.dim {
-        1 => run_dim::<1>(scene, scene_name, &parts, opts),
-        2 => run_dim::<2>(scene, scene_name, &parts, opts),
-        _ => run_dim::<3>(scene, scene_name, &parts, opts),
+        1 => run_dim::<1>(scene, scene_name, &parts, opts, Some(ckpt)),
+        2 => run_dim::<2>(scene, scene_name, &parts, opts, Some(ckpt)),
+        _ => run_dim::<3>(scene, scene_name, &parts, opts, Some(ckpt)),
     }
 }
 
@@ -147,12 +220,60 @@ pub fn clear_outputs(dir: &Path) -> std::io::Result<()> {
     Ok(())
 }
 
+/// The series so far and the quantities sampled with it.
+struct Recorder<'a> {
+    series: String,
+    kinetic_max: f64,
+    monitor: Monitor,
+    reference: &'a Option<Reference>,
+    extra: &'a [&'static str],
+}
+
+impl Recorder<'_> {
+    fn push<const D: usize>(&mut self, sim: &Sim<D>, window: &Option<Window<D>>, dt: f64) {
+        let series = &mut self.series;
+        let (k, i) = sim.energy();
+        self.kinetic_max = self.kinetic_max.max(k);
+        let p = sim.momentum();
+        series.push_str(&format!(
+            "{:e},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e}",
+            sim.t,
+            sim.step,
+            dt,
+            k,
+            i,
+            k + i,
+            p[0],
+            p[1],
+            p[2]
+        ));
+        if !self.extra.is_empty() || self.monitor.samples() {
+            let table = sim.table();
+            let mut values = self
+                .reference
+                .as_ref()
+                .map_or_else(Vec::new, |r| r.series_values(&table, sim.t));
+            values.extend(self.monitor.sample(&table, sim.t));
+            for v in values {
+                series.push_str(&format!(",{v:e}"));
+            }
+        }
+        if let Some(w) = window {
+            for v in w.series_values(sim) {
+                series.push_str(&format!(",{v:e}"));
+            }
+        }
+        series.push('\n');
+    }
+}
+
 fn run_dim<const D: usize>(
     scene: &Scene,
     scene_name: &str,
     parts: &InitialParticles,
     opts: &RunOptions,
-) -> Result<RunResult, RunError> {
+    ckpt: Option<&CheckpointOptions>,
+) -> Result<Outcome, RunError> {
     let t_total = Instant::now();
     let reference = Reference::from_scene(scene, &parts.x, &parts.spacing)?;
     let mut sim = Sim::<D>::new(scene, parts)?;
@@ -161,6 +282,17 @@ fn run_dim<const D: usize>(
         Some(w) => Some(Window::new(scene, w.geometry(scene)?, parts, &mut sim)),
         None => None,
     };
+    let resume = ckpt.and_then(|c| c.resume.as_ref());
+    let mut resumed = DriverState::default();
+    let mut frames = Vec::new();
+    if let Some(ck) = resume {
+        ck.restore_sim(&mut sim).map_err(ckpt_err)?;
+        monitor
+            .restore_accumulated(&ck.driver.monitor)
+            .map_err(|e| RunError::Checkpoint(format!("{}: {e}", ck.dir.display())))?;
+        frames = ck.frames().map_err(ckpt_err)?;
+        resumed = ck.driver.clone();
+    }
     if let Some(dir) = &opts.out {
         clear_outputs(dir)?;
     }
@@ -168,9 +300,18 @@ fn run_dim<const D: usize>(
         Some(dir) => Some(SnapshotWriter::create(dir, D)?),
         None => None,
     };
-    let (k0, i0) = sim.energy();
-    let energy0 = k0 + i0;
-    let mom0 = sim.momentum();
+    let mut control = match (ckpt, &opts.out) {
+        (Some(c), Some(dir)) if c.policy.active() => {
+            Some(Control::new(c.policy, c.source.clone(), dir))
+        }
+        _ => None,
+    };
+    let (energy0, mom0) = if resume.is_some() {
+        (resumed.energy0, resumed.mom0)
+    } else {
+        let (k0, i0) = sim.energy();
+        (k0 + i0, sim.momentum())
+    };
     let n_out = scene.output.snapshots;
     let n_series = scene.output.series.unwrap_or(200);
     let mut series =
@@ -190,49 +331,38 @@ fn run_dim<const D: usize>(
         series.push_str(name);
     }
     series.push('\n');
-    let mut kinetic_max: f64 = 0.0;
-    let mut push_series = |sim: &Sim<D>, window: &Option<Window<D>>, dt: f64| {
-        let (k, i) = sim.energy();
-        kinetic_max = kinetic_max.max(k);
-        let p = sim.momentum();
-        series.push_str(&format!(
-            "{:e},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e}",
-            sim.t,
-            sim.step,
-            dt,
-            k,
-            i,
-            k + i,
-            p[0],
-            p[1],
-            p[2]
-        ));
-        if !extra.is_empty() || monitor.samples() {
-            let table = sim.table();
-            let mut values = reference
-                .as_ref()
-                .map_or_else(Vec::new, |r| r.series_values(&table, sim.t));
-            values.extend(monitor.sample(&table, sim.t));
-            for v in values {
-                series.push_str(&format!(",{v:e}"));
-            }
-        }
-        if let Some(w) = window {
-            for v in w.series_values(sim) {
-                series.push_str(&format!(",{v:e}"));
-            }
-        }
-        series.push('\n');
+    let mut rec = Recorder {
+        series,
+        kinetic_max: 0.0,
+        monitor,
+        reference: &reference,
+        extra,
     };
-    push_series(&sim, &window, 0.0);
-    if let Some(w) = writer.as_mut() {
-        w.append(&Frame {
-            time: 0.0,
-            step: 0,
-            dim: D,
-            table: sim.table(),
-        })?;
+    let mut next_out = 1usize;
+    let mut next_series = 1usize;
+    if resume.is_some() {
+        rec.series = resumed.series;
+        rec.kinetic_max = resumed.kinetic_max;
+        next_out = resumed.next_out as usize;
+        next_series = resumed.next_series as usize;
+    } else {
+        rec.push(&sim, &window, 0.0);
+        if writer.is_some() {
+            frames.push(Frame {
+                time: 0.0,
+                step: 0,
+                dim: D,
+                table: sim.table(),
+            });
+        }
     }
+    let mut n_frames = frames.len() as u64;
+    if let Some(w) = writer.as_mut() {
+        for f in &frames {
+            w.append(f)?;
+        }
+    }
+    drop(frames);
     let bar = (opts.progress && std::io::stderr().is_terminal()).then(|| {
         let b = indicatif::ProgressBar::new(1000);
         b.set_style(
@@ -245,8 +375,6 @@ fn run_dim<const D: usize>(
     });
     let t_end = scene.t_end;
     let max_steps = scene.max_steps.unwrap_or(u64::MAX);
-    let mut next_out = 1usize;
-    let mut next_series = 1usize;
     let t_loop = Instant::now();
     while sim.t < t_end * (1.0 - 1e-12) {
         if sim.step >= max_steps {
@@ -262,7 +390,7 @@ fn run_dim<const D: usize>(
             None => sim.step(dt)?,
         }
         if sim.t >= t_end * next_series as f64 / n_series as f64 {
-            push_series(&sim, &window, dt);
+            rec.push(&sim, &window, dt);
             while sim.t >= t_end * next_series as f64 / n_series as f64 {
                 next_series += 1;
             }
@@ -275,12 +403,36 @@ fn run_dim<const D: usize>(
                     dim: D,
                     table: sim.table(),
                 })?;
+                n_frames += 1;
             }
             next_out += 1;
         }
         if let Some(b) = &bar {
             b.set_position((1000.0 * sim.t / t_end) as u64);
             b.set_message(format!("{:.3e}", sim.t));
+        }
+        if let Some(c) = control.as_mut() {
+            let (write, stop) = c.due(sim.step);
+            if write {
+                let state = DriverState {
+                    next_out: next_out as u64,
+                    next_series: next_series as u64,
+                    kinetic_max: rec.kinetic_max,
+                    energy0,
+                    mom0,
+                    frames: n_frames,
+                    series: rec.series.clone(),
+                    monitor: rec.monitor.accumulated(),
+                };
+                c.write(&sim, &state, writer.as_ref())
+                    .map_err(|e| RunError::Output(format!("checkpoint: {e}")))?;
+            }
+            if stop {
+                if let Some(b) = bar {
+                    b.finish_and_clear();
+                }
+                return Ok(Outcome::Stopped { step: sim.step });
+            }
         }
     }
     let wall = t_loop.elapsed().as_secs_f64();
@@ -321,7 +473,7 @@ fn run_dim<const D: usize>(
         json!((energy1 - energy0) / scale),
     );
     s.insert("kinetic_final".into(), json!(k1));
-    s.insert("kinetic_max".into(), json!(kinetic_max.max(k1)));
+    s.insert("kinetic_max".into(), json!(rec.kinetic_max.max(k1)));
     s.insert("internal_final".into(), json!(i1));
     s.insert("momentum_initial".into(), json!(mom0[..D].to_vec()));
     s.insert("momentum_final".into(), json!(mom1[..D].to_vec()));
@@ -330,7 +482,7 @@ fn run_dim<const D: usize>(
             s.insert(k.into(), json!(v));
         }
     }
-    for (k, v) in monitor.measures(&table) {
+    for (k, v) in rec.monitor.measures(&table) {
         s.insert(k.into(), json!(v));
     }
     if let Some(w) = &window {
@@ -345,7 +497,7 @@ fn run_dim<const D: usize>(
     }
     if let Some(dir) = &opts.out {
         write_csv(dir.join("final.csv"), &table)?;
-        write_atomic(dir.join("series.csv"), series.as_bytes())?;
+        write_atomic(dir.join("series.csv"), rec.series.as_bytes())?;
         if let Some(p) = reference
             .as_ref()
             .and_then(|r| profile_csv(r, &table, sim.t))
@@ -358,5 +510,5 @@ fn run_dim<const D: usize>(
         let text = serde_json::to_string_pretty(&Value::Object(s.clone())).expect("json");
         write_atomic(dir.join("summary.json"), text.as_bytes())?;
     }
-    Ok(RunResult { summary: s, table })
+    Ok(Outcome::Finished(Box::new(RunResult { summary: s, table })))
 }

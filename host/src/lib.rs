@@ -3,6 +3,7 @@
 //! The std host of gsph: scenes, parallel neighbour search, the run driver, output
 //! (HDF5 + XDMF, CSV, JSON) and the `gsph` command line. The physics is in `gsph-core`.
 
+pub mod checkpoint;
 pub mod cli;
 pub mod commands;
 pub mod driver;

@@ -210,6 +210,43 @@ impl Monitor {
         out
     }
 
+    /// What the monitor has accumulated so far, as numbers (for checkpoints): the back-face
+    /// peak and its time, then the front samples `(t, position)` in order.
+    pub fn accumulated(&self) -> Vec<f64> {
+        let mut out = Vec::new();
+        if let Some(bf) = &self.back_face {
+            out.extend([bf.peak, bf.peak_time]);
+        }
+        if let Some(fr) = &self.front {
+            out.extend(fr.samples.iter().flat_map(|&(t, x)| [t, x]));
+        }
+        out
+    }
+
+    /// Restores what [`Monitor::accumulated`] returned for a monitor of the same scene.
+    pub fn restore_accumulated(&mut self, values: &[f64]) -> Result<(), String> {
+        let mut rest = values;
+        if let Some(bf) = self.back_face.as_mut() {
+            let [peak, time] = rest
+                .get(..2)
+                .and_then(|v| v.try_into().ok())
+                .ok_or("monitor state: the back-face peak is missing".to_string())?;
+            (bf.peak, bf.peak_time) = (peak, time);
+            rest = &rest[2..];
+        }
+        match self.front.as_mut() {
+            Some(fr) if rest.len() % 2 == 0 => {
+                fr.samples = rest.chunks_exact(2).map(|p| (p[0], p[1])).collect();
+                Ok(())
+            }
+            None if rest.is_empty() => Ok(()),
+            _ => Err(format!(
+                "monitor state: {} values do not fit this scene's monitor",
+                values.len()
+            )),
+        }
+    }
+
     /// Summary keys from the final state.
     pub fn measures(&self, table: &ParticleTable) -> Vec<(&'static str, f64)> {
         let n = table.len();

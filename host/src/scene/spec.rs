@@ -210,6 +210,12 @@ pub struct OutputSpec {
     /// Number of diagnostic samples (time series) over the run.
     #[serde(default)]
     pub series: Option<usize>,
+    /// Write a checkpoint every this many steps (`gsph run`; docs/checkpoint.md).
+    #[serde(default)]
+    pub checkpoint_steps: Option<u64>,
+    /// Write a checkpoint every this many seconds of wall time.
+    #[serde(default)]
+    pub checkpoint_seconds: Option<f64>,
 }
 
 impl Default for OutputSpec {
@@ -217,6 +223,8 @@ impl Default for OutputSpec {
         OutputSpec {
             snapshots: default_snapshots(),
             series: None,
+            checkpoint_steps: None,
+            checkpoint_seconds: None,
         }
     }
 }

@@ -127,6 +127,25 @@ pub fn validate(s: &Scene) -> R {
     if s.output.series == Some(0) {
         return fail("output.series", "must be at least 1");
     }
+    if s.output.checkpoint_steps == Some(0) {
+        return fail("output.checkpoint_steps", "must be at least 1");
+    }
+    if let Some(v) = s.output.checkpoint_seconds {
+        if !(v.is_finite() && v > 0.0) {
+            return fail(
+                "output.checkpoint_seconds",
+                format!("must be positive (got {})", num(v)),
+            );
+        }
+    }
+    if s.window.is_some()
+        && (s.output.checkpoint_steps.is_some() || s.output.checkpoint_seconds.is_some())
+    {
+        return fail(
+            "output.checkpoint_steps",
+            "checkpoints are not supported for moving-window scenes",
+        );
+    }
     let o = &s.options;
     non_negative("options.av_alpha", o.av_alpha)?;
     non_negative("options.av_beta", o.av_beta)?;

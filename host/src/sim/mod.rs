@@ -17,6 +17,7 @@ use std::any::Any;
 pub use crate::sim_error::SimError;
 
 mod edit;
+mod state_io;
 pub use edit::HeldState;
 
 /// The step function for dimension `D` (looked up once per run).

@@ -1,0 +1,135 @@
+//! The whole evolving state of a [`Sim`] as checkpoint bytes, and back.
+//!
+//! Saved: ids, every per-particle array (effect storage included), the scheme workspace
+//! (pair sums, MUSCL and stress gradients, kernel corrections, the `av` leap-frog rates
+//! and the `primed` flag), the neighbour lists with the positions and smoothing lengths
+//! they were built at (so the rebuild schedule and the pair order continue unchanged),
+//! time, step and counters. Not saved: what the scene determines (materials, kernel,
+//! options, effects, the step function, driven particles), which a restart rebuilds from
+//! the scene text stored in the checkpoint.
+//!
+//! Of the workspace, only `av` and `primed` carry information from one step to the next
+//! (`av` steps reuse the rates of the end of the previous step); the other arrays are
+//! recomputed before they are read in every step. They are saved anyway: the cost is small
+//! and a restart then does not depend on that property of the schemes.
+
+use super::Sim;
+use crate::checkpoint::codec::{Codec, Dec, DecodeError, Enc};
+
+impl<const D: usize> Sim<D> {
+    /// Appends the state to `e`.
+    pub fn save_checkpoint(&self, e: &mut Enc) {
+        e.put(&self.t);
+        e.put(&self.step);
+        e.put(&self.pair_interactions);
+        e.put(&self.rebuilds);
+        e.put(&self.primed);
+        e.put(&(self.capacity as u64));
+        e.put(&self.ids);
+        e.put(&self.x);
+        e.put(&self.v);
+        e.put(&self.m);
+        e.put(&self.mat);
+        e.put(&self.rho);
+        e.put(&self.e);
+        e.put(&self.p);
+        e.put(&self.c);
+        e.put(&self.cl);
+        e.put(&self.h);
+        e.put(&self.s);
+        e.put(&self.eps_p);
+        e.put(&self.damage);
+        e.put(&self.temp);
+        e.put(&self.sums);
+        e.put(&self.grad);
+        e.put(&self.grad_stress);
+        e.put(&self.corr);
+        e.put(&self.av);
+        e.put(&self.nbr_index);
+        e.put(&self.nbr_count);
+        e.put(&self.build_x);
+        e.put(&self.build_h);
+    }
+
+    /// Replaces the state of this simulation (built from the same scene) with the state
+    /// read from `d`. Every array must have the length the scene gives it (the workspace
+    /// arrays may also be empty or full where the scheme fills them on its first step) and
+    /// every neighbour index must name a particle; on error `self` is left unusable.
+    pub fn restore_checkpoint(&mut self, d: &mut Dec<'_>) -> Result<(), DecodeError> {
+        let n = self.len();
+        self.t = d.get()?;
+        self.step = d.get()?;
+        self.pair_interactions = d.get()?;
+        self.rebuilds = d.get()?;
+        self.primed = d.get()?;
+        let capacity: u64 = d.get()?;
+        if capacity != self.capacity as u64 {
+            return Err(DecodeError(format!(
+                "neighbour capacity {capacity}, the scene gives {}",
+                self.capacity
+            )));
+        }
+        // `exact`: the length the scene gives (n or 0); `free`: n or 0 either way
+        fn field<T: Codec>(
+            d: &mut Dec<'_>,
+            name: &str,
+            have: &mut Vec<T>,
+            n: usize,
+            exact: bool,
+        ) -> Result<(), DecodeError> {
+            let v: Vec<T> = d.get()?;
+            let ok = if exact {
+                v.len() == have.len()
+            } else {
+                v.is_empty() || v.len() == n
+            };
+            if !ok {
+                return Err(DecodeError(format!(
+                    "`{name}` holds {} values for {n} particles",
+                    v.len()
+                )));
+            }
+            *have = v;
+            Ok(())
+        }
+        field(d, "ids", &mut self.ids, n, true)?;
+        field(d, "x", &mut self.x, n, true)?;
+        field(d, "v", &mut self.v, n, true)?;
+        field(d, "m", &mut self.m, n, true)?;
+        field(d, "mat", &mut self.mat, n, true)?;
+        field(d, "rho", &mut self.rho, n, true)?;
+        field(d, "e", &mut self.e, n, true)?;
+        field(d, "p", &mut self.p, n, true)?;
+        field(d, "c", &mut self.c, n, true)?;
+        field(d, "cl", &mut self.cl, n, true)?;
+        field(d, "h", &mut self.h, n, true)?;
+        field(d, "s", &mut self.s, n, true)?;
+        field(d, "eps_p", &mut self.eps_p, n, true)?;
+        field(d, "damage", &mut self.damage, n, true)?;
+        field(d, "temp", &mut self.temp, n, true)?;
+        field(d, "sums", &mut self.sums, n, false)?;
+        field(d, "grad", &mut self.grad, n, false)?;
+        field(d, "grad_stress", &mut self.grad_stress, n, false)?;
+        field(d, "corr", &mut self.corr, n, false)?;
+        field(d, "av", &mut self.av, n, false)?;
+        field(d, "nbr_index", &mut self.nbr_index, n, true)?;
+        field(d, "nbr_count", &mut self.nbr_count, n, true)?;
+        field(d, "build_x", &mut self.build_x, n, true)?;
+        field(d, "build_h", &mut self.build_h, n, true)?;
+        let cap = self.capacity;
+        let bad_list = (0..n).any(|i| {
+            let c = self.nbr_count[i] as usize;
+            c > cap
+                || self.nbr_index[i * cap..i * cap + c]
+                    .iter()
+                    .any(|&j| j as usize >= n)
+        });
+        if bad_list {
+            return Err(DecodeError("a neighbour list names no particle".into()));
+        }
+        if self.materials.len() <= self.mat.iter().copied().max().unwrap_or(0) as usize {
+            return Err(DecodeError("a material index names no material".into()));
+        }
+        Ok(())
+    }
+}
