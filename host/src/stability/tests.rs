@@ -25,7 +25,9 @@ fn momentum_error_is_relative_to_the_larger_scale() {
     assert_eq!(momentum_error(&[0.0, 0.0], &[1e-3, 0.0], 10.0, 5.0), 1e-4);
     // net momentum larger than sum m|v| cannot happen, but |p| is a scale too
     assert_eq!(momentum_error(&[3.0, 4.0], &[3.0, 4.0], 1.0, 1.0), 0.0);
-    assert!((momentum_error(&[3.0, 4.0], &[3.0, 4.5], 1.0, 1.0) - 0.1).abs() < 1e-15);
+    // the larger of |p0| = 5 and |p1| = sqrt(29.25)
+    let e = momentum_error(&[3.0, 4.0], &[3.0, 4.5], 1.0, 1.0);
+    assert!((e - 0.5 / 29.25f64.sqrt()).abs() < 1e-15, "{e}");
     // nothing moves: no division by zero
     assert_eq!(momentum_error(&[0.0], &[0.0], 0.0, 0.0), 0.0);
 }
