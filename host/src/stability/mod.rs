@@ -140,6 +140,11 @@ pub fn momentum_error(p0: &[f64], p1: &[f64], s0: f64, s1: f64) -> f64 {
     d / scale
 }
 
+/// `v <= bound`, false for NaN.
+fn at_most(v: f64, bound: f64) -> bool {
+    v <= bound
+}
+
 /// Judges a finished run: fills `verdict` and `note` from the other fields.
 pub fn judge(row: &mut Row, scheme: Scheme) {
     let mut why = Vec::new();
@@ -152,17 +157,17 @@ pub fn judge(row: &mut Row, scheme: Scheme) {
     if row.nan {
         why.push("NaN/Inf in the final state".to_string());
     }
-    if !(row.rho_min > 0.0) {
+    if !at_most(f64::MIN_POSITIVE, row.rho_min) {
         why.push(format!("density_min {:.4e}", row.rho_min));
     }
-    if !(row.momentum_error <= MOMENTUM_BOUND) {
+    if !at_most(row.momentum_error, MOMENTUM_BOUND) {
         why.push(format!(
             "momentum error {:.2e} > {MOMENTUM_BOUND:.0e}",
             row.momentum_error
         ));
     }
     let eb = energy_bound(scheme);
-    if !(row.energy_error.abs() <= eb) {
+    if !at_most(row.energy_error.abs(), eb) {
         why.push(format!(
             "energy error {:.2e} outside +-{eb:.0e}",
             row.energy_error

@@ -38,7 +38,8 @@ fn judge_passes_a_clean_run_and_names_each_failed_criterion() {
     judge(&mut r, Scheme::Ts2);
     assert_eq!(r.verdict, Verdict::Pass, "{}", r.note);
     assert!(r.note.is_empty());
-    let cases: [(fn(&mut Row), &str); 6] = [
+    type Spoil = (fn(&mut Row), &'static str);
+    let cases: [Spoil; 6] = [
         (|r| r.reached = false, "stopped at"),
         (|r| r.nan = true, "NaN"),
         (|r| r.rho_min = 0.0, "density_min"),
