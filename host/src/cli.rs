@@ -85,6 +85,10 @@ pub enum Command {
         #[arg(long)]
         quiet: bool,
     },
+    /// Every hard case (cases/hard/) with every scheme: reached t_end, NaN, density,
+    /// energy and momentum errors, PASS/FAIL (stability.csv, stability.md); exits non-zero
+    /// if any run fails.
+    Stability(crate::stability::StabilityArgs),
     /// Pictures of a run's output directory.
     #[command(subcommand)]
     Plot(PlotCommand),
@@ -275,6 +279,7 @@ fn execute(cmd: Command) -> Result<(), String> {
             out!("wrote {}", opts.out.display());
             Ok(())
         }
+        Command::Stability(args) => crate::stability::command(&args),
         Command::Plot(PlotCommand::Particles {
             dir,
             field,

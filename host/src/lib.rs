@@ -18,5 +18,6 @@ pub mod scene;
 pub mod sim;
 pub mod sim_error;
 pub mod specs;
+pub mod stability;
 pub mod study;
 pub mod window;

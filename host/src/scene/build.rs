@@ -131,6 +131,7 @@ pub fn build_particles(scene: &Scene) -> Result<InitialParticles, SceneError> {
         let (rho, e, s) = initial_state(&mat, body.initial.as_ref())
             .map_err(|msg| SceneError(format!("{key}.initial: {msg}")))?;
         for (x, vol) in pts {
+            let x = jittered(x, scene.dim, body.jitter * dx, out.x.len() as u64);
             out.v.push(velocity(body.velocity.as_ref(), &x));
             out.x.push(x);
             out.m.push(rho * vol);
@@ -143,6 +144,29 @@ pub fn build_particles(scene: &Scene) -> Result<InitialParticles, SceneError> {
         }
     }
     Ok(out)
+}
+
+/// splitmix64 (Steele, Lea & Flood 2014): a well-mixed 64-bit hash of `z`.
+fn splitmix64(z: u64) -> u64 {
+    let mut z = z.wrapping_add(0x9e37_79b9_7f4a_7c15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
+}
+
+/// `x` moved by a uniform amount in `[-amount, amount)` along each of the first `dim` axes,
+/// drawn from [`splitmix64`] keyed by the particle index (the same scene always gives the
+/// same particles; the initial velocity is evaluated at the moved position).
+fn jittered(mut x: [f64; 3], dim: usize, amount: f64, index: u64) -> [f64; 3] {
+    if amount > 0.0 {
+        for (a, xa) in x.iter_mut().enumerate().take(dim) {
+            let r = splitmix64(index.wrapping_mul(3).wrapping_add(a as u64));
+            // 53 random bits -> [0, 1)
+            let u = (r >> 11) as f64 * (1.0 / (1u64 << 53) as f64);
+            *xa += amount * (2.0 * u - 1.0);
+        }
+    }
+    x
 }
 
 /// Number of lattice sites [`lattice`] visits for a shape (an upper bound on its particles;

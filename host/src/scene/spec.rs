@@ -412,6 +412,11 @@ pub struct BodySpec {
     /// run, whatever acts on them (external work: energy is not conserved).
     #[serde(default)]
     pub driven: bool,
+    /// Random displacement of every particle from its lattice site, as a fraction of the
+    /// spacing (0 <= jitter < 0.5): each coordinate moves by a uniform amount in
+    /// [-jitter, jitter) spacings, from a deterministic generator keyed by particle index.
+    #[serde(default)]
+    pub jitter: f64,
 }
 
 /// Circular (2D) or spherical (3D) pores repeated on a periodic cell: a particle is removed

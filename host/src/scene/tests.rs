@@ -393,3 +393,38 @@ fn pore_errors_name_the_key() {
         "{e}"
     );
 }
+
+#[test]
+fn jitter_moves_particles_deterministically_within_the_bound() {
+    let plain = parse(FLYER, "flyer.toml", &[]).unwrap();
+    let set = ["bodies.0.jitter=0.2".to_string()];
+    let jit = parse(FLYER, "flyer.toml", &set).unwrap();
+    let (a, b) = (
+        build_particles(&plain).unwrap(),
+        build_particles(&jit).unwrap(),
+    );
+    let again = build_particles(&jit).unwrap();
+    assert_eq!(a.len(), b.len());
+    let mut moved = 0;
+    for i in 0..a.len() {
+        assert_eq!(b.x[i], again.x[i], "particle {i}: not deterministic");
+        let d = (b.x[i][0] - a.x[i][0]).abs();
+        assert!(d <= 0.2 * a.spacing[i], "particle {i} moved {d}");
+        if a.body[i] == 1 {
+            assert_eq!(a.x[i], b.x[i], "body 1 has no jitter");
+        } else if d > 0.05 * a.spacing[i] {
+            moved += 1;
+        }
+        assert_eq!(a.m[i], b.m[i]);
+    }
+    // uniform in [-0.2, 0.2) spacings: about 3/4 of 50 particles move more than 0.05
+    assert!(moved > 25, "only {moved} of 50 particles moved");
+}
+
+#[test]
+fn jitter_outside_its_range_is_rejected() {
+    for v in ["0.5", "-0.1", "nan"] {
+        let e = parse_err(FLYER, &[&format!("bodies.1.jitter={v}")]);
+        assert!(e.contains("bodies[1].jitter: must lie in [0, 0.5)"), "{e}");
+    }
+}

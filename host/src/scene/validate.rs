@@ -266,6 +266,15 @@ pub fn validate(s: &Scene) -> R {
         material_known(s, &format!("{key}.material"), &b.material)?;
         positive(&format!("{key}.spacing"), b.spacing)?;
         validate_shape(&format!("{key}.shape"), &b.shape, s.dim)?;
+        if !(b.jitter >= 0.0 && b.jitter < 0.5) {
+            return fail(
+                &format!("{key}.jitter"),
+                format!(
+                    "must lie in [0, 0.5) (a fraction of the spacing; got {})",
+                    num(b.jitter)
+                ),
+            );
+        }
         if let Some(p) = &b.pores {
             if s.dim == 1 {
                 return fail(&format!("{key}.pores"), "pores need 2 or 3 dimensions");

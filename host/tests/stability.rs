@@ -1,0 +1,99 @@
+//! `gsph stability --quick` as a CI test: every hard case (cases/hard/) with every scheme
+//! passes the criteria of docs/stability.md, and a run that blows up is reported as FAIL
+//! with its error text and makes the command exit non-zero. Wall time is printed, never
+//! asserted.
+
+use gsph::stability::{run_suite, StabilityOptions, Verdict};
+use gsph_core::schemes::Scheme;
+use std::path::Path;
+
+const HARD: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../cases/hard");
+
+#[test]
+fn quick_suite_passes_every_case_with_every_scheme() {
+    let out = tempfile::tempdir().unwrap();
+    let rows = run_suite(&StabilityOptions {
+        cases: HARD.into(),
+        schemes: Scheme::ALL.to_vec(),
+        quick: true,
+        out: Some(out.path().to_path_buf()),
+        verbose: true,
+    })
+    .unwrap();
+    let md = std::fs::read_to_string(out.path().join("stability.md")).unwrap();
+    println!("{md}");
+    let csv = std::fs::read_to_string(out.path().join("stability.csv")).unwrap();
+    assert_eq!(csv.lines().count(), rows.len() + 1);
+    assert!(rows.len() >= 8 * Scheme::ALL.len(), "{} runs", rows.len());
+    let bad: Vec<String> = rows
+        .iter()
+        .filter(|r| r.verdict != Verdict::Pass)
+        .map(|r| format!("{} {}: {} {}", r.case, r.scheme, r.verdict.label(), r.note))
+        .collect();
+    assert!(bad.is_empty(), "{bad:#?}");
+}
+
+fn flyer() -> String {
+    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../cases/flyer_plate.toml");
+    std::fs::read_to_string(p).unwrap()
+}
+
+fn stability_cli(dir: &Path, scheme: &str) -> (i32, String) {
+    let out = dir.join("out");
+    let code = gsph::cli::main_with_args(
+        [
+            "gsph",
+            "stability",
+            "--cases",
+            dir.to_str().unwrap(),
+            "--schemes",
+            scheme,
+            "--out",
+            out.to_str().unwrap(),
+            "--threads",
+            "1",
+        ]
+        .map(std::ffi::OsString::from),
+    );
+    (
+        code,
+        std::fs::read_to_string(out.join("stability.csv")).unwrap_or_default(),
+    )
+}
+
+#[test]
+fn a_blow_up_is_reported_as_fail_with_its_step_and_a_nonzero_exit() {
+    let tmp = tempfile::tempdir().unwrap();
+    let text = flyer().replacen("value = [602.81]", "value = [1e150]", 1);
+    assert_ne!(text, flyer());
+    std::fs::write(tmp.path().join("blow_up.toml"), text).unwrap();
+    let (code, csv) = stability_cli(tmp.path(), "av");
+    assert_eq!(code, 1, "{csv}");
+    let row = csv.lines().nth(1).expect("one row");
+    assert!(row.starts_with("blow_up,av,100,"), "{row}");
+    // reached t_end: false; NaN: true; the error names the step and the particle
+    assert!(row.contains(",false,true,"), "{row}");
+    assert!(
+        row.contains("FAIL,\"step ") && row.contains("not finite"),
+        "{row}"
+    );
+}
+
+#[test]
+fn a_run_stopped_early_fails_and_a_clean_run_passes() {
+    let tmp = tempfile::tempdir().unwrap();
+    let short = flyer().replacen("t_end = 0.5e-6", "t_end = 0.05e-6\nmax_steps = 3", 1);
+    std::fs::write(tmp.path().join("stopped.toml"), short).unwrap();
+    let (code, csv) = stability_cli(tmp.path(), "ts1");
+    assert_eq!(code, 1, "{csv}");
+    assert!(csv.contains(",FAIL,\"stopped at t = "), "{csv}");
+    // the same scene without the step limit passes (the exit code reflects the verdicts)
+    let clean = flyer().replacen("t_end = 0.5e-6", "t_end = 0.05e-6", 1);
+    std::fs::write(tmp.path().join("stopped.toml"), clean).unwrap();
+    let (code, csv) = stability_cli(tmp.path(), "ts1");
+    assert_eq!(code, 0, "{csv}");
+    assert!(
+        csv.contains(",true,false,") && csv.contains(",PASS,"),
+        "{csv}"
+    );
+}
