@@ -80,7 +80,10 @@ fn uniform_flow_through_the_window_stays_uniform() {
 #[test]
 fn hugoniot_point_obeys_the_jump_conditions() {
     // 280 um window at 2 um spacing; one settling round, 8 m/s bracket
-    let sc = scene(&["resolution_scale=0.5", "bodies.0.shape.max=[2.8e-4, 2.0e-5]"]);
+    let sc = scene(&[
+        "resolution_scale=0.5",
+        "bodies.0.shape.max=[2.8e-4, 2.0e-5]",
+    ]);
     let opts = HugoniotOptions {
         ups: vec![100.0],
         tolerance: 8.0,
