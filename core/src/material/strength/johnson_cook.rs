@@ -224,7 +224,13 @@ impl JohnsonCook {
             f_prev = abs(f);
         }
         let d_eps_p = x;
-        let y = max(sigma_tr - three_g * d_eps_p, 0.0);
+        // At or above melt the flow stress is exactly 0: do not keep the round-off of
+        // `sigma_tr - 3G d` (it left a deviator of ~1e-16 sigma_tr and some plastic work).
+        let y = if theta > 0.0 {
+            max(sigma_tr - three_g * d_eps_p, 0.0)
+        } else {
+            0.0
+        };
         let m = ReturnMap {
             s: s_trial * (y / sigma_tr),
             d_eps_p,
@@ -293,6 +299,30 @@ mod tests {
         assert_eq!(m.s.von_mises(), 0.0);
         assert!(rel(m.d_eps_p, 1e9 / (3.0 * G)) < 1e-12);
         assert_eq!((m.plastic_work, m.d_temperature), (0.0, 0.0));
+        // found by the property test `johnson_cook_return` (core/tests/properties.rs):
+        // here `sigma_tr - 3G d` rounded to 9.5e-7 Pa instead of 0
+        let jc = JohnsonCook {
+            a: 1e8,
+            b: 0.0,
+            n: 0.05,
+            c: 0.0,
+            m: 0.3,
+            eps_dot0: 1.0,
+            t_room: 200.0,
+            t_melt: 1000.0,
+            specific_heat: 100.0,
+            taylor_quinney: 0.0,
+        };
+        let st = Sym3 {
+            xx: 3070204577.10144,
+            yy: -3505599789.0160203,
+            zz: 435395211.91458064,
+            xy: 0.0,
+            xz: -2155720262.684531,
+            yz: 1615188345.9927182,
+        };
+        let m = jc.return_map(st, 297753242153.3255, RHO, 0.0, 1726.5304435413886, 1e-10);
+        assert_eq!((m.s.von_mises(), m.plastic_work), (0.0, 0.0));
     }
 
     #[test]
