@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # Runs every cargo-fuzz target of host/fuzz for SECONDS each (default 300), one after the
 # other, on the stable toolchain (RUSTC_BOOTSTRAP=1 lets stable rustc take the -Z flags
-# cargo-fuzz passes; no sanitizer, as the stable toolchain ships no ASan runtime for this
-# use). Installs cargo-fuzz if it is missing. Not part of `make test` or CI: see
-# docs/fuzzing.md. Usage: scripts/fuzz.sh [SECONDS] [TARGET...]
+# cargo-fuzz passes) without a sanitizer (the code under test is safe Rust). Installs
+# cargo-fuzz if it is missing. Not part of `make test` or CI: see docs/fuzzing.md.
+# Usage: scripts/fuzz.sh [SECONDS] [TARGET...]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 secs=${1:-300}
