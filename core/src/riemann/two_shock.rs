@@ -26,7 +26,8 @@
 //! and piecewise quadratic with breakpoints `u_l`, `u_r`: left side shocked for `u* < u_l`,
 //! right side shocked for `u* > u_r`. The solver evaluates `f` at `lo = min(u_l, u_r)` and
 //! `hi = max(u_l, u_r)`, picks the interval with the sign change, and solves its quadratic
-//! exactly in closed form about the interval's end point `u0`: with `d = u* - u0`,
+//! exactly in closed form about the interval's end point `u0` (for two shocks, the end
+//! where `-4 A f(u0) >= 0`, so the square root below never cancels): with `d = u* - u0`,
 //! `k_K = rho_K s_K` on a shocked side (0 otherwise), `a_l = u_l - u0`, `a_r = u0 - u_r`,
 //!
 //! ```text
@@ -116,7 +117,15 @@ pub fn two_shock_star(l: ShockSide, r: ShockSide) -> (Real, Real) {
     } else if f_hi >= 0.0 {
         (hi, f_hi, false, true) // u* >= hi: left expanding, right shocked
     } else if r.u < l.u {
-        (lo, f_lo, true, true) // u_r < u* < u_l: two shocks
+        // u_r < u* < u_l: two shocks. Expand about the end where `-4 A f0 >= 0`, so that
+        // `b² - 4 A f0` cannot cancel (about lo when k_l > k_r, a stiff shocked side
+        // against a very soft one kept only half the digits; found by fuzzing,
+        // docs/fuzzing.md)
+        if l.rho * l.slope() > r.rho * r.slope() {
+            (hi, f_hi, true, true)
+        } else {
+            (lo, f_lo, true, true)
+        }
     } else {
         (lo, f_lo, false, false) // u_l < u* < u_r: two expansions (linear)
     };
@@ -243,6 +252,37 @@ mod tests {
             let (u2, p2) = two_shock_star(flip(r), flip(l));
             assert!((u2 + u).abs() < 1e-9 && (p2 - p).abs() < 1e-12 * 1e11);
         }
+    }
+
+    /// Found by the `riemann` fuzz target: a stiff shocked side against a very soft one.
+    /// Expanded about `lo`, `b² - 4 A f0` cancelled: u* came out 1.2e-3 m/s beyond u_l
+    /// (outside the bracket of the two velocities) and p* = 0.95 Pa instead of 2.08 Pa.
+    #[test]
+    fn stiff_against_very_soft_keeps_full_precision() {
+        let l = ShockSide {
+            u: 99997.45088472776,
+            p: 1.4542675792978867e-105,
+            rho: 33207.80991025317,
+            c: 0.020780069740730156,
+            s: 41.79751527075673,
+        };
+        let r = ShockSide {
+            u: 1.9104918289e-313,
+            p: 5.36864935114e-312,
+            rho: 0.0010000052508370887,
+            c: 0.020780072518389692,
+            s: 1.4260258159786313e-105,
+        };
+        let (u, p) = two_shock_star(l, r);
+        let (ub, pb) = bisect(l, r);
+        assert!(
+            u <= l.u && (u - ub).abs() < 1e-9,
+            "u* = {u}, bisection {ub}"
+        );
+        assert!(
+            rel(p, pb) < 1e-6 && (p - 2.078).abs() < 1e-3,
+            "p* = {p}, bisection {pb}"
+        );
     }
 
     #[test]

@@ -95,7 +95,8 @@ impl Jh1 {
 
     /// Static intact strength (fig 6), Pa, at pressure `p` (Pa): `sigma_i1 (P - T)/(P1 - T)`
     /// on `T < P < P1`, `sigma_i1 + (sigma_i2 - sigma_i1)(P - P1)/(P2 - P1)` for `P >= P1`
-    /// (extrapolated beyond P2), 0 at or below T (and for a NaN pressure).
+    /// (extrapolated beyond P2, and never below 0: a softening curve, `sigma_i2 < sigma_i1`,
+    /// stops at 0), 0 at or below T (and for a NaN pressure).
     pub fn intact_strength(&self, p: Real) -> Real {
         let t = self.tensile_limit;
         if p.is_nan() || p <= t {
@@ -103,7 +104,9 @@ impl Jh1 {
         } else if p < self.p1 {
             self.sigma_i1 * (p - t) / (self.p1 - t)
         } else {
-            self.sigma_i1 + (self.sigma_i2 - self.sigma_i1) * (p - self.p1) / (self.p2 - self.p1)
+            let s = self.sigma_i1
+                + (self.sigma_i2 - self.sigma_i1) * (p - self.p1) / (self.p2 - self.p1);
+            max(s, 0.0)
         }
     }
 
@@ -270,6 +273,23 @@ mod tests {
         for slow in [0.0, 0.5, -3.0, Real::NAN] {
             assert_eq!(j.rate_factor(slow), 1.0);
         }
+    }
+
+    /// Found by the `strength` fuzz target: a softening intact curve (`sigma_i2 < sigma_i1`,
+    /// which the scene validator accepts) extrapolated to a negative strength.
+    #[test]
+    fn softening_intact_curve_stops_at_zero() {
+        let j = Jh1 {
+            sigma_i2: 5.0 * GPA,
+            ..sic()
+        };
+        // 7.1 - 2.1 (P - 2.5)/7.5 reaches 0 at P = 27.857 GPa
+        assert!(close(j.intact_strength(10.0 * GPA), 5.0 * GPA));
+        assert!(j.intact_strength(27.0 * GPA) > 0.0);
+        assert_eq!(j.intact_strength(28.0 * GPA), 0.0);
+        assert_eq!(j.strength(1e3 * GPA, false, 1e5), 0.0);
+        let u = j.update(trial(1.0 * GPA), G, 1e3 * GPA, 0.0, 0.0);
+        assert_eq!(u.s.von_mises(), 0.0);
     }
 
     #[test]

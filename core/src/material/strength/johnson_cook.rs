@@ -27,7 +27,7 @@
 //! [`MAX_ITERATIONS`] iterations. Then `S = s_trial sigma_y/sigma_tr`, and as in the von Mises
 //! module `W = sigma_y d` (J/m³) and `dT = chi W / (rho c_p)` (K).
 use super::{radial_return, ReturnMap};
-use crate::math::real::{abs, ln, max, powf};
+use crate::math::real::{abs, ln, max, min, powf};
 use crate::math::{Real, Sym3};
 
 /// Upper bound on the iterations of the Johnson–Cook return (Newton with bisection fallback).
@@ -224,7 +224,17 @@ impl JohnsonCook {
             f_prev = abs(f);
         }
         let d_eps_p = x;
-        let y = max(sigma_tr - three_g * d_eps_p, 0.0);
+        // The flow stress at the solution (as documented), not `sigma_tr - 3G d`: the two
+        // agree to the tolerance `64 eps sigma_tr`, which is far from the flow stress when
+        // it is much smaller than `sigma_tr` (above melt `sigma_tr - 3G d` left a round-off
+        // deviator and plastic work; found by the property and fuzz tests).
+        let y = min(
+            max(
+                self.hardening(eps_p + d_eps_p) * self.rate_factor(d_eps_p * inv_rate) * theta,
+                0.0,
+            ),
+            sigma_tr,
+        );
         let m = ReturnMap {
             s: s_trial * (y / sigma_tr),
             d_eps_p,
@@ -293,6 +303,62 @@ mod tests {
         assert_eq!(m.s.von_mises(), 0.0);
         assert!(rel(m.d_eps_p, 1e9 / (3.0 * G)) < 1e-12);
         assert_eq!((m.plastic_work, m.d_temperature), (0.0, 0.0));
+        // found by the property test `johnson_cook_return` (core/tests/properties.rs):
+        // here `sigma_tr - 3G d` rounded to 9.5e-7 Pa instead of 0
+        let jc = JohnsonCook {
+            a: 1e8,
+            b: 0.0,
+            n: 0.05,
+            c: 0.0,
+            m: 0.3,
+            eps_dot0: 1.0,
+            t_room: 200.0,
+            t_melt: 1000.0,
+            specific_heat: 100.0,
+            taylor_quinney: 0.0,
+        };
+        let st = Sym3 {
+            xx: 3070204577.10144,
+            yy: -3505599789.0160203,
+            zz: 435395211.91458064,
+            xy: 0.0,
+            xz: -2155720262.684531,
+            yz: 1615188345.9927182,
+        };
+        let m = jc.return_map(st, 297753242153.3255, RHO, 0.0, 1726.5304435413886, 1e-10);
+        assert_eq!((m.s.von_mises(), m.plastic_work), (0.0, 0.0));
+    }
+
+    /// Found by the `strength` fuzz target: a flow stress 13 orders of magnitude below the
+    /// trial stress. The deviator was scaled to `sigma_tr - 3G d`, which the Newton
+    /// tolerance (64 eps sigma_tr) left 0.4 % above the flow stress (0.527 vs 0.525 Pa).
+    #[test]
+    fn tiny_flow_stress_under_a_huge_trial_lands_on_the_surface() {
+        let jc = JohnsonCook {
+            a: 0.001128605313002665,
+            b: 7.312932096683398e-256,
+            n: 0.0014350358313999795,
+            c: 9.60784313587247,
+            m: 0.0010000054682770207,
+            eps_dot0: 1.235694397105602e-6,
+            t_room: 0.0011313974514879648,
+            t_melt: 45417.85017510541,
+            specific_heat: 48559.533933993465,
+            taylor_quinney: 0.9607843137254901,
+        };
+        let st = Sym3::from_array([9215686274509.8; 6]);
+        let (eps_p, t, dt) = (
+            4.7917873299440156e-251,
+            2.4429471194647395e-260,
+            3.874675120690003e-15,
+        );
+        let m = jc.return_map(st, 2358028320242.8716, 434917.70748001896, eps_p, t, dt);
+        let y = jc.flow_stress(eps_p + m.d_eps_p, m.d_eps_p / dt, t);
+        assert!(
+            rel(m.s.von_mises(), y) < 1e-12,
+            "{} vs {y}",
+            m.s.von_mises()
+        );
     }
 
     #[test]

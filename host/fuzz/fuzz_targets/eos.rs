@@ -1,0 +1,101 @@
+//! The six equations of state on arbitrary `f64` input.
+//!
+//! Contract: no input panics. With parameters the scene validator accepts, bounded to a
+//! generous physical range (rho0 1e-3..1e6 kg/m³, c0 1e-3..1e5 m/s, slopes 0..100,
+//! Grüneisen coefficients -100..100, moduli up to 1e14 Pa), every density 1e-12..1e12
+//! rho0 with |e| <= 1e12 J/kg gives a finite pressure and a finite, positive c² (far beyond
+//! these bounds plain overflow of `c0² rho` or `k3 z³` is possible). Non-finite or
+//! non-positive input may give non-finite output.
+#![no_main]
+mod common;
+use common::{fit, fit_log};
+use gsph_core::material::eos::*;
+use libfuzzer_sys::fuzz_target;
+
+fn models(a: &[f64; 5]) -> [Eos; 6] {
+    let rho0 = fit_log(a[0], 1e-3, 1e6);
+    let c0 = fit_log(a[1], 1e-3, 1e5);
+    let s = fit(a[2], 0.0, 100.0);
+    let g = fit(a[3], -100.0, 100.0);
+    let k = fit_log(a[4], 1e-3, 1e14);
+    [
+        Eos::Linear(Linear { rho0, c0, gamma: g }),
+        Eos::Logarithmic(Logarithmic {
+            rho0,
+            bulk_modulus: k,
+        }),
+        Eos::MieGruneisen(MieGruneisen {
+            rho0,
+            c0,
+            s1: s,
+            gamma0: g,
+        }),
+        Eos::Hugoniot(Hugoniot { rho0, c0, s1: s }),
+        Eos::TwoCurve(TwoCurve {
+            rho0,
+            c_a: c0,
+            s_a: s,
+            gamma: g,
+        }),
+        Eos::Polynomial(Polynomial {
+            rho0,
+            k1: k,
+            k2: fit(a[1], -1e14, 1e14),
+            k3: fit(a[2], -1e14, 1e14),
+        }),
+    ]
+}
+
+fuzz_target!(|input: (bool, [f64; 5], f64, f64)| {
+    let (physical, a, eta, e) = input;
+    if !physical {
+        let raw = [
+            Eos::Linear(Linear {
+                rho0: a[0],
+                c0: a[1],
+                gamma: a[3],
+            }),
+            Eos::Logarithmic(Logarithmic {
+                rho0: a[0],
+                bulk_modulus: a[4],
+            }),
+            Eos::MieGruneisen(MieGruneisen {
+                rho0: a[0],
+                c0: a[1],
+                s1: a[2],
+                gamma0: a[3],
+            }),
+            Eos::Hugoniot(Hugoniot {
+                rho0: a[0],
+                c0: a[1],
+                s1: a[2],
+            }),
+            Eos::TwoCurve(TwoCurve {
+                rho0: a[0],
+                c_a: a[1],
+                s_a: a[2],
+                gamma: a[3],
+            }),
+            Eos::Polynomial(Polynomial {
+                rho0: a[0],
+                k1: a[4],
+                k2: a[1],
+                k3: a[2],
+            }),
+        ];
+        for m in raw {
+            let _ = m.eval(eta, e);
+        }
+        return;
+    }
+    let log_eta = fit(eta, -12.0, 12.0);
+    let e = fit(e, -1e12, 1e12);
+    for m in models(&a) {
+        let rho = m.rho0() * 10f64.powf(log_eta);
+        let st = m.eval(rho, e);
+        assert!(
+            st.p.is_finite() && st.c2.is_finite() && st.c2 > 0.0,
+            "{m:?} at rho {rho:e}, e {e:e}: {st:?}"
+        );
+    }
+});
