@@ -157,7 +157,7 @@ fn cases() -> Vec<Case> {
         case("window feed not whole spacings", window(), "check", &["--set", "window.feed=2.05e-5"], &["window.feed: must be a whole number of lattice spacings"]),
         case("window sample driven", window(), "run", &["--set", "bodies.0.driven=true"], &["bodies[0]: a window's sample takes its velocity from the window"]),
         case("window shock speed negative", window(), "check", &["--set", "window.us=-5"], &["window.us: must be positive and finite (got -5)"]),
-        case("window exit regions too wide", window(), "check", &["--set", "window.d_out1=5e-4"], &["window.d_out1: entry and exit regions plus one feed length must leave room"]),
+        case("window exit regions too wide", window(), "check", &["--set", "window.d_out1=5.5e-4"], &["window.d_out1: entry and exit regions plus one feed length must leave room"]),
         case("hugoniot without a window", f(), "hugoniot", &[], &["no [window] section"]),
         case("hugoniot bracket not LO,HI", window(), "hugoniot", &["--bracket", "500"], &["--bracket: `500` must be LO,HI with LO < HI"]),
         case("hugoniot negative u_p", window(), "hugoniot", &["--up", "100,-5"], &["--up: `-5` is not a positive number"]),
