@@ -29,15 +29,7 @@ fn body(parts: &InitialParticles, b: u16) -> InitialParticles {
         ..Default::default()
     };
     for i in (0..parts.len()).filter(|&i| parts.body[i] == b) {
-        out.x.push(parts.x[i]);
-        out.v.push(parts.v[i]);
-        out.m.push(parts.m[i]);
-        out.rho.push(parts.rho[i]);
-        out.e.push(parts.e[i]);
-        out.s.push(parts.s[i]);
-        out.mat.push(parts.mat[i]);
-        out.body.push(parts.body[i]);
-        out.spacing.push(parts.spacing[i]);
+        out.push_from(parts, i);
     }
     out
 }

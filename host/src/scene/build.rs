@@ -43,6 +43,28 @@ impl InitialParticles {
     pub fn is_empty(&self) -> bool {
         self.x.is_empty()
     }
+
+    /// An empty set with the dimension and body porosities of `self`.
+    pub fn empty_like(&self) -> Self {
+        InitialParticles {
+            dim: self.dim,
+            porosity: self.porosity.clone(),
+            ..Default::default()
+        }
+    }
+
+    /// Appends particle `i` of `src`.
+    pub fn push_from(&mut self, src: &InitialParticles, i: usize) {
+        self.x.push(src.x[i]);
+        self.v.push(src.v[i]);
+        self.m.push(src.m[i]);
+        self.rho.push(src.rho[i]);
+        self.e.push(src.e[i]);
+        self.s.push(src.s[i]);
+        self.mat.push(src.mat[i]);
+        self.body.push(src.body[i]);
+        self.spacing.push(src.spacing[i]);
+    }
 }
 
 /// Most particles a scene may have (all bodies together): beyond this a spacing or

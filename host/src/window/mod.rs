@@ -85,22 +85,11 @@ impl<const D: usize> Window<D> {
             .filter(|&i| parts.x[i][0] >= start - 1e-9 * geo.dx)
             .collect();
         idx.sort_by(|&a, &b| parts.x[a][0].total_cmp(&parts.x[b][0]).then(a.cmp(&b)));
-        let pick = |i: &usize| *i;
-        let mut feed = InitialParticles {
-            dim: parts.dim,
-            porosity: parts.porosity.clone(),
-            ..Default::default()
-        };
-        for i in idx.iter().map(pick) {
-            feed.x.push(parts.x[i]);
-            feed.v.push([0.0; 3]);
-            feed.m.push(parts.m[i]);
-            feed.rho.push(parts.rho[i]);
-            feed.e.push(parts.e[i]);
-            feed.s.push(parts.s[i]);
-            feed.mat.push(parts.mat[i]);
-            feed.body.push(parts.body[i]);
-            feed.spacing.push(parts.spacing[i]);
+        let mut feed = parts.empty_like();
+        for &i in &idx {
+            feed.push_from(parts, i);
+            let last = feed.len() - 1;
+            feed.v[last] = [0.0; 3];
         }
         let xi = feed.x.iter().map(|x| x[0] - start).collect();
         let win = Window {
@@ -217,30 +206,18 @@ impl<const D: usize> Window<D> {
             sim.retain(&keep);
         }
         let nf = self.feed.len() as u64;
-        let mut add = InitialParticles {
-            dim: self.feed.dim,
-            porosity: self.feed.porosity.clone(),
-            ..Default::default()
-        };
+        let mut add = self.feed.empty_like();
         loop {
             let (copy, k) = (self.next / nf, (self.next % nf) as usize);
             let x = self.feed_x + copy as f64 * self.geo.feed + self.xi[k];
             if x >= self.geo.x_r {
                 break;
             }
-            let f = &self.feed;
-            let mut pos = f.x[k];
-            pos[0] = x;
-            add.x.push(pos);
-            add.v.push([self.u_in, 0.0, 0.0]);
-            add.m.push(f.m[k]);
-            add.rho.push(f.rho[k]);
-            add.e.push(f.e[k]);
-            add.s.push(f.s[k]);
-            add.mat.push(f.mat[k]);
-            add.body.push(f.body[k]);
-            add.spacing.push(f.spacing[k]);
-            self.mass_in += f.m[k];
+            add.push_from(&self.feed, k);
+            let last = add.len() - 1;
+            add.x[last][0] = x;
+            add.v[last] = [self.u_in, 0.0, 0.0];
+            self.mass_in += self.feed.m[k];
             self.next += 1;
         }
         if !add.is_empty() {
