@@ -55,7 +55,7 @@ pub enum Command {
     /// bisection, stress behind the wave and in the precursor, averaged profiles
     /// (hugoniot.csv, hugoniot.png, profile_up*.csv/png).
     Hugoniot {
-        /// Scene file with a [window] section.
+        /// Scene file with a `[window]` section.
         scene: PathBuf,
         /// Particle velocities u_p, m/s, comma-separated.
         #[arg(long, default_value = "50,75,100,125,150,200")]
