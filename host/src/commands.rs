@@ -150,27 +150,16 @@ pub fn parse_positive(flag: &str, s: &str) -> Result<Vec<f64>, String> {
         .collect()
 }
 
-use crate::window::hugoniot::HugoniotOptions;
-
 /// `gsph hugoniot`: the Hugoniot points of a window scene, written into `out`.
 pub fn run_hugoniot(
     scene: &crate::scene::Scene,
-    opts: &HugoniotOptions,
+    opts: &crate::window::hugoniot::HugoniotOptions,
     out: &Path,
 ) -> Result<Vec<crate::window::hugoniot::HugoniotPoint>, String> {
     use crate::window::hugoniot::{hugoniot, seed_fit, write_outputs, write_point};
-    let mut points = Vec::new();
-    // one point at a time, so that a long computation keeps the profiles of the points
-    // done (hugoniot.csv and the plot are written when all are)
-    for &up in &opts.ups {
-        let one = HugoniotOptions {
-            ups: vec![up],
-            ..opts.clone()
-        };
-        let p = hugoniot(scene, &one)?.remove(0);
-        write_point(out, &p)?;
-        points.push(p);
-    }
+    // each point's profiles are written as it finishes; hugoniot.csv and the plot when
+    // all are
+    let points = hugoniot(scene, opts, |p| write_point(out, p))?;
     write_outputs(out, &points)?;
     println!(
         "   u_p     u_s    fit    diff  -sxx behind  precursor  u_prec  mass/RH  mom/RH   wall"

@@ -93,7 +93,7 @@ fn hugoniot_point_obeys_the_jump_conditions() {
         verbose: true,
         ..Default::default()
     };
-    let p = &hugoniot(&sc, &opts).unwrap()[0];
+    let p = &hugoniot(&sc, &opts, |_| Ok(())).unwrap()[0];
     let m = 1.3514;
     let bound = m * p.up / (m - 1.0);
     println!(

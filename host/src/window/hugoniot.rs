@@ -130,8 +130,13 @@ pub fn seed_fit(up: f64) -> f64 {
     }
 }
 
-/// Computes the points for `opts.ups` (a window scene, validated).
-pub fn hugoniot(scene: &Scene, opts: &HugoniotOptions) -> Result<Vec<HugoniotPoint>, String> {
+/// Computes the points for `opts.ups` (a window scene, validated), handing each to
+/// `done` as it finishes.
+pub fn hugoniot(
+    scene: &Scene,
+    opts: &HugoniotOptions,
+    mut done: impl FnMut(&HugoniotPoint) -> Result<(), String>,
+) -> Result<Vec<HugoniotPoint>, String> {
     let w = scene
         .window
         .as_ref()
@@ -145,6 +150,7 @@ pub fn hugoniot(scene: &Scene, opts: &HugoniotOptions) -> Result<Vec<HugoniotPoi
             2 => point::<2>(scene, geo, &parts, up, opts),
             _ => point::<3>(scene, geo, &parts, up, opts),
         }?;
+        done(&p)?;
         out.push(p);
     }
     Ok(out)

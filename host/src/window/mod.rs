@@ -170,13 +170,19 @@ impl<const D: usize> Window<D> {
                 self.held.insert(sim.ids[i], sim.held_state(i));
             }
         }
-        let x0 = sim.x.clone();
+        // start positions of the held particles only (a few layers at each end)
+        let held: Vec<(usize, Region, Vector<D>)> = regions
+            .iter()
+            .enumerate()
+            .filter(|(_, r)| **r != Region::Free)
+            .map(|(i, &r)| (i, r, sim.x[i]))
+            .collect();
         sim.step(dt)?;
-        for (i, &r) in regions.iter().enumerate() {
+        for &(i, r, x0) in &held {
             if let Some(u) = self.held_velocity(r) {
                 let v = along_x::<D>(u);
                 sim.v[i] = v;
-                sim.x[i] = sim.periodic.wrap(x0[i] + v * dt);
+                sim.x[i] = sim.periodic.wrap(x0 + v * dt);
             }
             if r == Region::Exit2 {
                 let st = self.held[&sim.ids[i]];
