@@ -60,13 +60,23 @@ impl Limiter {
     }
 
     /// The limited slope of a particle whose own resolved slope is `d_own` and whose
-    /// partner's is `d_other`: `phi(d_other / d_own) d_own`, and 0 when `d_own = 0`. For the
-    /// symmetric limiters here `limit(a, b) == limit(b, a)` (up to round-off).
+    /// partner's is `d_other`: `phi(d_other / d_own) d_own`, and 0 when `d_own = 0` or the
+    /// slopes differ in sign. Evaluated without the division, in the closed forms
+    /// `minmod(a, b)`, `maxmod(minmod(beta b, a), minmod(b, beta a))` (Sweby, superbee),
+    /// `minmod(2a, (a+b)/2, 2b)` (MC) and `2ab/(a+b)` (van Leer), so the result is
+    /// symmetric, `limit(a, b) == limit(b, a)`, exactly.
     pub fn limit(self, d_own: Real, d_other: Real) -> Real {
-        if d_own == 0.0 {
-            0.0
-        } else {
-            self.phi(d_other / d_own) * d_own
+        let (a, b) = (d_own, d_other);
+        let same_sign = a * b > 0.0; // false for opposite signs, a zero or NaN
+        if !same_sign {
+            return 0.0;
+        }
+        match self {
+            Limiter::Minmod => minmod(a, b),
+            Limiter::Superbee => sweby_slope(2.0, a, b),
+            Limiter::Sweby(beta) => sweby_slope(beta, a, b),
+            Limiter::MonotonizedCentral => minmod(minmod(2.0 * a, 2.0 * b), 0.5 * (a + b)),
+            Limiter::VanLeer => 2.0 * a * b / (a + b),
         }
     }
 
@@ -114,6 +124,29 @@ impl fmt::Display for Limiter {
 #[inline]
 fn sweby(beta: Real, r: Real) -> Real {
     max(0.0, max(min(beta * r, 1.0), min(r, beta)))
+}
+
+/// Sweby's limited slope for `a b > 0`: the larger in magnitude of `minmod(beta b, a)`
+/// and `minmod(b, beta a)` (both have the sign of `a`).
+#[inline]
+fn sweby_slope(beta: Real, a: Real, b: Real) -> Real {
+    let (x, y) = (minmod(beta * b, a), minmod(b, beta * a));
+    if abs(x) >= abs(y) {
+        x
+    } else {
+        y
+    }
+}
+
+/// The extrapolation `ext` of one side of a pair towards its partner, bounded by half the
+/// pair difference `half_jump = (Q_partner - Q_own)/2`: `minmod(ext, half_jump)`. An
+/// extrapolation that points away from the partner gives 0, one that reaches past the
+/// pair mean stops there. Both sides bounded this way keep the reconstructed jump of the
+/// pair between zero and the particles' own jump, with the same sign, so the dissipation
+/// of the pair's Riemann problem cannot turn negative.
+#[inline]
+pub fn bounded_extrapolation(ext: Real, half_jump: Real) -> Real {
+    minmod(ext, half_jump)
 }
 
 /// minmod(a, b): 0 if `a` and `b` differ in sign (or either is zero or NaN), otherwise the
@@ -221,6 +254,34 @@ mod tests {
                 assert!((x - y).abs() < 1e-14, "{l}: {a} {b}: {x} vs {y}");
             }
         }
+    }
+
+    #[test]
+    fn closed_form_slopes_equal_phi_of_the_ratio() {
+        for l in ALL {
+            for a in [1.0, -2.5, 1e-30, 3e20] {
+                for r in ratios().chain([-1.0, 0.0]) {
+                    let b = r * a;
+                    let want = l.phi(b / a) * a;
+                    let got = l.limit(a, b);
+                    assert!(
+                        (got - want).abs() <= 1e-14 * want.abs(),
+                        "{l}: a {a} b {b}: {got} vs {want}"
+                    );
+                }
+            }
+            assert_eq!(l.limit(0.0, 1.0), 0.0);
+            assert_eq!(l.limit(1.0, Real::NAN), 0.0);
+        }
+    }
+
+    #[test]
+    fn bounded_extrapolation_stops_at_the_pair_mean_and_never_points_away() {
+        assert_eq!(bounded_extrapolation(0.3, 0.5), 0.3);
+        assert_eq!(bounded_extrapolation(0.9, 0.5), 0.5);
+        assert_eq!(bounded_extrapolation(-0.9, -0.5), -0.5);
+        assert_eq!(bounded_extrapolation(0.9, -0.5), 0.0);
+        assert_eq!(bounded_extrapolation(0.9, 0.0), 0.0);
     }
 
     #[test]

@@ -353,15 +353,16 @@ pub enum RiemannSolver {
 
 /// The time dimension of the MUSCL reconstruction of `ts2`. Seed 000 eq 23 multiplies the
 /// slope by `[1 - c_i dt]`, which has units of length: see `schemes::ts` for the choice.
+/// Whatever is chosen applies to every use of the pair's star state (continuity, momentum
+/// and energy), as seed 000 eqs 22 and 34 use the same contact velocity.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum MusclTime {
     /// MUSCL–Hancock predictor: the particle's state is advanced half a step with the
     /// Lagrangian acoustic equations before the spatial reconstruction.
     Predictor,
-    /// The seed's factor made dimensionless: slopes scaled by `max(0, 1 - c_i dt / r_ij)`
-    /// (default).
+    /// The seed's factor made dimensionless: slopes scaled by `max(0, 1 - c_i dt / r_ij)`.
     CourantFactor,
-    /// Spatial reconstruction only.
+    /// Spatial reconstruction only (default).
     None,
 }
 
@@ -376,14 +377,13 @@ pub struct SchemeOptions {
     pub limiter: Limiter,
     /// Riemann solver of `ts`.
     pub riemann: RiemannSolver,
-    /// How `ts2` accounts for the time step when it reconstructs the contact states whose
-    /// velocities update the density (seed 000 eq 23); the contact pressure of the momentum
-    /// and energy equations uses the plain limited reconstruction (see `schemes::ts`).
+    /// How `ts2` accounts for the time step when it reconstructs the contact states (seed
+    /// 000 eq 23; one choice for continuity, momentum and energy, see `schemes::ts`).
     pub muscl_time: MusclTime,
     /// Threshold on the smallest eigenvalue of L below which a particle is a free-surface
-    /// particle (`tkc`).
+    /// particle (`tkc`: L = I there; `ts`: consistent divergence there).
     pub surface_lambda: Real,
-    /// L = I where det L is below this (`tkc`).
+    /// L is not inverted where det L is below this (`tkc`, `ts`).
     pub det_epsilon: Real,
 }
 
@@ -394,7 +394,7 @@ impl Default for SchemeOptions {
             av_beta: 1.0,
             limiter: Limiter::Superbee,
             riemann: RiemannSolver::Acoustic,
-            muscl_time: MusclTime::CourantFactor,
+            muscl_time: MusclTime::None,
             surface_lambda: 0.75,
             det_epsilon: 0.05,
         }

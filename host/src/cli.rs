@@ -44,6 +44,9 @@ pub enum Command {
         /// Override a scene key in every run.
         #[arg(long = "set", value_name = "KEY=VALUE")]
         set: Vec<String>,
+        /// Remove a scene key in every run (dotted path), e.g. --unset options.riemann.
+        #[arg(long = "unset", value_name = "KEY")]
+        unset: Vec<String>,
         /// Output directory (default `out/<scene name>_study`).
         #[arg(long)]
         out: Option<PathBuf>,
@@ -75,6 +78,9 @@ pub enum Command {
         /// Override a scene key (dotted path).
         #[arg(long = "set", value_name = "KEY=VALUE")]
         set: Vec<String>,
+        /// Remove a scene key (dotted path).
+        #[arg(long = "unset", value_name = "KEY")]
+        unset: Vec<String>,
         /// Output directory (default `out/<scene name>_hugoniot`).
         #[arg(long)]
         out: Option<PathBuf>,
@@ -99,6 +105,10 @@ pub enum Command {
         /// Override a scene key (dotted path), e.g. --set scheme=ts2.
         #[arg(long = "set", value_name = "KEY=VALUE")]
         set: Vec<String>,
+        /// Remove a scene key (dotted path), e.g. --unset options.riemann to run a scene
+        /// that asks for the two-shock solver with scheme av.
+        #[arg(long = "unset", value_name = "KEY")]
+        unset: Vec<String>,
     },
     /// Run a scene.
     Run {
@@ -111,6 +121,9 @@ pub enum Command {
         /// Override a scene key (dotted path), e.g. --set bodies.0.spacing=5e-4.
         #[arg(long = "set", value_name = "KEY=VALUE")]
         set: Vec<String>,
+        /// Remove a scene key (dotted path), e.g. --unset options.riemann.
+        #[arg(long = "unset", value_name = "KEY")]
+        unset: Vec<String>,
         /// Worker threads (default: all cores).
         #[arg(long)]
         threads: Option<usize>,
@@ -124,7 +137,7 @@ pub enum Command {
         #[arg(long, value_name = "S")]
         checkpoint_every_seconds: Option<f64>,
         /// Continue the run checkpointed in DIR to t_end; its outputs go to DIR.
-        #[arg(long, value_name = "DIR", conflicts_with_all = ["scene", "out", "set"])]
+        #[arg(long, value_name = "DIR", conflicts_with_all = ["scene", "out", "set", "unset"])]
         restart: Option<PathBuf>,
         /// Write a checkpoint after step N and stop, as if interrupted (tests).
         #[arg(long, value_name = "N", hide = true)]
@@ -258,9 +271,11 @@ fn execute(cmd: Command) -> Result<(), String> {
             resolutions,
             metric,
             set,
+            unset,
             out,
             threads,
         } => {
+            let set = scene::with_unsets(set, &unset);
             let sc = scene::load(&path, &set).map_err(|e| e.to_string())?;
             let name = scene_name(&sc, &path);
             let opts = crate::study::StudyOptions {
@@ -329,7 +344,12 @@ fn execute(cmd: Command) -> Result<(), String> {
             out!("wrote {}", path.display());
             Ok(())
         }
-        Command::Check { scene: path, set } => {
+        Command::Check {
+            scene: path,
+            set,
+            unset,
+        } => {
+            let set = scene::with_unsets(set, &unset);
             let sc = scene::load(&path, &set).map_err(|e| e.to_string())?;
             let at = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
             let parts = build_particles(&sc).map_err(|e| at(&e))?;
@@ -358,6 +378,27 @@ fn execute(cmd: Command) -> Result<(), String> {
                 }
             }
             out!("effects   {effects}");
+            if sc.options.riemann.as_deref() == Some("two_shock") {
+                // the two-shock solver's Us = c + s up slope of each material
+                let slopes: Vec<String> = sc
+                    .materials
+                    .iter()
+                    .zip(&materials)
+                    .map(|(spec, m)| {
+                        let how = match m.eos {
+                            gsph_core::material::Eos::MieGruneisen(_)
+                            | gsph_core::material::Eos::Hugoniot(_)
+                            | gsph_core::material::Eos::TwoCurve(_) => "the EOS's",
+                            _ => "weak-shock (1 + K')/4",
+                        };
+                        format!("{} {:.4} ({how})", spec.name, m.eos.hugoniot_slope())
+                    })
+                    .collect();
+                out!(
+                    "riemann   two_shock, Hugoniot slope s: {}",
+                    slopes.join(", ")
+                );
+            }
             let dim = sc.dim;
             let scheme = gsph_core::schemes::Scheme::from_name(&sc.scheme).expect("validated");
             let (n, all) = crate::specs::compiled();
@@ -390,10 +431,12 @@ fn execute(cmd: Command) -> Result<(), String> {
             samples,
             average,
             set,
+            unset,
             out,
             threads,
             quiet,
         } => {
+            let set = scene::with_unsets(set, &unset);
             let sc = scene::load(&path, &set).map_err(|e| e.to_string())?;
             if sc.window.is_none() {
                 return Err(format!(
@@ -438,6 +481,7 @@ fn execute(cmd: Command) -> Result<(), String> {
             scene,
             out,
             set,
+            unset,
             threads,
             quiet,
             checkpoint_every_steps,
@@ -445,6 +489,7 @@ fn execute(cmd: Command) -> Result<(), String> {
             restart,
             stop_after_steps,
         } => {
+            let set = scene::with_unsets(set, &unset);
             use crate::checkpoint::{setup, Policy};
             let flags = Policy {
                 every_steps: checkpoint_every_steps,

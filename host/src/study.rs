@@ -77,9 +77,18 @@ pub fn study(scene_path: &Path, opts: &StudyOptions) -> Result<(Vec<StudyRow>, S
     for &res in &opts.resolutions {
         for &scheme in &opts.schemes {
             let mut set = opts.overrides.clone();
-            set.push(format!("scheme={}", scheme.name()));
             set.push(format!("resolution_scale={res}"));
-            let sc = scene::load(scene_path, &set).map_err(|e| e.to_string())?;
+            let (sc, dropped) = scene::load_for_scheme(scene_path, &set, scheme.name())
+                .map_err(|e| e.to_string())?;
+            if res == opts.resolutions[0] {
+                for key in dropped {
+                    eprintln!(
+                        "study: {key} left out of the {} runs (not read by {})",
+                        scheme.name(),
+                        scheme.name()
+                    );
+                }
+            }
             let name = crate::cli::scene_name(&sc, scene_path);
             eprintln!(
                 "study: run {}/{total}: {} at resolution {res}",

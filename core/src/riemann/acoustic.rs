@@ -132,19 +132,48 @@ pub fn acoustic_star_vector<const D: usize>(
     zr_long: Real,
     zr_trans: Real,
 ) -> (Vector<D>, Vector<D>) {
+    elastic_star_vector(
+        n,
+        v_l,
+        t_l,
+        zl_trans,
+        v_r,
+        t_r,
+        zr_trans,
+        |vln, tln, vrn, trn| {
+            acoustic_star(
+                AcousticSide {
+                    u: vln,
+                    s: tln,
+                    z: zl_long,
+                },
+                AcousticSide {
+                    u: vrn,
+                    s: trn,
+                    z: zr_long,
+                },
+            )
+        },
+    )
+}
+
+/// The vector star state of [`acoustic_star_vector`] with the longitudinal problem solved
+/// by `longitudinal(u_l, s_l, u_r, s_r) -> (u*, s*)` (normal velocities and tractions,
+/// tension positive) and the transverse one acoustically with the impedances `z*_trans`.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+pub fn elastic_star_vector<const D: usize>(
+    n: &Vector<D>,
+    v_l: &Vector<D>,
+    t_l: &Vector<D>,
+    zl_trans: Real,
+    v_r: &Vector<D>,
+    t_r: &Vector<D>,
+    zr_trans: Real,
+    longitudinal: impl FnOnce(Real, Real, Real, Real) -> (Real, Real),
+) -> (Vector<D>, Vector<D>) {
     let (vln, tln, vrn, trn) = (v_l.dot(n), t_l.dot(n), v_r.dot(n), t_r.dot(n));
-    let (u_n, s_n) = acoustic_star(
-        AcousticSide {
-            u: vln,
-            s: tln,
-            z: zl_long,
-        },
-        AcousticSide {
-            u: vrn,
-            s: trn,
-            z: zr_long,
-        },
-    );
+    let (u_n, s_n) = longitudinal(vln, tln, vrn, trn);
     let (vlt, tlt) = (v_l - n * vln, t_l - n * tln);
     let (vrt, trt) = (v_r - n * vrn, t_r - n * trn);
     let zs = zl_trans + zr_trans;

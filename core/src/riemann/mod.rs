@@ -14,12 +14,16 @@
 //!   form ([`pressure_star`]) and the vector form of the Parshikov–Medin / TKC pair with
 //!   longitudinal and transverse waves ([`acoustic_star_vector`]).
 //! * [`two_shock`]: the two-shock approximate solver of Dukowicz (1985) for a linear
-//!   shock-speed relation `Us = c + s up` ([`two_shock_star`]).
+//!   shock-speed relation `Us = c + s up` ([`two_shock_star`]); in the vector problem of
+//!   the contact family it solves the longitudinal wave ([`elastic_star_vector`] with the
+//!   longitudinal speed `c_l` as the intercept and the EOS's Hugoniot slope), the
+//!   transverse waves stay acoustic.
 
 pub mod acoustic;
 pub mod two_shock;
 
 pub use acoustic::{
-    acoustic_star, acoustic_star_vector, pressure_star, AcousticSide, PressureSide,
+    acoustic_star, acoustic_star_vector, elastic_star_vector, pressure_star, AcousticSide,
+    PressureSide,
 };
 pub use two_shock::{two_shock_star, ShockSide};

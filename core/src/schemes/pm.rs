@@ -31,24 +31,31 @@ use super::common::{
 use super::SchemeFamily;
 use crate::effects::{EffectSet, Effects};
 use crate::exec::Executor;
-use crate::limiter::minmod;
+use crate::limiter::{bounded_extrapolation, Limiter};
 use crate::math::{det, inverse, Matrix, Real, Sym3, Vector};
-use crate::riemann::acoustic_star_vector;
+use crate::riemann::{acoustic_star_vector, elastic_star_vector, two_shock_star, ShockSide};
 use crate::state::{
-    Correction, Family, Gradients, PairSums, StepError, StepParams, System, Workspace,
+    Correction, Family, Gradients, PairSums, RiemannSolver, StepError, StepParams, System,
+    Workspace,
 };
 
 /// The contact family (`pm`, `tkc`).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Pm;
 
-/// Reconstructed contact values of one side.
+/// Reconstructed contact values of a pair: `Phi_l = Phi_i + phi(r) (grad Phi_i . r_ji)/2`
+/// with `r = (Phi_j - Phi_i)/(grad Phi_i . r_ji)` (and likewise for j), each side's
+/// extrapolation bounded by half the pair difference ([`bounded_extrapolation`]). With
+/// the minmod limiter (tkc's, seed 004 eqs 13-15) this is exactly
+/// `Phi_i + minmod(Phi_j - Phi_i, grad Phi_i . r_ji)/2` and the bound never acts; the
+/// other limiters of [`Limiter`] may extrapolate up to the pair mean.
 #[inline(always)]
-fn muscl_pair(phi_i: Real, phi_j: Real, gi_rji: Real, gj_rji: Real) -> (Real, Real) {
+fn muscl_pair(lim: Limiter, phi_i: Real, phi_j: Real, gi_rji: Real, gj_rji: Real) -> (Real, Real) {
+    let half_jump = 0.5 * (phi_j - phi_i);
     let d = phi_j - phi_i;
     (
-        phi_i + 0.5 * minmod(d, gi_rji),
-        phi_j - 0.5 * minmod(gj_rji, d),
+        phi_i + bounded_extrapolation(0.5 * lim.limit(gi_rji, d), half_jump),
+        phi_j - bounded_extrapolation(0.5 * lim.limit(gj_rji, d), half_jump),
     )
 }
 
@@ -342,26 +349,32 @@ fn pair_sums<const D: usize, E: Effects, const KIN: bool, const DYN: bool>(
         let (mut s_l, mut s_r) = (sig_i, sig_j);
         let failed_pair = failed::<D, E>(sys, i) || failed::<D, E>(sys, j);
         if E::MUSCL && !failed_pair {
+            let lim = params.options.limiter;
             let rji = pr.n * pr.r;
             let (gi, gj) = (&grad[i], &grad[j]);
-            (rho_l, rho_r) = muscl_pair(rhoi, rhoj, gi.rho.dot(&rji), gj.rho.dot(&rji));
-            (cl_l, cl_r) = muscl_pair(cl_l, cl_r, gi.cl.dot(&rji), gj.cl.dot(&rji));
-            (ct_l, ct_r) = muscl_pair(ct_l, ct_r, gi.ct.dot(&rji), gj.ct.dot(&rji));
+            (rho_l, rho_r) = muscl_pair(lim, rhoi, rhoj, gi.rho.dot(&rji), gj.rho.dot(&rji));
+            (cl_l, cl_r) = muscl_pair(lim, cl_l, cl_r, gi.cl.dot(&rji), gj.cl.dot(&rji));
+            (ct_l, ct_r) = muscl_pair(lim, ct_l, ct_r, gi.ct.dot(&rji), gj.ct.dot(&rji));
             let dvi = gi.v * rji;
             let dvj = gj.v * rji;
             for a in 0..D {
-                (v_l[a], v_r[a]) = muscl_pair(vi[a], sys.v[j][a], dvi[a], dvj[a]);
+                (v_l[a], v_r[a]) = muscl_pair(lim, vi[a], sys.v[j][a], dvi[a], dvj[a]);
             }
             if E::STRENGTH {
                 let (si, sj) = (sig_i.to_array(), sig_j.to_array());
                 let (mut al, mut ar) = ([0.0; 6], [0.0; 6]);
                 for c in 0..6 {
-                    (al[c], ar[c]) =
-                        muscl_pair(si[c], sj[c], grad_s[i][c].dot(&rji), grad_s[j][c].dot(&rji));
+                    (al[c], ar[c]) = muscl_pair(
+                        lim,
+                        si[c],
+                        sj[c],
+                        grad_s[i][c].dot(&rji),
+                        grad_s[j][c].dot(&rji),
+                    );
                 }
                 (s_l, s_r) = (Sym3::from_array(al), Sym3::from_array(ar));
             } else {
-                let (pl, pr_) = muscl_pair(sys.p[i], sys.p[j], gi.p.dot(&rji), gj.p.dot(&rji));
+                let (pl, pr_) = muscl_pair(lim, sys.p[i], sys.p[j], gi.p.dot(&rji), gj.p.dot(&rji));
                 (s_l, s_r) = (Sym3::isotropic(-pl), Sym3::isotropic(-pr_));
             }
         }
@@ -372,17 +385,42 @@ fn pair_sums<const D: usize, E: Effects, const KIN: bool, const DYN: bool>(
         };
         let t_l = s_l.dot_vec(&axis);
         let t_r = s_r.dot_vec(&axis);
-        let (vs, mut ts) = acoustic_star_vector(
-            &pr.n,
-            &v_l,
-            &t_l,
-            rho_l * cl_l,
-            rho_l * ct_l,
-            &v_r,
-            &t_r,
-            rho_r * cl_r,
-            rho_r * ct_r,
-        );
+        let (vs, mut ts) = match params.options.riemann {
+            RiemannSolver::Acoustic => acoustic_star_vector(
+                &pr.n,
+                &v_l,
+                &t_l,
+                rho_l * cl_l,
+                rho_l * ct_l,
+                &v_r,
+                &t_r,
+                rho_r * cl_r,
+                rho_r * ct_r,
+            ),
+            // the longitudinal wave as a shock or expansion with Us = c_l + s up (the
+            // EOS's Hugoniot slope), the transverse waves acoustic
+            RiemannSolver::TwoShock => elastic_star_vector(
+                &pr.n,
+                &v_l,
+                &t_l,
+                rho_l * ct_l,
+                &v_r,
+                &t_r,
+                rho_r * ct_r,
+                |ul, sl, ur, sr| {
+                    let side = |u: Real, s: Real, rho: Real, c: Real, m: usize| ShockSide {
+                        u,
+                        p: -s,
+                        rho,
+                        c,
+                        s: mats[sys.mat[m] as usize].eos.hugoniot_slope(),
+                    };
+                    let (u, p) =
+                        two_shock_star(side(ul, sl, rho_l, cl_l, i), side(ur, sr, rho_r, cl_r, j));
+                    (u, -p)
+                },
+            ),
+        };
         if failed_pair {
             // seed 000 Algorithm 1, in the full-stress Riemann problem: no tension across
             // the contact of a failed particle

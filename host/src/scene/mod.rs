@@ -5,6 +5,7 @@
 //! any key by dotted path before the scene is interpreted (see [`apply_override`]).
 //! Every error is one line naming the file, the key and the cause.
 
+pub mod applies;
 mod build;
 mod de;
 pub mod pores;
@@ -47,20 +48,54 @@ pub fn load(path: &Path, overrides: &[String]) -> Result<Scene, SceneError> {
 /// body that holds no particle, an initial state the EOS cannot reach, or a scene too large
 /// for memory is reported here, before any output is written.
 pub fn parse(text: &str, origin: &str, overrides: &[String]) -> Result<Scene, SceneError> {
+    parse_inner(text, origin, overrides, false).map(|(s, _)| s)
+}
+
+/// Reads a scene for a sweep that sets the scheme itself (`gsph study`, `gsph stability`):
+/// as [`load`] with `scheme=NAME` appended to `overrides`, but the `[options]` keys that
+/// scheme does not read are left out (and returned, `options.KEY` each) instead of refused.
+pub fn load_for_scheme(
+    path: &Path,
+    overrides: &[String],
+    scheme: &str,
+) -> Result<(Scene, Vec<&'static str>), SceneError> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| SceneError(format!("{}: cannot read scene: {e}", path.display())))?;
+    let mut set = overrides.to_vec();
+    set.push(format!("scheme={scheme}"));
+    parse_inner(&text, &path.display().to_string(), &set, true)
+}
+
+fn parse_inner(
+    text: &str,
+    origin: &str,
+    overrides: &[String],
+    strip: bool,
+) -> Result<(Scene, Vec<&'static str>), SceneError> {
     let mut value: toml::Table = text
         .parse::<toml::Table>()
         .map_err(|e| SceneError(toml_error(text, origin, &e)))?;
     for o in overrides {
-        apply_override(&mut value, o).map_err(|e| SceneError(format!("--set {o}: {}", e.0)))?;
+        match o.strip_prefix(UNSET) {
+            Some(key) => remove_key(&mut value, key)
+                .map_err(|e| SceneError(format!("--unset {key}: {}", e.0)))?,
+            None => apply_override(&mut value, o)
+                .map_err(|e| SceneError(format!("--set {o}: {}", e.0)))?,
+        }
     }
     let blame = |msg: String, up: bool| {
         SceneError(format!("{}: {msg}", source_of(&msg, up, origin, overrides)))
     };
     let mut scene = Scene::deserialize_table(value).map_err(|e| blame(e, true))?;
+    let dropped = if strip {
+        applies::strip_inapplicable(&mut scene)
+    } else {
+        Vec::new()
+    };
     validate::validate(&scene).map_err(|e| blame(e.0, false))?;
     validate::resolve_poisson(&mut scene).map_err(|e| blame(e.0, false))?;
     build::check_build(&scene).map_err(|e| blame(e.0, false))?;
-    Ok(scene)
+    Ok((scene, dropped))
 }
 
 /// `origin:line:col: malformed TOML: cause` on one line.
@@ -118,6 +153,50 @@ fn bracketed(dotted: &str) -> String {
         }
     }
     s
+}
+
+/// The prefix that marks an override as a removal (`--unset KEY` is `unset:KEY` among the
+/// overrides, so that checkpoints and messages keep it in order with the `--set`s).
+pub const UNSET: &str = "unset:";
+
+/// `set` followed by the removals `unset` (each `KEY`, encoded as [`UNSET`]`KEY`).
+pub fn with_unsets(mut set: Vec<String>, unset: &[String]) -> Vec<String> {
+    set.extend(unset.iter().map(|k| format!("{UNSET}{k}")));
+    set
+}
+
+/// Removes the key at dotted path `key` from a parsed scene table; an error if it is not
+/// there (a removal that removes nothing is a typo).
+fn remove_key(table: &mut toml::Table, key: &str) -> Result<(), SceneError> {
+    fn walk(v: &mut toml::Value, parts: &[&str]) -> bool {
+        let Some((first, rest)) = parts.split_first() else {
+            return false;
+        };
+        match v {
+            toml::Value::Table(t) if rest.is_empty() => t.remove(*first).is_some(),
+            toml::Value::Table(t) => t.get_mut(*first).is_some_and(|c| walk(c, rest)),
+            toml::Value::Array(a) if !rest.is_empty() => first
+                .parse::<usize>()
+                .ok()
+                .and_then(|i| a.get_mut(i))
+                .is_some_and(|c| walk(c, rest)),
+            _ => false,
+        }
+    }
+    let parts: Vec<&str> = key.trim().split('.').map(str::trim).collect();
+    if parts.iter().any(|p| p.is_empty()) {
+        return err(format!("`{key}` has an empty part"));
+    }
+    let mut root = toml::Value::Table(std::mem::take(table));
+    let found = walk(&mut root, &parts);
+    if let toml::Value::Table(t) = root {
+        *table = t;
+    }
+    if found {
+        Ok(())
+    } else {
+        err(format!("`{}` is not in the scene", key.trim()))
+    }
 }
 
 /// Parses the value of an override: a TOML value, or else the text as a string.

@@ -148,56 +148,44 @@ impl Scene {
     }
 }
 
-/// Scheme options.
-#[derive(Debug, Clone, Deserialize)]
+/// Scheme options. Each is read by some schemes only and refused for the others (see
+/// `scene::applies`); absent keys take the scheme's default.
+#[derive(Debug, Clone, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct OptionsSpec {
-    /// Monaghan alpha (av).
-    #[serde(default = "one")]
-    pub av_alpha: f64,
-    /// Monaghan beta (av).
-    #[serde(default = "one")]
-    pub av_beta: f64,
-    /// Slope limiter (ts2): minmod, superbee, mc, vanleer, sweby:BETA.
+    /// Monaghan alpha (av; default 1).
+    #[serde(default)]
+    pub av_alpha: Option<f64>,
+    /// Monaghan beta (av; default 1).
+    #[serde(default)]
+    pub av_beta: Option<f64>,
+    /// Slope limiter of the MUSCL reconstruction (ts2: superbee default; tkc: minmod
+    /// default; pm with `muscl`: superbee default): minmod, superbee, mc, vanleer,
+    /// sweby:BETA.
     #[serde(default)]
     pub limiter: Option<String>,
-    /// Riemann solver (ts): acoustic or two_shock.
+    /// Riemann solver (pm, tkc, ts1, ts2): acoustic (default) or two_shock.
     #[serde(default)]
     pub riemann: Option<String>,
-    /// Time treatment of the ts2 reconstruction: predictor (MUSCL–Hancock, default),
-    /// courant (slopes scaled by 1 - c dt / r, seed 000 eq 23 made dimensionless), none.
+    /// Time treatment of the ts2 reconstruction, one choice for continuity, momentum and
+    /// energy: none (default: spatial reconstruction only), courant (slopes scaled by
+    /// 1 - c dt / r, seed 000 eq 23 made dimensionless), predictor (MUSCL–Hancock).
     #[serde(default)]
     pub muscl_time: Option<String>,
-    /// Free-surface eigenvalue threshold (tkc).
+    /// Free-surface eigenvalue threshold (tkc, pm with correction: L = I below it; ts1,
+    /// ts2: consistent divergence below it; default 0.75).
     #[serde(default)]
     pub surface_lambda: Option<f64>,
-    /// det L threshold (tkc).
+    /// det L threshold below which L is not inverted (same schemes; default 0.05).
     #[serde(default)]
     pub det_epsilon: Option<f64>,
-    /// Kernel gradient correction for the pm family (adds the `correction` effect; implied
-    /// by tkc). Only with scheme pm or tkc.
+    /// Kernel gradient correction for scheme pm (adds the `correction` effect; tkc always
+    /// has it).
     #[serde(default)]
-    pub correction: bool,
-    /// MUSCL reconstruction for the pm family (adds the `muscl` effect; implied by tkc).
-    /// Only with scheme pm or tkc.
+    pub correction: Option<bool>,
+    /// MUSCL reconstruction for scheme pm (adds the `muscl` effect; tkc always has it).
     #[serde(default)]
-    pub muscl: bool,
-}
-
-impl Default for OptionsSpec {
-    fn default() -> Self {
-        OptionsSpec {
-            av_alpha: 1.0,
-            av_beta: 1.0,
-            limiter: None,
-            riemann: None,
-            muscl_time: None,
-            surface_lambda: None,
-            det_epsilon: None,
-            correction: false,
-            muscl: false,
-        }
-    }
+    pub muscl: Option<bool>,
 }
 
 /// Output schedule.

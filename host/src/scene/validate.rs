@@ -147,8 +147,18 @@ pub fn validate(s: &Scene) -> R {
         );
     }
     let o = &s.options;
-    non_negative("options.av_alpha", o.av_alpha)?;
-    non_negative("options.av_beta", o.av_beta)?;
+    if let Some((key, why)) = super::applies::inapplicable(o, &s.scheme)
+        .into_iter()
+        .next()
+    {
+        return fail(key, why);
+    }
+    if let Some(v) = o.av_alpha {
+        non_negative("options.av_alpha", v)?;
+    }
+    if let Some(v) = o.av_beta {
+        non_negative("options.av_beta", v)?;
+    }
     if let Some(l) = &o.limiter {
         if Limiter::from_name(l).is_none() {
             return fail(
@@ -178,17 +188,6 @@ pub fn validate(s: &Scene) -> R {
     }
     if let Some(v) = o.det_epsilon {
         non_negative("options.det_epsilon", v)?;
-    }
-    for (key, on) in [
-        ("options.correction", o.correction),
-        ("options.muscl", o.muscl),
-    ] {
-        if on && s.scheme != "pm" && s.scheme != "tkc" {
-            return fail(
-                key,
-                format!("only with scheme pm or tkc (scheme is {})", s.scheme),
-            );
-        }
     }
     if let Some(p) = &s.periodic {
         dims("periodic.lo", &p.lo, s.dim)?;

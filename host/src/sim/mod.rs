@@ -55,10 +55,10 @@ pub fn resolve_effects(scene: &Scene, materials: &[Material]) -> EffectSet {
         e = e.union(EffectSet::PERIODIC);
     }
     // pm-family options (validated: only with pm or tkc).
-    if scene.options.correction {
+    if scene.options.correction == Some(true) {
         e = e.union(EffectSet::CORRECTION);
     }
-    if scene.options.muscl {
+    if scene.options.muscl == Some(true) {
         e = e.union(EffectSet::MUSCL);
     }
     e.closed()
@@ -188,11 +188,13 @@ impl<const D: usize> Sim<D> {
         let n = parts.len();
         let kernel = kernel_of(&scene.kernel);
         let opt = &scene.options;
-        let mut options = SchemeOptions {
-            av_alpha: opt.av_alpha,
-            av_beta: opt.av_beta,
-            ..SchemeOptions::default()
-        };
+        let mut options = SchemeOptions::default();
+        if let Some(v) = opt.av_alpha {
+            options.av_alpha = v;
+        }
+        if let Some(v) = opt.av_beta {
+            options.av_beta = v;
+        }
         if let Some(l) = &opt.limiter {
             options.limiter = Limiter::from_name(l).expect("validated limiter");
         }
@@ -209,8 +211,8 @@ impl<const D: usize> Sim<D> {
         if let Some(m) = &opt.muscl_time {
             options.muscl_time = match m.as_str() {
                 "courant" => MusclTime::CourantFactor,
-                "none" => MusclTime::None,
-                _ => MusclTime::Predictor,
+                "predictor" => MusclTime::Predictor,
+                _ => MusclTime::None,
             };
         }
         if let Some(v) = opt.surface_lambda {

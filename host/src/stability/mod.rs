@@ -220,7 +220,7 @@ pub fn run_case(path: &Path, scheme: Scheme, quick: bool) -> Row {
         verdict: Verdict::Fail,
         note: String::new(),
     };
-    let mut set: Vec<String> = if quick {
+    let set: Vec<String> = if quick {
         quick_overrides(&case)
             .iter()
             .map(|s| s.to_string())
@@ -228,9 +228,17 @@ pub fn run_case(path: &Path, scheme: Scheme, quick: bool) -> Row {
     } else {
         Vec::new()
     };
-    set.push(format!("scheme={}", scheme.name()));
-    let sc = match scene::load(path, &set) {
-        Ok(sc) => sc,
+    let sc = match scene::load_for_scheme(path, &set, scheme.name()) {
+        Ok((sc, dropped)) => {
+            for key in dropped {
+                eprintln!(
+                    "stability: {case} with {}: {key} left out (not read by {})",
+                    scheme.name(),
+                    scheme.name()
+                );
+            }
+            sc
+        }
         Err(e) => {
             row.note = e.to_string();
             return row;

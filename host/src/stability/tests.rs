@@ -73,9 +73,8 @@ fn every_quick_override_names_a_hard_case() {
         assert!(!quick_overrides(s).is_empty(), "{s} has no quick overrides");
         // every hard case parses with its quick overrides and every scheme
         for sc in Scheme::ALL {
-            let mut set: Vec<String> = quick_overrides(s).iter().map(|x| x.to_string()).collect();
-            set.push(format!("scheme={}", sc.name()));
-            scene::load(&dir.join(format!("{s}.toml")), &set)
+            let set: Vec<String> = quick_overrides(s).iter().map(|x| x.to_string()).collect();
+            scene::load_for_scheme(&dir.join(format!("{s}.toml")), &set, sc.name())
                 .unwrap_or_else(|e| panic!("{s} {}: {e}", sc.name()));
         }
     }

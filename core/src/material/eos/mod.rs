@@ -119,14 +119,23 @@ impl Eos {
         }
     }
 
-    /// Slope `s` of the linear shock-speed relation `Us = c0 + s up` behind this EOS
-    /// (0 where the model has none); used by the two-shock Riemann solver.
+    /// Slope `s` of the linear shock-speed relation `Us = c0 + s up` behind this EOS; used
+    /// by the two-shock Riemann solver. Models built on a Hugoniot give their `s1`. The
+    /// others give the weak-shock slope `s = (1 + K')/4`, `K' = dK_S/dP` at the reference
+    /// state (`K_S = rho c²` the isentropic bulk modulus; a weak shock is isentropic to
+    /// second order, so `dUs/dup` at `up = 0` is fixed by `K'`):
+    /// linear `(1 + gamma)/4` (`K_S' = gamma`; 1/2 for the barotropic `gamma = 1`),
+    /// logarithmic 1/4 (`K_S = B`), polynomial `1/2 + k2/(2 k1)` (compression branch).
+    /// The test `weak_shock_slope_matches_the_exact_hugoniot` checks each against the
+    /// Rankine–Hugoniot shock of the EOS itself.
     pub fn hugoniot_slope(&self) -> Real {
         match self {
             Eos::MieGruneisen(m) => m.s1,
             Eos::Hugoniot(m) => m.s1,
             Eos::TwoCurve(m) => m.s_a,
-            Eos::Linear(_) | Eos::Logarithmic(_) | Eos::Polynomial(_) => 0.0,
+            Eos::Linear(m) => 0.25 * (1.0 + m.gamma),
+            Eos::Logarithmic(_) => 0.25,
+            Eos::Polynomial(m) => 0.5 + 0.5 * m.k2 / m.k1,
         }
     }
 
@@ -255,5 +264,85 @@ mod tests {
         let rho_shock = rho0 * us / (us - up);
         test_util::assert_rel(guard_density(rho0, s), rho_shock, 1e-12, "guard");
         assert_eq!(guard_density(rho0, 0.5), Real::INFINITY);
+    }
+    /// The Rankine–Hugoniot shock of each EOS from rest at `(rho0, e = 0)`: for a
+    /// compression `eta = 1 - rho0/rho`, `P` solves `P = P(rho, e)` with
+    /// `e = P eta / (2 rho0)`, and `Us = sqrt(P/(rho0 eta))`, `up = sqrt(P eta/rho0)`.
+    /// The slope `(Us(up2) - Us(up1))/(up2 - up1)` between two weak shocks equals
+    /// [`Eos::hugoniot_slope`] to first order in `eta`.
+    #[test]
+    fn weak_shock_slope_matches_the_exact_hugoniot() {
+        let cases: [Eos; 8] = [
+            Linear {
+                rho0: 8960.0,
+                c0: 4148.0,
+                gamma: 1.0,
+            }
+            .into(),
+            Linear {
+                rho0: 2785.0,
+                c0: 5328.0,
+                gamma: 2.0,
+            }
+            .into(),
+            Logarithmic {
+                rho0: 2688.9,
+                bulk_modulus: 73e9,
+            }
+            .into(),
+            Polynomial {
+                rho0: 3215.0,
+                k1: 2.2e11,
+                k2: 3.61e11,
+                k3: 0.0,
+            }
+            .into(),
+            Polynomial {
+                rho0: 3215.0,
+                k1: 2.2e11,
+                k2: -1.0e11,
+                k3: 5e11,
+            }
+            .into(),
+            MieGruneisen {
+                rho0: 1845.0,
+                c0: 12870.0,
+                s1: 1.124,
+                gamma0: 2.0,
+            }
+            .into(),
+            Hugoniot {
+                rho0: 6100.0,
+                c0: 5077.0,
+                s1: 1.201,
+            }
+            .into(),
+            TwoCurve {
+                rho0: 8930.0,
+                c_a: 3940.0,
+                s_a: 1.49,
+                gamma: 2.0,
+            }
+            .into(),
+        ];
+        for eos in cases {
+            let rho0 = eos.rho0();
+            let shock = |eta: Real| {
+                let rho = rho0 / (1.0 - eta);
+                let mut p = 0.0;
+                for _ in 0..200 {
+                    p = eos.eval(rho, p * eta / (2.0 * rho0)).p;
+                }
+                ((p / (rho0 * eta)).sqrt(), (p * eta / rho0).sqrt())
+            };
+            let (us1, up1) = shock(1e-5);
+            let (us2, up2) = shock(2e-5);
+            let slope = (us2 - us1) / (up2 - up1);
+            let s = eos.hugoniot_slope();
+            assert!(
+                (slope - s).abs() < 2e-3 * s.max(0.25),
+                "{eos:?}: exact weak-shock slope {slope}, hugoniot_slope {s}"
+            );
+        }
     }
 }
