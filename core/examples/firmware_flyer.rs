@@ -73,6 +73,7 @@ mod runner {
         strength: Strength::VonMises {
             yield_stress: 2.5e9,
         },
+        tensile_strength: Real::INFINITY,
     };
 
     impl Storage {

@@ -62,6 +62,7 @@ fn material(yield_stress: Real) -> Material {
         .into(),
         shear_modulus: 80e9,
         strength: Strength::VonMises { yield_stress },
+        tensile_strength: Real::INFINITY,
     }
 }
 

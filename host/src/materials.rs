@@ -40,6 +40,7 @@ pub fn material_of(m: &MaterialSpec) -> Material {
         eos,
         shear_modulus: m.shear_modulus,
         strength,
+        tensile_strength: m.tensile_strength.unwrap_or(f64::INFINITY),
     }
 }
 

@@ -38,13 +38,27 @@ pub struct Material {
     pub shear_modulus: Real,
     /// Strength model.
     pub strength: Strength,
+    /// Tensile strength T, Pa (`Real::INFINITY`: none): the pressure never falls below
+    /// `-T` (the pressure cut-off of hydrocodes; seed 004 table 1 gives copper
+    /// T = 0.35 GPa). Applied in [`Material::eos`], so every scheme sees the cut pressure.
+    pub tensile_strength: Real,
 }
 
 impl Material {
     /// Pressure and bulk sound speed at (rho, e).
     #[inline]
     pub fn eos(&self, rho: Real, e: Real) -> EosState {
-        self.eos.eval(rho, e)
+        let st = self.eos.eval(rho, e);
+        if st.p < -self.tensile_strength {
+            // tension beyond T: the pressure stays at the cut-off, the sound speed that of
+            // the EOS (the wave speeds of the Riemann solvers and the time step)
+            EosState {
+                p: -self.tensile_strength,
+                c2: st.c2,
+            }
+        } else {
+            st
+        }
     }
     /// Longitudinal wave speed from the bulk sound speed squared.
     #[inline]
@@ -81,5 +95,43 @@ impl Material {
             Strength::JohnsonCook(jc) => jc.t_room,
             _ => 0.0,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::material::eos::TwoCurve;
+
+    fn copper(tensile_strength: Real) -> Material {
+        Material {
+            rho0: 8960.0,
+            eos: TwoCurve {
+                rho0: 8960.0,
+                c_a: 3930.0,
+                s_a: 1.5,
+                gamma: 1.7,
+            }
+            .into(),
+            shear_modulus: 43e9,
+            strength: Strength::VonMises {
+                yield_stress: 0.35e9,
+            },
+            tensile_strength,
+        }
+    }
+
+    /// Seed 004 table 1's copper: T = 0.35 GPa. Compression and moderate tension are the
+    /// EOS's; beyond -T the pressure stays at -T with the EOS's sound speed.
+    #[test]
+    fn tensile_strength_cuts_the_pressure_at_minus_t() {
+        let (cut, free) = (copper(0.35e9), copper(Real::INFINITY));
+        for rho in [9500.0, 8960.0, 8950.0] {
+            assert_eq!(cut.eos(rho, 0.0), free.eos(rho, 0.0), "rho {rho}");
+        }
+        let deep = 8000.0;
+        assert!(free.eos(deep, 0.0).p < -0.35e9);
+        assert_eq!(cut.eos(deep, 0.0).p, -0.35e9);
+        assert_eq!(cut.eos(deep, 0.0).c2, free.eos(deep, 0.0).c2);
     }
 }

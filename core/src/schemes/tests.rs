@@ -69,6 +69,7 @@ fn material() -> Material {
         strength: Strength::VonMises {
             yield_stress: 2.5e9,
         },
+        tensile_strength: Real::INFINITY,
     }
 }
 

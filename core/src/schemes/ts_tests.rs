@@ -37,6 +37,7 @@ fn material() -> Material {
         .into(),
         shear_modulus: 1e9,
         strength: Strength::Elastic,
+        tensile_strength: Real::INFINITY,
     }
 }
 

@@ -249,6 +249,10 @@ pub struct MaterialSpec {
     /// Strength model (default: elastic if shear_modulus > 0, else fluid).
     #[serde(default)]
     pub strength: Option<StrengthSpec>,
+    /// Tensile strength T, Pa: the pressure never falls below -T (pressure cut-off; seed
+    /// 004 table 1: copper 0.35 GPa). Not with JH1, which has its own `tensile_limit`.
+    #[serde(default)]
+    pub tensile_strength: Option<f64>,
 }
 
 /// Equations of state (DESIGN §4).

@@ -227,6 +227,15 @@ pub fn validate(s: &Scene) -> R {
         positive(&format!("{key}.rho0"), m.rho0)?;
         non_negative(&format!("{key}.shear_modulus"), m.shear_modulus)?;
         validate_eos(&format!("{key}.eos"), &m.eos)?;
+        if let Some(t) = m.tensile_strength {
+            positive(&format!("{key}.tensile_strength"), t)?;
+            if matches!(m.strength, Some(StrengthSpec::Jh1 { .. })) {
+                return fail(
+                    &format!("{key}.tensile_strength"),
+                    "JH1 has its own tensile limit (strength.tensile_limit)",
+                );
+            }
+        }
         match &m.strength {
             Some(
                 StrengthSpec::Elastic {}

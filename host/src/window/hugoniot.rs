@@ -77,10 +77,14 @@ pub struct HugoniotPoint {
     pub bracket: f64,
     /// u_s after each bisection round, m/s.
     pub rounds: Vec<f64>,
-    /// Mean −σ_xx behind the compaction front, Pa.
+    /// Bulk (volume-averaged, pores at zero) −σ_xx behind the compaction front, Pa.
     pub stress_behind: f64,
-    /// Mean −σ_xx between the front and the entry (the elastic precursor), Pa.
+    /// Bulk −σ_xx between the front and the entry (the elastic precursor), Pa.
     pub stress_precursor: f64,
+    /// Matrix −σ_xx (mean over the particles) behind the front, Pa.
+    pub stress_behind_matrix: f64,
+    /// Matrix −σ_xx in the precursor, Pa.
+    pub stress_precursor_matrix: f64,
     /// Bulk density (pores included) behind the front and ahead of it, kg/m³.
     pub rho_behind: f64,
     /// Bulk density ahead of the front (in the precursor), kg/m³.
@@ -111,8 +115,8 @@ impl HugoniotPoint {
         (self.rho_behind / self.rho_ahead) / ((self.us - d) / (self.us - self.up))
     }
 
-    /// Measured stress jump over the momentum jump condition ρ_a (u_s − δ)(u_p − δ)
-    /// (1 for a steady wave).
+    /// Measured bulk stress jump over the momentum jump condition ρ_a (u_s − δ)(u_p − δ)
+    /// (1 for a steady wave; bulk stress and bulk density, as the jump conditions need).
     pub fn momentum_jump_ratio(&self) -> f64 {
         let d = self.precursor_velocity;
         (self.stress_behind - self.stress_precursor)
@@ -360,9 +364,11 @@ fn point<const D: usize>(
     let front = profile.front(u_in + 0.5 * up);
     let margin = 2.0 * geo.feed;
     let behind_lo = geo.x_l + geo.d_out1 + geo.feed;
-    let stress_behind = profile.mean(behind_lo, front - margin, |b| b.stress);
-    let stress_precursor = profile.mean(front + margin, geo.x_r - geo.d_in - geo.dx, |b| b.stress);
     let ahead_hi = geo.x_r - geo.d_in - geo.dx;
+    let stress_behind = profile.mean(behind_lo, front - margin, |b| b.stress_bulk);
+    let stress_precursor = profile.mean(front + margin, ahead_hi, |b| b.stress_bulk);
+    let stress_behind_matrix = profile.mean(behind_lo, front - margin, |b| b.stress);
+    let stress_precursor_matrix = profile.mean(front + margin, ahead_hi, |b| b.stress);
     let rho_behind = profile.mean(behind_lo, front - margin, |b| b.rho_bulk);
     let rho_ahead = profile.mean(front + margin, ahead_hi, |b| b.rho_bulk);
     let precursor_velocity = profile.mean(front + margin, ahead_hi, |b| b.vx) - u_in;
@@ -373,6 +379,8 @@ fn point<const D: usize>(
         rounds,
         stress_behind,
         stress_precursor,
+        stress_behind_matrix,
+        stress_precursor_matrix,
         rho_behind,
         rho_ahead,
         precursor_velocity,
@@ -396,15 +404,18 @@ fn point<const D: usize>(
 
 /// `hugoniot.csv`: one row per point (DESIGN §6 contract: `up, us, sigma_behind,
 /// sigma_precursor, …`; velocities m/s, stresses −σ_xx in Pa, densities kg/m³).
+/// `sigma_behind`, `sigma_precursor` are bulk stresses (volume averages with the pores at
+/// zero: what the jump conditions and the seed's σ_HEL refer to); `sigma_*_matrix` are the
+/// means over the particles (the stress in the solid); `rho_*` are bulk densities.
 pub fn to_csv(points: &[HugoniotPoint]) -> String {
     let mut s = String::from(
-        "up,us,sigma_behind,sigma_precursor,us_fit,us_rel_diff,bracket,us_rounds,precursor_velocity,rho_ahead,rho_behind,mass_jump_ratio,momentum_jump_ratio,front_m,omega_slope,trials,steps,wall_s\n",
+        "up,us,sigma_behind,sigma_precursor,us_fit,us_rel_diff,bracket,us_rounds,precursor_velocity,rho_ahead,rho_behind,mass_jump_ratio,momentum_jump_ratio,front_m,omega_slope,trials,steps,wall_s,sigma_behind_matrix,sigma_precursor_matrix\n",
     );
     for p in points {
         let fit = seed_fit(p.up);
         let rounds: Vec<String> = p.rounds.iter().map(|u| format!("{u:.2}")).collect();
         s.push_str(&format!(
-            "{},{:.3},{:.6e},{:.6e},{:.3},{:.5},{:.3},{},{:.3},{:.2},{:.2},{:.5},{:.5},{:.6e},{:.4e},{},{},{:.1}\n",
+            "{},{:.3},{:.6e},{:.6e},{:.3},{:.5},{:.3},{},{:.3},{:.2},{:.2},{:.5},{:.5},{:.6e},{:.4e},{},{},{:.1},{:.6e},{:.6e}\n",
             p.up,
             p.us,
             p.stress_behind,
@@ -422,7 +433,9 @@ pub fn to_csv(points: &[HugoniotPoint]) -> String {
             p.omega_slope,
             p.trials,
             p.steps,
-            p.wall_s
+            p.wall_s,
+            p.stress_behind_matrix,
+            p.stress_precursor_matrix
         ));
     }
     s
@@ -456,9 +469,14 @@ pub fn write_point(dir: &std::path::Path, p: &HugoniotPoint) -> Result<(), Strin
             title: title.clone(),
             x_label: "x in the window, um".into(),
             y_label: "-sigma_xx, GPa".into(),
-            series: vec![line("-sigma_xx (mean over particles)", &|b| {
-                b.stress * 1e-9
-            })],
+            series: vec![
+                line("bulk -sigma_xx (volume average, pores at zero)", &|b| {
+                    b.stress_bulk * 1e-9
+                }),
+                line("matrix -sigma_xx (mean over particles)", &|b| {
+                    b.stress * 1e-9
+                }),
+            ],
             ..Default::default()
         };
         let density = XyPlot {

@@ -1,5 +1,13 @@
 //! 1D profiles along the flow axis of a window, averaged over the cross-section and over
 //! any number of instants (seed 004 fig 9: density and −σ_xx averaged over 75 profiles).
+//!
+//! Two averages of the stress: the **bulk** (macroscopic) stress
+//! `sum_i sigma_i V_i / V_bin`, `V_i = m_i/rho_i`, with the pores counting as zero stress,
+//! which is what the Rankine–Hugoniot jump conditions and the seed's `sigma_HEL` and
+//! `Δsigma = rho0 u_s u_p` refer to (the traction across a section averaged over a period);
+//! and the **matrix** stress, the plain mean over the particles, which is the stress in the
+//! solid and exceeds the bulk one by `V_bin / sum V_i` (about `m = 1.35` ahead of a
+//! compaction front).
 
 use crate::scene::WindowGeometry;
 use crate::sim::Sim;
@@ -16,6 +24,8 @@ pub struct Profile {
     vx: Vec<f64>,
     rho: Vec<f64>,
     sxx: Vec<f64>,
+    vol: Vec<f64>,
+    sxx_vol: Vec<f64>,
     /// Cross-section of the window (length in 2D, area in 3D; 1 in 1D).
     section: f64,
     /// Instants added.
@@ -31,8 +41,10 @@ pub struct Bin {
     pub rho: f64,
     /// Bulk density: mass in the bin over its volume (pores included), kg/m³.
     pub rho_bulk: f64,
-    /// Mean −σ_xx = p − s_xx, Pa.
+    /// Matrix stress: mean −σ_xx = p − s_xx over the particles, Pa.
     pub stress: f64,
+    /// Bulk stress: `sum (p − s_xx) V_i` over the bin's volume (pores count as zero), Pa.
+    pub stress_bulk: f64,
     /// Mean velocity along x, m/s.
     pub vx: f64,
 }
@@ -49,6 +61,8 @@ impl Profile {
             vx: vec![0.0; n],
             rho: vec![0.0; n],
             sxx: vec![0.0; n],
+            vol: vec![0.0; n],
+            sxx_vol: vec![0.0; n],
             section: 0.0,
             instants: 0,
         }
@@ -69,6 +83,9 @@ impl Profile {
             self.vx[k] += sim.v[i][0];
             self.rho[k] += sim.rho[i];
             self.sxx[k] += sim.p[i] - sxx;
+            let v = sim.m[i] / sim.rho[i];
+            self.vol[k] += v;
+            self.sxx_vol[k] += (sim.p[i] - sxx) * v;
         }
         self.section = (1..D).map(|a| sim.periodic.len[a]).product();
         self.instants += 1;
@@ -86,6 +103,7 @@ impl Profile {
                     rho: self.rho[k] / c,
                     rho_bulk: self.mass[k] / vol,
                     stress: self.sxx[k] / c,
+                    stress_bulk: self.sxx_vol[k] / vol,
                     vx: self.vx[k] / c,
                 }
             })
@@ -121,13 +139,19 @@ impl Profile {
         v.iter().sum::<f64>() / v.len() as f64
     }
 
-    /// CSV: `x,rho,rho_bulk,minus_sigma_xx,vx`.
+    /// Volume fraction of the bins filled by particles, `sum V_i / V_bin`.
+    pub fn solid_fraction(&self, k: usize) -> f64 {
+        self.vol[k] / (self.bin * self.section * self.instants.max(1) as f64)
+    }
+
+    /// CSV: `x,rho,rho_bulk,minus_sigma_xx_bulk,minus_sigma_xx_matrix,vx` (bulk: volume
+    /// average over the bin with pores at zero; matrix: mean over the particles).
     pub fn to_csv(&self) -> String {
-        let mut s = String::from("x,rho,rho_bulk,minus_sigma_xx,vx\n");
+        let mut s = String::from("x,rho,rho_bulk,minus_sigma_xx_bulk,minus_sigma_xx_matrix,vx\n");
         for b in self.bins() {
             s.push_str(&format!(
-                "{:e},{:e},{:e},{:e},{:e}\n",
-                b.x, b.rho, b.rho_bulk, b.stress, b.vx
+                "{:e},{:e},{:e},{:e},{:e},{:e}\n",
+                b.x, b.rho, b.rho_bulk, b.stress_bulk, b.stress, b.vx
             ));
         }
         s
