@@ -9,7 +9,8 @@
 # running alongside). GSPH=path/to/gsph uses that binary and skips the build.
 #
 # All five schemes run every case (`gsph check` and a coarse run of each pass), so none is
-# left out. ring_collapse sets `riemann = "two_shock"`, which only the ts schemes read.
+# left out. ring_collapse sets `riemann = "two_shock"`, which av does not read: `gsph study`
+# leaves it out of the av runs and says so.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if [[ -z "${GSPH:-}" ]]; then

@@ -138,7 +138,8 @@ fn cases() -> Vec<Case> {
         case("neighbour capacity (check)", f(), "check", &["--set", "neighbor_capacity=1"], &["neighbour-capacity overflow: particle 0", "neighbor_capacity"]),
         case("neighbour capacity (run)", f(), "run", &["--set", "neighbor_capacity=1"], &["neighbour-capacity overflow: particle 0", "neighbor_capacity"]),
         case("blow-up at step 1", f(), "run", &["--set", "bodies.0.velocity.value=[1e200]"], &["step 1 ", "particle ", "not finite"]),
-        case("blow-up mid-run", f(), "run", &["--set", "bodies.0.velocity.value=[1e150]"], &["step ", "particle ", "not finite"]),
+        case("blow-up mid-run", f(), "run", &["--set", "scheme=ts1", "--set", "bodies.0.velocity.value=[1e150]"], &["step ", "particle ", "not finite"]),
+        case("particles overrun each other mid-run", f(), "run", &["--set", "bodies.0.velocity.value=[1e150]"], &["step 197 ", "neighbour-capacity overflow: particle 0"]),
         case("--set index out of range", f(), "check", &["--set", "bodies.5.spacing=1"], &["--set bodies.5.spacing=1: `bodies` has 2 elements, index 5 is out of range"]),
         case("--set without =", f(), "run", &["--set", "scheme"], &["--set scheme: expected KEY=VALUE"]),
         case("zero t_end", f(), "check", &["--set", "t_end=0"], &["t_end: must be positive"]),
@@ -161,6 +162,12 @@ fn cases() -> Vec<Case> {
         case("hugoniot without a window", f(), "hugoniot", &[], &["no [window] section"]),
         case("hugoniot bracket not LO,HI", window(), "hugoniot", &["--bracket", "500"], &["--bracket: `500` must be LO,HI with LO < HI"]),
         case("hugoniot negative u_p", window(), "hugoniot", &["--up", "100,-5"], &["--up: `-5` is not a positive number"]),
+        case("option the scheme does not read", f(), "check", &["--set", "scheme=av", "--set", "options.limiter=mc"], &["options.limiter: not read by scheme av"]),
+        case("Riemann solver for scheme av", impact(), "run", &["--set", "scheme=av"], &["options.riemann: not read by scheme av (it solves no Riemann problem)"]),
+        case("tkc half switched", f(), "check", &["--set", "scheme=tkc", "--set", "options.correction=true"], &["options.correction: scheme tkc always has correction"]),
+        case("--unset a key that is not there", f(), "check", &["--unset", "options.riemann"], &["--unset options.riemann: `options.riemann` is not in the scene"]),
+        case("negative tensile strength", f(), "check", &["--set", "materials.0.tensile_strength=-1"], &["materials[0].tensile_strength: must be positive"]),
+        case("tensile strength with JH1", impact(), "check", &["--set", "materials.1.tensile_strength=1e9"], &["materials[1].tensile_strength: JH1 has its own tensile limit"]),
     ]
 }
 

@@ -108,9 +108,9 @@ fn pm_family_options_match_tkc_and_are_rejected_elsewhere() {
                 "effects",
                 &[format!("scheme={scheme}"), opt.to_string()],
             )
-            .expect_err("only pm and tkc take the option");
+            .expect_err("only pm takes the option");
             assert!(
-                e.0.contains(&format!("{key}: only with scheme pm or tkc")),
+                e.0.contains(&format!("{key}: only with scheme pm (scheme is {scheme})")),
                 "{scheme} {opt}: {e}"
             );
         }

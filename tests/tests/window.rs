@@ -123,3 +123,46 @@ fn hugoniot_point_obeys_the_jump_conditions() {
     assert!((p.momentum_jump_ratio() - 1.0).abs() < 0.08);
     assert!(p.stress_precursor > 0.0 && p.stress_precursor < p.stress_behind);
 }
+
+/// The window profiles report bulk stress: a periodic porous cell (m = 1.35 as built)
+/// whose solid is loaded to a uniform pressure p0 carries, across any section, the
+/// traction p0 times the solid fraction of the section; over a whole period that is
+/// p0/m, the macroscopic stress of the cell. The profile's bulk stress over bins one
+/// period long must give that back, and its matrix stress p0 (the stress in the solid,
+/// larger by the factor m that the particle mean used to report).
+#[test]
+fn bulk_stress_of_a_loaded_porous_cell_is_the_applied_traction() {
+    let sc = scene(&[
+        "resolution_scale=0.5",
+        "bodies.0.shape.max=[1.6e-4, 2.0e-5]",
+    ]);
+    let geo = sc.window.as_ref().unwrap().geometry(&sc).unwrap();
+    let parts = gsph::scene::build_particles(&sc).unwrap();
+    let m = parts.porosity[0];
+    let mut sim = gsph::sim::Sim::<2>::new(&sc, &parts).unwrap();
+    let p0 = 0.2e9;
+    for i in 0..sim.len() {
+        sim.p[i] = p0;
+    }
+    // bins one feed period (20 um) long
+    let mut prof = gsph::window::Profile::new(&geo, geo.feed);
+    prof.add(&sim);
+    let bins = prof.bins();
+    assert_eq!(bins.len(), 8);
+    for b in &bins {
+        println!(
+            "x {:.1} um: bulk {:.5e} Pa, matrix {:.5e} Pa (p0/m = {:.5e})",
+            b.x * 1e6,
+            b.stress_bulk,
+            b.stress,
+            p0 / m
+        );
+        assert!((b.stress - p0).abs() < 1e-6 * p0, "matrix {}", b.stress);
+        assert!(
+            (b.stress_bulk - p0 / m).abs() < 1e-9 * p0,
+            "bulk {} against the traction p0/m = {}",
+            b.stress_bulk,
+            p0 / m
+        );
+    }
+}
