@@ -492,6 +492,13 @@ impl<const D: usize> Sim<D> {
         Ok(())
     }
 
+    /// The free-surface flags of the last step's kernel-correction pass, one per particle:
+    /// 0 interior, 1 near a boundary particle, 2 boundary particle (computed from the state
+    /// at the start of that step). Empty without kernel correction; all 0 before a step.
+    pub fn boundary_flags(&self) -> Vec<u8> {
+        self.corr.iter().map(|c| c.boundary).collect()
+    }
+
     /// Total energy (kinetic + internal), J.
     pub fn energy(&self) -> (f64, f64) {
         let mut kin = 0.0;
