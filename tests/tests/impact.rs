@@ -19,12 +19,11 @@ fn run_case(
     serde_json::Map<String, Value>,
     gsph::output::table::ParticleTable,
 ) {
-    let text = std::fs::read_to_string(format!("{CASES}/{file}")).unwrap();
-    let sets = [
-        format!("scheme={scheme}"),
-        format!("resolution_scale={scale}"),
-    ];
-    let scene = gsph::scene::parse(&text, file, &sets).unwrap_or_else(|e| panic!("{e}"));
+    // as a sweep does: the scene's `[options]` keys this scheme does not read are left out
+    let path = std::path::Path::new(CASES).join(file);
+    let sets = [format!("resolution_scale={scale}")];
+    let (scene, _) =
+        gsph::scene::load_for_scheme(&path, &sets, scheme).unwrap_or_else(|e| panic!("{e}"));
     let r = run(
         &scene,
         file,
