@@ -465,6 +465,8 @@ impl core::fmt::Display for StepError {
 }
 
 /// Checks every particle for NaN/inf and non-positive density (first offender reported).
+/// Plastic strain, damage and temperature are checked where their effect is present (their
+/// slices are empty otherwise).
 pub fn check_finite<const D: usize>(sys: &System<'_, D>) -> Result<(), StepError> {
     for i in 0..sys.len() {
         let bad = |field| Err(StepError::NonFinite { particle: i, field });
@@ -488,6 +490,16 @@ pub fn check_finite<const D: usize>(sys: &System<'_, D>) -> Result<(), StepError
         }
         if !sys.s.is_empty() && !sys.s[i].is_finite() {
             return bad("stress deviator");
+        }
+        let bad_opt = |v: &[Real]| v.get(i).is_some_and(|x| !x.is_finite());
+        if bad_opt(sys.eps_p) {
+            return bad("plastic strain");
+        }
+        if bad_opt(sys.damage) {
+            return bad("damage");
+        }
+        if bad_opt(sys.temp) {
+            return bad("temperature");
         }
     }
     Ok(())
@@ -543,3 +555,6 @@ pub fn smoothing_length<const D: usize>(h_factor: Real, m: Real, rho: Real) -> R
             _ => real::cbrt(vol),
         }
 }
+
+#[cfg(test)]
+mod tests;

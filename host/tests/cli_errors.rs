@@ -98,6 +98,7 @@ fn cases() -> Vec<Case> {
     let riemann_b0 =
         case_text("riemann_al.toml").replacen("bulk_modulus = 73.0e9", "bulk_modulus = 0.0", 1);
     let window = || case_text("porous_cu_window.toml");
+    let strip = || case_text("sound_cu_2d.toml");
     let window_open = window().replacen(
         "[periodic]\naxes = [1]\nlo = [0.0, 0.0]\nhi = [0.0, 2.0e-5]\n",
         "",
@@ -168,6 +169,7 @@ fn cases() -> Vec<Case> {
         case("--unset a key that is not there", f(), "check", &["--unset", "options.riemann"], &["--unset options.riemann: `options.riemann` is not in the scene"]),
         case("negative tensile strength", f(), "check", &["--set", "materials.0.tensile_strength=-1"], &["materials[0].tensile_strength: must be positive"]),
         case("tensile strength with JH1", impact(), "check", &["--set", "materials.1.tensile_strength=1e9"], &["materials[1].tensile_strength: JH1 has its own tensile limit"]),
+        case("periodic length below twice the kernel support", strip(), "check", &["--set", "h_factor=2.6"], &["periodic.hi: the periodic length along axis 1 is 1e-3 m, below twice the kernel support, 2 x 2 h = 1.04e-3 m (h = h_factor 2.6 x spacing 1e-4 m of bodies[0])"]),
     ]
 }
 

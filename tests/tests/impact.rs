@@ -1,8 +1,9 @@
-//! Steel -> SiC impact (seed 000 §5) at reduced resolution, in 2D (the bundled plane-strain
-//! case) and 3D, for every scheme: the run reaches t_end with finite fields and positive
-//! density, conserves momentum to round-off and energy within the scheme's bound, the
-//! ceramic is damaged (but not all of it) and the steel is not, the steel heats from its
-//! plastic work, and the back face moves away from the impact slower than the projectile.
+//! Smoke tests of the steel -> SiC impact (seed 000 §5, which gives no exact solution) at
+//! reduced resolution, in 2D (the bundled plane-strain case) and 3D, for every scheme: the
+//! run reaches t_end with finite fields and positive density, conserves momentum to
+//! round-off and energy within the scheme's bound, the ceramic is damaged (but not all of
+//! it) and the steel is not, the steel heats from its plastic work, and the back face moves
+//! away from the impact slower than the projectile. None of this measures accuracy.
 //! The full-size case is `gsph run cases/steel_sic_impact.toml` (see scripts/validate.sh).
 
 use gsph::driver::{run, RunOptions};
@@ -18,16 +19,11 @@ fn run_case(
     serde_json::Map<String, Value>,
     gsph::output::table::ParticleTable,
 ) {
-    let text = std::fs::read_to_string(format!("{CASES}/{file}")).unwrap();
-    let mut sets = vec![
-        format!("scheme={scheme}"),
-        format!("resolution_scale={scale}"),
-    ];
-    if scheme == "av" {
-        // the scenes ask for the two-shock solver, which av does not have
-        sets.push(format!("{}options.riemann", gsph::scene::UNSET));
-    }
-    let scene = gsph::scene::parse(&text, file, &sets).unwrap_or_else(|e| panic!("{e}"));
+    // as a sweep does: the scene's `[options]` keys this scheme does not read are left out
+    let path = std::path::Path::new(CASES).join(file);
+    let sets = [format!("resolution_scale={scale}")];
+    let (scene, _) =
+        gsph::scene::load_for_scheme(&path, &sets, scheme).unwrap_or_else(|e| panic!("{e}"));
     let r = run(
         &scene,
         file,
@@ -84,11 +80,12 @@ fn check(file: &str, scale: f64, schemes: &[&str]) {
                 "{what}: momentum {a}: {p0:?} -> {p1:?}"
             );
         }
-        // energy: round-off for the time-split schemes (exactly conservative); the others
-        // drift (av: time integration; pm/tkc: the explicit contact step gains energy, as in
-        // seed 000 table 2), bounded at about twice the largest drift measured here
+        // energy: round-off for the time-split schemes and tkc (exactly conservative: tkc's
+        // energy equation is in total-energy form, seed 004 eq 11); av (time integration)
+        // and pm (the explicit contact step gains energy, as in seed 000 table 2) drift,
+        // bounded at about twice the largest drift measured here
         let bound = match scheme {
-            "ts1" | "ts2" => 1e-10,
+            "ts1" | "ts2" | "tkc" => 1e-10,
             "av" => 1e-3,
             _ => 6e-2,
         };
@@ -129,8 +126,10 @@ fn check(file: &str, scale: f64, schemes: &[&str]) {
     }
 }
 
+/// Smoke test (no reference solution: it checks that every scheme completes the 2D impact
+/// with the conservation and plausibility bounds of [`check`], not its accuracy).
 #[test]
-fn impact_2d_every_scheme() {
+fn impact_2d_every_scheme_smoke() {
     // 1 mm spacing: 3,200 particles
     check(
         "steel_sic_impact.toml",
@@ -139,8 +138,10 @@ fn impact_2d_every_scheme() {
     );
 }
 
+/// Smoke test (no reference solution: it checks that every scheme completes the 3D impact
+/// with the conservation and plausibility bounds of [`check`], not its accuracy).
 #[test]
-fn impact_3d_every_scheme() {
+fn impact_3d_every_scheme_smoke() {
     // 2.5 mm spacing: 3,200 particles; the 3D pair kernels of every scheme
     check(
         "steel_sic_impact_3d.toml",

@@ -59,7 +59,21 @@ fn muscl_pair(lim: Limiter, phi_i: Real, phi_j: Real, gi_rji: Real, gj_rji: Real
     )
 }
 
-/// Kernel correction: L_i, its inverse and the free-surface flags.
+/// Relative tolerance of the near-surface test: a boundary particle at `r <= h (1 + tol)`
+/// counts as within the smoothing length `h`.
+///
+/// Seed 004 sets `L = I` for a particle "with a boundary particle within its smoothing
+/// length". At its theta = 0.5 (h_factor 1) the first neighbour shell of a regular lattice
+/// lies at exactly `h`, so `r < h` decided by round-off (`5.000000000000004e-4` against
+/// `5e-4`) whether the row next to a free surface was flagged, and the answer changed with
+/// the resolution. A neighbour at `h` counts as within: then theta = 0.5 flags that row as
+/// theta = 0.6–0.7 do. 1e-9 is far above round-off in `r` and `h` and far below any lattice
+/// irregularity (a polar lattice's rings differ from `h` by ~1e-4 relative).
+pub const NEAR_SURFACE_TOLERANCE: Real = 1e-9;
+
+/// Kernel correction: L_i, its inverse and the free-surface flags (2: smallest
+/// eigenvalue of L below `surface_lambda`; 1: a flag-2 particle within `h_i`, up to
+/// [`NEAR_SURFACE_TOLERANCE`]; 0 otherwise).
 pub(crate) fn correction_pass<const D: usize, E: Effects, X: Executor>(
     sys: &System<'_, D>,
     corr: &mut [Correction<D>],
@@ -89,14 +103,15 @@ pub(crate) fn correction_pass<const D: usize, E: Effects, X: Executor>(
     });
     // Particles with a boundary particle within their smoothing length use L = I
     // (flag staged in `sums.div`, which the pair pass overwrites later).
+    let within = 1.0 + NEAR_SURFACE_TOLERANCE;
     let c: &[Correction<D>] = corr;
     exec.run(&mut *sums, |off, chunk: &mut [PairSums<D>]| {
         for (k, out) in chunk.iter_mut().enumerate() {
             let i = off + k;
             let mut near = c[i].boundary == 2;
-            let hi = sys.h[i];
+            let reach = sys.h[i] * within;
             for_each_pair::<D, E>(sys.x, sys.h, params, i, |pr| {
-                if c[pr.j].boundary == 2 && pr.r < hi {
+                if c[pr.j].boundary == 2 && pr.r <= reach {
                     near = true;
                 }
             });

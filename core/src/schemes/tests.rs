@@ -262,9 +262,11 @@ fn every_family_conserves_momentum_and_stays_finite() {
             "{name}: energy {rel:e} peak rho {}",
             f.rho.iter().cloned().fold(0.0, Real::max)
         );
-        // explicit Euler (pm, tkc) and leap-frog (av) are not energy conserving: a few
-        // percent over the run (seed 000 table 2: pm 2.34 %, av 1.51 %)
-        assert!(rel < 0.1, "{name}: relative energy error {rel:e}");
+        // explicit Euler (pm) and leap-frog (av) are not energy conserving: a few percent
+        // over the run (seed 000 table 2: pm 2.34 %, av 1.51 %). tkc's energy equation is
+        // in total-energy form (seed 004 eq 11), conservative to round-off.
+        let bound = if name == "tkc" { 1e-10 } else { 0.1 };
+        assert!(rel < bound, "{name}: relative energy error {rel:e}");
         // the impact compresses the middle: peak density above rho0 by a few percent
         let rmax = f.rho.iter().cloned().fold(0.0, Real::max);
         assert!(

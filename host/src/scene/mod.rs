@@ -8,6 +8,7 @@
 pub mod applies;
 mod build;
 mod de;
+mod periodic;
 pub mod pores;
 mod spec;
 mod validate;
@@ -93,6 +94,7 @@ fn parse_inner(
         Vec::new()
     };
     validate::validate(&scene).map_err(|e| blame(e.0, false))?;
+    periodic::check_length(&scene).map_err(|e| blame(e.0, false))?;
     validate::resolve_poisson(&mut scene).map_err(|e| blame(e.0, false))?;
     build::check_build(&scene).map_err(|e| blame(e.0, false))?;
     Ok((scene, dropped))

@@ -400,8 +400,9 @@ pub struct BodySpec {
     /// Pores cut out of the lattice (porous samples, seed 004 §4).
     #[serde(default)]
     pub pores: Option<PoresSpec>,
-    /// A driven body (a piston): its particles keep their initial velocity for the whole
-    /// run, whatever acts on them (external work: energy is not conserved).
+    /// A driven body (a piston): its particles keep their initial velocity and move at
+    /// exactly that velocity for the whole run, whatever acts on them (external work:
+    /// energy is not conserved).
     #[serde(default)]
     pub driven: bool,
     /// Random displacement of every particle from its lattice site, as a fraction of the

@@ -89,7 +89,8 @@ pub fn default_capacity(dim: usize, kernel: Kernel, h_factor: f64) -> usize {
 pub struct Sim<const D: usize> {
     /// Particle ids.
     pub ids: Vec<u32>,
-    /// Driven particles (bodies with `driven = true`) and the velocity they keep.
+    /// Driven particles (bodies with `driven = true`) and the velocity they keep: each step
+    /// moves them by exactly `v dt` (their material state evolves as computed).
     pub driven: Vec<(usize, Vector<D>)>,
     /// Positions.
     pub x: Vec<Vector<D>>,
@@ -480,16 +481,27 @@ impl<const D: usize> Sim<D> {
         };
         let step = self.step + 1;
         let fail = |cause| SimError::Step { step, t: t0, cause };
+        // driven particles move at exactly their prescribed velocity: x0 + v0 dt from
+        // where the step started, whatever the step computed for them
+        let x_start: Vec<Vector<D>> = self.driven.iter().map(|&(i, _)| sys.x[i]).collect();
         (self.step_fn)(&mut sys, &mut ws, &params, &self.exec).map_err(fail)?;
         check_finite(&sys).map_err(fail)?;
-        for &(i, v0) in &self.driven {
+        for (&(i, v0), &x0) in self.driven.iter().zip(&x_start) {
             self.v[i] = v0;
+            self.x[i] = self.periodic.wrap(x0 + v0 * dt);
         }
         self.primed = ws.primed;
         self.t += dt;
         self.step = step;
         self.pair_interactions += pairs;
         Ok(())
+    }
+
+    /// The free-surface flags of the last step's kernel-correction pass, one per particle:
+    /// 0 interior, 1 near a boundary particle, 2 boundary particle (computed from the state
+    /// at the start of that step). Empty without kernel correction; all 0 before a step.
+    pub fn boundary_flags(&self) -> Vec<u8> {
+        self.corr.iter().map(|c| c.boundary).collect()
     }
 
     /// Total energy (kinetic + internal), J.

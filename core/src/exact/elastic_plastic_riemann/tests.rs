@@ -264,3 +264,27 @@ fn exact_ep_rejects_bad_params() {
     assert!(matches!(e, ExactError::BadParameter { name: "sigma1", .. }));
     let _ = std::format!("{e}");
 }
+
+/// The contact state of seed 004 §2.1.1 as published digits, independent of the branch
+/// code above: sigma_c = -1.931995 GPa, u_c = 129.3952 m/s (an independent evaluation of
+/// the fan solution, bisection on u_L(sigma) = u_R(sigma) in Python double precision, gives
+/// -1.9319945 GPa and 129.39523 m/s). Tolerance: one unit of the last printed digit.
+#[test]
+fn exact_ep_contact_state_hard_coded() {
+    let ep = ElasticPlasticRiemann::new(EpRiemannParams {
+        rho0: 2688.9,
+        bulk_modulus: 73.0e9,
+        shear_modulus: 23.0e9,
+        yield_stress: 0.3e9,
+        sigma1: -4.0e9,
+    })
+    .unwrap();
+    let (sc, uc) = (ep.contact_stress(), ep.contact_velocity());
+    std::println!("sigma_c = {sc:.1} Pa, u_c = {uc:.6} m/s");
+    assert!(abs(sc - -1.931_995e9) <= 1e3, "sigma_c = {sc} Pa");
+    assert!(abs(uc - 129.3952) <= 1e-4, "u_c = {uc} m/s");
+    // both contact sides carry the same state
+    let (l, r) = ep.contact_states();
+    assert!(abs(l.sigma_xx - sc) <= 1e3 && abs(r.sigma_xx - sc) <= 1e3);
+    assert!(abs(l.u - uc) <= 1e-4 && abs(r.u - uc) <= 1e-4);
+}
