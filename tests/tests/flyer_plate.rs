@@ -22,9 +22,13 @@ fn every_scheme_stays_within_its_l1_bound() {
 /// Every scheme smears the plastic shock, which trails the precursor by only 0.29 mm (three
 /// spacings at 100 particles), into the precursor's foot, so the half-HEL point runs ahead:
 /// by 3.4 % (ts2) to 10 % (ts1) of the distance travelled at 100 particles, i.e. 1.3-3.8 %
-/// of the x coordinate. The offset shrinks as the resolution doubles; every scheme is within
-/// 2 % of the exact position from 800 particles on (ts2 from 100, av and pm from 400, ts1
-/// at 800: 1.6 %). The test checks both.
+/// of the x coordinate. The offset shrinks as the resolution doubles until it meets the
+/// uncorrected kernel's zero-order bias (the cubic spline at h = 1.2 dx has M = 1.022 in
+/// the 1D interior, so waves run slightly fast whatever the resolution): ts2 reaches that
+/// floor at about 1 % of the travel by 400 particles (measured 0.01027 at 400, 0.01043 at
+/// 800), so from 400 to 800 the test allows 5 % of scatter at the floor. Every scheme is
+/// within 2 % of the exact position from 800 particles on (ts2 from 100, av and pm from
+/// 400, ts1 at 800: 1.6 %). The test checks both.
 #[test]
 fn elastic_precursor_position() {
     for scheme in ["av", "pm", "ts1", "ts2"] {
@@ -54,7 +58,7 @@ fn elastic_precursor_position() {
             "{scheme}: precursor off by {rel_x} of its position at 800 particles"
         );
         assert!(
-            travel.windows(2).all(|w| w[1] < w[0]),
+            travel[1] < travel[0] && travel[2] < travel[1] && travel[3] < 1.05 * travel[2],
             "{scheme}: offset does not shrink: {travel:?}"
         );
     }
