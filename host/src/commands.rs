@@ -162,12 +162,12 @@ pub fn run_hugoniot(
     let points = hugoniot(scene, opts, |p| write_point(out, p))?;
     write_outputs(out, &points)?;
     println!(
-        "   u_p     u_s    fit    diff  bulk -sxx behind  precursor  u_prec  mass/RH  mom/RH   wall"
+        "   u_p     u_s    fit    diff  bulk -sxx behind  precursor  u_prec  mass/RH  mom/RH  pores behind   wall"
     );
     for p in &points {
         let fit = seed_fit(p.up);
         println!(
-            "{:6.1} {:7.1} {:6.1} {:+6.1}%  {:12.3} GPa  {:5.3} GPa {:5.1}   {:6.3}   {:6.3} {:5.0} s",
+            "{:6.1} {:7.1} {:6.1} {:+6.1}%  {:12.3} GPa  {:5.3} GPa {:5.1}   {:6.3}   {:6.3}  {:12.4} {:5.0} s",
             p.up,
             p.us,
             fit,
@@ -177,6 +177,7 @@ pub fn run_hugoniot(
             p.precursor_velocity,
             p.mass_jump_ratio(),
             p.momentum_jump_ratio(),
+            p.pores_behind,
             p.wall_s
         );
     }

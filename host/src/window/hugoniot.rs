@@ -85,6 +85,9 @@ pub struct HugoniotPoint {
     pub stress_behind_matrix: f64,
     /// Matrix −σ_xx in the precursor, Pa.
     pub stress_precursor_matrix: f64,
+    /// Pore volume fraction left behind the front, `1 − sum V_i / V` (the sample starts
+    /// at `1 − 1/m`, 0.26 for m = 1.35; 0 when the pores have closed).
+    pub pores_behind: f64,
     /// Bulk density (pores included) behind the front and ahead of it, kg/m³.
     pub rho_behind: f64,
     /// Bulk density ahead of the front (in the precursor), kg/m³.
@@ -369,6 +372,7 @@ fn point<const D: usize>(
     let stress_precursor = profile.mean(front + margin, ahead_hi, |b| b.stress_bulk);
     let stress_behind_matrix = profile.mean(behind_lo, front - margin, |b| b.stress);
     let stress_precursor_matrix = profile.mean(front + margin, ahead_hi, |b| b.stress);
+    let pores_behind = 1.0 - profile.mean(behind_lo, front - margin, |b| b.solid_fraction);
     let rho_behind = profile.mean(behind_lo, front - margin, |b| b.rho_bulk);
     let rho_ahead = profile.mean(front + margin, ahead_hi, |b| b.rho_bulk);
     let precursor_velocity = profile.mean(front + margin, ahead_hi, |b| b.vx) - u_in;
@@ -381,6 +385,7 @@ fn point<const D: usize>(
         stress_precursor,
         stress_behind_matrix,
         stress_precursor_matrix,
+        pores_behind,
         rho_behind,
         rho_ahead,
         precursor_velocity,
@@ -409,13 +414,13 @@ fn point<const D: usize>(
 /// means over the particles (the stress in the solid); `rho_*` are bulk densities.
 pub fn to_csv(points: &[HugoniotPoint]) -> String {
     let mut s = String::from(
-        "up,us,sigma_behind,sigma_precursor,us_fit,us_rel_diff,bracket,us_rounds,precursor_velocity,rho_ahead,rho_behind,mass_jump_ratio,momentum_jump_ratio,front_m,omega_slope,trials,steps,wall_s,sigma_behind_matrix,sigma_precursor_matrix\n",
+        "up,us,sigma_behind,sigma_precursor,us_fit,us_rel_diff,bracket,us_rounds,precursor_velocity,rho_ahead,rho_behind,mass_jump_ratio,momentum_jump_ratio,front_m,omega_slope,trials,steps,wall_s,sigma_behind_matrix,sigma_precursor_matrix,pores_behind\n",
     );
     for p in points {
         let fit = seed_fit(p.up);
         let rounds: Vec<String> = p.rounds.iter().map(|u| format!("{u:.2}")).collect();
         s.push_str(&format!(
-            "{},{:.3},{:.6e},{:.6e},{:.3},{:.5},{:.3},{},{:.3},{:.2},{:.2},{:.5},{:.5},{:.6e},{:.4e},{},{},{:.1},{:.6e},{:.6e}\n",
+            "{},{:.3},{:.6e},{:.6e},{:.3},{:.5},{:.3},{},{:.3},{:.2},{:.2},{:.5},{:.5},{:.6e},{:.4e},{},{},{:.1},{:.6e},{:.6e},{:.5}\n",
             p.up,
             p.us,
             p.stress_behind,
@@ -435,7 +440,8 @@ pub fn to_csv(points: &[HugoniotPoint]) -> String {
             p.steps,
             p.wall_s,
             p.stress_behind_matrix,
-            p.stress_precursor_matrix
+            p.stress_precursor_matrix,
+            p.pores_behind
         ));
     }
     s

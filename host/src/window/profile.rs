@@ -47,6 +47,9 @@ pub struct Bin {
     pub stress_bulk: f64,
     /// Mean velocity along x, m/s.
     pub vx: f64,
+    /// Fraction of the bin's volume that the particles fill, `sum V_i / V_bin` (1: no
+    /// pores left).
+    pub solid_fraction: f64,
 }
 
 impl Profile {
@@ -104,6 +107,7 @@ impl Profile {
                     rho_bulk: self.mass[k] / vol,
                     stress: self.sxx[k] / c,
                     stress_bulk: self.sxx_vol[k] / vol,
+                    solid_fraction: self.vol[k] / vol,
                     vx: self.vx[k] / c,
                 }
             })
@@ -139,19 +143,17 @@ impl Profile {
         v.iter().sum::<f64>() / v.len() as f64
     }
 
-    /// Volume fraction of the bins filled by particles, `sum V_i / V_bin`.
-    pub fn solid_fraction(&self, k: usize) -> f64 {
-        self.vol[k] / (self.bin * self.section * self.instants.max(1) as f64)
-    }
-
-    /// CSV: `x,rho,rho_bulk,minus_sigma_xx_bulk,minus_sigma_xx_matrix,vx` (bulk: volume
-    /// average over the bin with pores at zero; matrix: mean over the particles).
+    /// CSV: `x,rho,rho_bulk,minus_sigma_xx_bulk,minus_sigma_xx_matrix,vx,solid_fraction`
+    /// (bulk: volume average over the bin with pores at zero; matrix: mean over the
+    /// particles).
     pub fn to_csv(&self) -> String {
-        let mut s = String::from("x,rho,rho_bulk,minus_sigma_xx_bulk,minus_sigma_xx_matrix,vx\n");
+        let mut s = String::from(
+            "x,rho,rho_bulk,minus_sigma_xx_bulk,minus_sigma_xx_matrix,vx,solid_fraction\n",
+        );
         for b in self.bins() {
             s.push_str(&format!(
-                "{:e},{:e},{:e},{:e},{:e},{:e}\n",
-                b.x, b.rho, b.rho_bulk, b.stress_bulk, b.stress, b.vx
+                "{:e},{:e},{:e},{:e},{:e},{:e},{:e}\n",
+                b.x, b.rho, b.rho_bulk, b.stress_bulk, b.stress, b.vx, b.solid_fraction
             ));
         }
         s
