@@ -193,6 +193,19 @@ pub enum PlotCommand {
         #[arg(long)]
         out: Option<PathBuf>,
     },
+    /// u_s against u_p from the hugoniot.csv of one or more `gsph hugoniot` outputs, with
+    /// the seed's fits (PNG or SVG by the extension of --out).
+    Hugoniot {
+        /// Output directories of `gsph hugoniot` (each holds hugoniot.csv).
+        #[arg(required = true)]
+        dirs: Vec<PathBuf>,
+        /// Legend entries, comma-separated, one per directory (default: the names).
+        #[arg(long)]
+        labels: Option<String>,
+        /// Output file.
+        #[arg(long)]
+        out: PathBuf,
+    },
 }
 
 /// Scene name: the `name` key or the file stem.
@@ -331,6 +344,14 @@ fn execute(cmd: Command) -> Result<(), String> {
         Command::Plot(PlotCommand::Profile { dir, out }) => {
             let path = crate::commands::plot_profile(&dir, out)?;
             out!("wrote {}", path.display());
+            Ok(())
+        }
+        Command::Plot(PlotCommand::Hugoniot { dirs, labels, out }) => {
+            let labels: Vec<String> = labels
+                .map(|l| l.split(',').map(|x| x.trim().to_string()).collect())
+                .unwrap_or_default();
+            crate::window::plot::plot_runs(&dirs, &labels, &out)?;
+            out!("wrote {}", out.display());
             Ok(())
         }
         Command::Plot(PlotCommand::Series {

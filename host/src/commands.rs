@@ -156,7 +156,8 @@ pub fn run_hugoniot(
     opts: &crate::window::hugoniot::HugoniotOptions,
     out: &Path,
 ) -> Result<Vec<crate::window::hugoniot::HugoniotPoint>, String> {
-    use crate::window::hugoniot::{hugoniot, seed_fit, write_outputs, write_point};
+    use crate::window::hugoniot::{hugoniot, seed_fit};
+    use crate::window::plot::{write_outputs, write_point};
     // each point's profiles are written as it finishes; hugoniot.csv and the plot when
     // all are
     let points = hugoniot(scene, opts, |p| write_point(out, p))?;

@@ -119,9 +119,62 @@ fn hugoniot_point_obeys_the_jump_conditions() {
         "{}",
         p.rho_ahead
     );
-    assert!((p.mass_jump_ratio() - 1.0).abs() < 0.05);
-    assert!((p.momentum_jump_ratio() - 1.0).abs() < 0.08);
+    // the held wave is the steady shock of the u_s found: its density jump satisfies the
+    // mass condition (measured 1.1 % low: the relaxation zone behind the front is still
+    // compacting) and its bulk stress jump the momentum condition (measured 1.0 %). A
+    // window held at 415 m/s (the seed's fit) on a sample that compacts to 1.2x, as this
+    // one does at 2 um, would be 7 % off in mass.
+    assert!((p.mass_jump_ratio() - 1.0).abs() < 0.025);
+    assert!((p.momentum_jump_ratio() - 1.0).abs() < 0.03);
     assert!(p.stress_precursor > 0.0 && p.stress_precursor < p.stress_behind);
+}
+
+/// Two independent measurements of the same shock speed at the same resolution (2 um,
+/// pm, which the seed finds close to tkc: measured 542.4 against tkc's 546.0 m/s at
+/// u_p = 100): the window's bisection on dω/dt, and the lab-frame speed of the front that
+/// a piston at u_p drives into a 2 mm sample (cases/porous_cu_piston.toml). Measured
+/// 542.4 and 520.9 m/s, 4.0 % apart (the piston front's speed varies by ±5 % as it
+/// crosses pore rows); the seed's fit, 415.4 m/s, is 25 % from either, so a window that
+/// held the wave at the wrong speed, or a piston run that measured it wrongly, fails.
+#[test]
+fn window_and_piston_agree_on_the_shock_speed() {
+    let sc = scene(&[
+        "resolution_scale=0.5",
+        "bodies.0.shape.max=[2.8e-4, 2.0e-5]",
+        "scheme=pm",
+        "unset:options.limiter",
+    ]);
+    let opts = HugoniotOptions {
+        ups: vec![100.0],
+        verbose: false,
+        ..Default::default()
+    };
+    let window = hugoniot(&sc, &opts, |_| Ok(())).unwrap()[0].us;
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../cases/porous_cu_piston.toml"
+    ))
+    .unwrap();
+    let sets: Vec<String> = ["scheme=pm", "unset:options.limiter", "resolution_scale=0.5"]
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+    let piston = gsph::scene::parse(&text, "piston", &sets).unwrap_or_else(|e| panic!("{e}"));
+    let r = run(
+        &piston,
+        "piston",
+        &RunOptions {
+            out: None,
+            progress: false,
+        },
+    )
+    .unwrap();
+    let d = r.summary["front_speed"].as_f64().unwrap();
+    println!("window u_s {window:.1} m/s, piston front {d:.1} m/s");
+    assert!(
+        (window - d).abs() < 0.05 * d,
+        "window {window} and piston {d} m/s disagree"
+    );
 }
 
 /// The window profiles report bulk stress: a periodic porous cell (m = 1.35 as built)

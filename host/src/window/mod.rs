@@ -268,3 +268,4 @@ impl<const D: usize> Window<D> {
     }
 }
 pub mod hugoniot;
+pub mod plot;
