@@ -33,7 +33,7 @@
 //! acoustic or two-shock. `ts2` reconstructs P, rho and the normal velocity at the
 //! contact (eq 23), `Q_l = Q_i + (r/2) phi(r_i) (grad Q_i . n) f_i` with
 //! `r_i = (grad Q_j . n)/(grad Q_i . n)` (eq 25), each side's extrapolation bounded by
-//! half the pair difference (see [`reconstruct`]). One reconstruction serves every use of
+//! half the pair difference (see `reconstruct`). One reconstruction serves every use of
 //! the pair's star state: the contact velocity of the continuity equation (eq 22) and the
 //! contact pressure and velocity of the momentum and energy equations (eq 34) come from
 //! the same left/right states, as in the seed. Eq 23 prints the factor `[1 - c_i dt]`,
