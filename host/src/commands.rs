@@ -156,12 +156,31 @@ pub fn run_hugoniot(
     opts: &crate::window::hugoniot::HugoniotOptions,
     out: &Path,
 ) -> Result<Vec<crate::window::hugoniot::HugoniotPoint>, String> {
-    use crate::window::hugoniot::{hugoniot, seed_fit};
+    use crate::window::hugoniot::{hugoniot, seed_fit, to_csv};
     use crate::window::plot::{write_outputs, write_point};
-    // each point's profiles are written as it finishes; hugoniot.csv and the plot when
-    // all are
-    let points = hugoniot(scene, opts, |p| write_point(out, p))?;
+    // each point's profiles are written as it finishes, and the rows finished so far go
+    // into hugoniot.partial.csv (a run of hours that is stopped keeps its points under a
+    // name that does not pass for the whole table); hugoniot.csv and the plot when all
+    // points are done, and the partial table is then removed
+    let partial = out.join("hugoniot.partial.csv");
+    let mut rows = String::new();
+    let points = hugoniot(scene, opts, |p| {
+        write_point(out, p)?;
+        let one = to_csv(std::slice::from_ref(p));
+        match (rows.is_empty(), one.split_once('\n')) {
+            (false, Some((_, row))) => rows.push_str(row),
+            _ => rows.push_str(&one),
+        }
+        crate::output::write_atomic(&partial, rows.as_bytes())
+            .map_err(|e| format!("{}: {e}", partial.display()))
+    })?;
     write_outputs(out, &points)?;
+    match std::fs::remove_file(&partial) {
+        Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+            return Err(format!("{}: {e}", partial.display()));
+        }
+        _ => {}
+    }
     println!(
         "   u_p     u_s    fit    diff  bulk -sxx behind  precursor  u_prec  mass/RH  mom/RH  pores behind   wall"
     );
