@@ -41,11 +41,14 @@ fn material() -> Material {
     }
 }
 
-/// The 1D line of seed 000 Algorithm 1's worry: intact particles with pressures 1..4 GPa
-/// rising to the right, one failed particle (index 4) whose raw EOS pressure is -100 GPa
-/// (expanded failed ceramic), and intact particles beyond it. Calls `f` with the system
-/// after the start-of-step gradient pass, and the step parameters.
-fn with_failed_line(f: impl FnOnce(&System<'_, 1>, &[Gradients<1>], &StepParams<'_, 1>)) {
+/// The 1D line of seed 000 Algorithm 1's worry: intact particles with pressures 1..9 GPa
+/// rising to the right and velocities 10 m/s per spacing, one failed particle (index
+/// `failed`) whose raw EOS pressure is -100 GPa (expanded failed ceramic). Calls `f` with
+/// the system after the start-of-step gradient pass, and the step parameters.
+fn with_failed_particle(
+    failed: usize,
+    f: impl FnOnce(&System<'_, 1>, &[Gradients<1>], &StepParams<'_, 1>),
+) {
     let mats = [material()];
     let mut x = [Vector::<1>::zeros(); N];
     let mut v = [Vector::<1>::zeros(); N];
@@ -66,8 +69,8 @@ fn with_failed_line(f: impl FnOnce(&System<'_, 1>, &[Gradients<1>], &StepParams<
         v[i] = Vector::<1>::new(10.0 * i as Real);
         p[i] = 1e9 * (1.0 + i as Real);
     }
-    p[4] = -100e9;
-    damage[4] = 1.0;
+    p[failed] = -100e9;
+    damage[failed] = 1.0;
     let (mut idx, mut cnt) = ([0u32; N * CAP], [0u32; N]);
     let mut list = NeighborList::new(CAP, &mut idx, &mut cnt).unwrap();
     build_naive(&x[..], &Periodic::none(), |_, _| 2.0 * 1.2 * DX, &mut list).unwrap();
@@ -100,6 +103,11 @@ fn with_failed_line(f: impl FnOnce(&System<'_, 1>, &[Gradients<1>], &StepParams<
     let mut grad = [Gradients::<1>::default(); N];
     front_gradient_pass::<1, Failing, Serial>(&sys, &mut sums, &mut grad, &params, &Serial);
     f(&sys, &grad, &params);
+}
+
+/// [`with_failed_particle`] with the failed particle in the middle of the line.
+fn with_failed_line(f: impl FnOnce(&System<'_, 1>, &[Gradients<1>], &StepParams<'_, 1>)) {
+    with_failed_particle(4, f)
 }
 
 /// The pressure gradient of an intact particle next to a failed one is built from the
@@ -161,4 +169,40 @@ fn intact_pairs_reconstruct_within_their_own_range() {
             }
         }
     });
+}
+
+/// The continuity's divergence of the free end of the line (particle 0) and the plain
+/// SPH sum `2 sum_j V_j (v*_ij - v_0) . grad W`.
+fn end_divergence(failed: usize) -> (Real, Real) {
+    let mut out = (0.0, 0.0);
+    with_failed_particle(failed, |sys, grad, params| {
+        let mut sums = [PairSums::<1>::default(); N];
+        continuity_pass::<1, Failing, Serial>(sys, grad, &mut sums, params, &Serial);
+        let mut plain = 0.0;
+        for_each_pair::<1, Failing>(sys.x, sys.h, params, 0, |pr| {
+            let (us, _) = star::<1, Failing>(sys, grad, params, 0, pr.j, &pr.n, pr.r);
+            let vstar = pr.n * us;
+            plain += 2.0 * (sys.m[pr.j] / sys.rho[pr.j]) * (vstar - sys.v[0]).dot(&pr.grad);
+        });
+        out = (sums[0].div, plain);
+    });
+    out
+}
+
+/// At a free surface an intact particle uses the consistent divergence, which differs
+/// from the plain sum (half the support is missing); a failed one keeps the plain sum,
+/// since the corrected divergence lets failed debris expand without bound (DESIGN errata:
+/// docs/errata.md; measured on cases/hard/steel_sic_2000.toml).
+#[test]
+fn a_failed_surface_particle_keeps_the_plain_divergence() {
+    let (intact, plain_intact) = end_divergence(4);
+    assert!(
+        (intact - plain_intact).abs() > 0.1 * plain_intact.abs(),
+        "intact end: corrected {intact:e} against plain {plain_intact:e}"
+    );
+    let (failed, plain_failed) = end_divergence(0);
+    assert!(
+        (failed - plain_failed).abs() <= 1e-12 * plain_failed.abs(),
+        "failed end: {failed:e} against the plain sum {plain_failed:e}"
+    );
 }
