@@ -138,7 +138,13 @@ pub fn build_particles(scene: &Scene) -> Result<InitialParticles, SceneError> {
                 "{key}.spacing: spacing {dx:e} m (spacing / resolution_scale) makes about {total:.2e} particles, more than the limit {MAX_PARTICLES:.0e}"
             )));
         }
-        let mut pts = lattice(scene.dim, &body.shape, dx, polar);
+        let mut pts = lattice(
+            scene.dim,
+            &body.shape,
+            dx,
+            polar,
+            body.lattice_origin.as_deref(),
+        );
         let full: f64 = pts.iter().map(|p| p.1).sum();
         if let Some(pores) = &body.pores {
             pts.retain(|(x, _)| !super::pores::inside(pores, x));
@@ -209,7 +215,13 @@ fn sites(dim: usize, shape: &ShapeSpec, dx: f64, polar: bool) -> f64 {
 
 /// Lattice points inside a shape with their volumes (length in 1D, area in 2D). A shape
 /// less than half a spacing across along some axis holds none.
-fn lattice(dim: usize, shape: &ShapeSpec, dx: f64, polar: bool) -> Vec<([f64; 3], f64)> {
+fn lattice(
+    dim: usize,
+    shape: &ShapeSpec,
+    dx: f64,
+    polar: bool,
+    origin: Option<&[f64]>,
+) -> Vec<([f64; 3], f64)> {
     let mut pts = Vec::new();
     match shape {
         ShapeSpec::Segment { min, max } => {
@@ -243,6 +255,8 @@ fn lattice(dim: usize, shape: &ShapeSpec, dx: f64, polar: bool) -> Vec<([f64; 3]
         ShapeSpec::Disc { center, radius } => {
             if polar {
                 polar_rings(&mut pts, center, 0.0, *radius, dx);
+            } else if let Some(o) = origin {
+                node_clip(&mut pts, dim, center, o, 0.0, *radius, dx);
             } else {
                 square_clip(&mut pts, dim, center, 0.0, *radius, dx);
             }
@@ -254,12 +268,56 @@ fn lattice(dim: usize, shape: &ShapeSpec, dx: f64, polar: bool) -> Vec<([f64; 3]
         } => {
             if polar {
                 polar_rings(&mut pts, center, *r_inner, *r_outer, dx);
+            } else if let Some(o) = origin {
+                node_clip(&mut pts, dim, center, o, *r_inner, *r_outer, dx);
             } else {
                 square_clip(&mut pts, dim, center, *r_inner, *r_outer, dx);
             }
         }
     }
     pts
+}
+
+/// Cartesian lattice with a node at `c + o`: sites `o + i dx` relative to the centre
+/// (i = 0 … round((r_out − o)/dx) − 1 per axis, the half-open extent `[o, r_out)`), kept
+/// where `r_in² <= r² < r_out²`. The squares are compared, with the offsets formed as
+/// `o + i dx`, as the peers' colliding-rings scripts do, so that the same sites are kept
+/// to the last bit (17,592 particles for their two rings at dx = 5e-4).
+fn node_clip(
+    pts: &mut Vec<([f64; 3], f64)>,
+    dim: usize,
+    c: &[f64],
+    o: &[f64],
+    r_in: f64,
+    r_out: f64,
+    dx: f64,
+) {
+    let n: Vec<usize> = (0..3)
+        .map(|a| {
+            if a < dim {
+                ((r_out - o[a]) / dx).round() as usize
+            } else {
+                1
+            }
+        })
+        .collect();
+    let vol = dx.powi(dim as i32);
+    let off = |a: usize, i: usize| if a < dim { o[a] + i as f64 * dx } else { 0.0 };
+    for kz in 0..n[2] {
+        for ky in 0..n[1] {
+            for kx in 0..n[0] {
+                let d = [off(0, kx), off(1, ky), off(2, kz)];
+                let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+                if r_in * r_in <= r2 && r2 < r_out * r_out {
+                    let mut x = [0.0; 3];
+                    for a in 0..dim {
+                        x[a] = c[a] + d[a];
+                    }
+                    pts.push((x, vol));
+                }
+            }
+        }
+    }
 }
 
 /// Cartesian lattice, offset by half a spacing from the centre, clipped to r_in <= r < r_out.

@@ -391,6 +391,14 @@ pub struct BodySpec {
     /// Lattice: square (cartesian) or polar (concentric rings; disc and annulus only).
     #[serde(default)]
     pub lattice: Option<String>,
+    /// Square lattice of a disc or annulus with a node at this point relative to the
+    /// centre, m: sites at `center + lattice_origin + i spacing` (i = 0, 1, … up to the
+    /// half-open extent `[lattice_origin, r_outer)` on each axis), kept where
+    /// `r_inner² <= r² < r_outer²`, as the peers' colliding-rings case builds its rings
+    /// (`lattice_origin = [-r_outer, -r_outer]`). Default: sites offset half a spacing from
+    /// the centre.
+    #[serde(default)]
+    pub lattice_origin: Option<Vec<f64>>,
     /// Initial velocity field.
     #[serde(default)]
     pub velocity: Option<VelocitySpec>,

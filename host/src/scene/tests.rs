@@ -428,3 +428,61 @@ fn jitter_outside_its_range_is_rejected() {
         assert!(e.contains("bodies[1].jitter: must lie in [0, 0.5)"), "{e}");
     }
 }
+
+const RINGS: &str = include_str!("../../../cases/rings.toml");
+
+/// The peers' colliding rings (cases/rings.toml): the square lattice with a node at
+/// `-r_o` keeps exactly the particles their scripts keep (PySPH's and LAMMPS SMD's rings
+/// examples, `x, y = -r_o + i dx`, `r_i² <= r² < r_o²`): 17,592 at dx = 5e-4, 4,416 at
+/// 1e-3, 70,320 at 2.5e-4. The default lattice (offset half a spacing) keeps 17,608.
+#[test]
+fn rings_have_the_peers_particle_counts() {
+    for (scale, n) in [(1.0, 17_592), (0.5, 4_416), (2.0, 70_320)] {
+        let o = vec![format!("resolution_scale={scale}")];
+        let s = parse(RINGS, "rings.toml", &o).unwrap();
+        let parts = build_particles(&s).unwrap();
+        assert_eq!(parts.len(), n, "resolution_scale {scale}");
+        // no site is outside its annulus
+        for i in 0..parts.len() {
+            let c = if parts.body[i] == 0 { 0.0 } else { 0.082 };
+            let (dx, dy) = (parts.x[i][0] - c, parts.x[i][1]);
+            let r2 = dx * dx + dy * dy;
+            assert!(
+                (0.03 * 0.03 - 1e-12..0.04 * 0.04 + 1e-12).contains(&r2),
+                "particle {i} at r {}",
+                r2.sqrt()
+            );
+        }
+    }
+    let o = vec!["unset:bodies.0.lattice_origin".to_string()];
+    let s = parse(RINGS, "rings.toml", &o).unwrap();
+    assert_eq!(build_particles(&s).unwrap().len(), 17_608 / 2 + 17_592 / 2);
+}
+
+#[test]
+fn lattice_origin_errors_name_the_key() {
+    for (kv, want) in [
+        (
+            "bodies.0.lattice_origin=[-0.04]",
+            "bodies[0].lattice_origin: must have 2 components (got 1)",
+        ),
+        (
+            "bodies.0.lattice_origin=[-0.05, 0.0]",
+            "bodies[0].lattice_origin: -0.05 must lie within the outer radius 0.04 of the centre",
+        ),
+    ] {
+        let e = parse_err(RINGS, &[kv]);
+        let want = format!("--set {kv}: {want}");
+        assert!(e.starts_with(&want), "got `{e}`, want `{want}`");
+    }
+    let e = parse_err(RINGS, &["bodies.0.lattice=polar"]);
+    assert_eq!(
+        e,
+        "scene.toml: bodies[0].lattice_origin: a lattice origin is for the square lattice only"
+    );
+    let e = parse_err(FLYER, &["bodies.0.lattice_origin=[0.0]"]);
+    assert!(
+        e.contains("bodies[0].lattice_origin: a lattice origin is for discs and annuli only"),
+        "{e}"
+    );
+}

@@ -308,6 +308,29 @@ pub fn validate(s: &Scene) -> R {
                 )
             }
         }
+        if let Some(o) = &b.lattice_origin {
+            let k = format!("{key}.lattice_origin");
+            let r_out = match b.shape {
+                ShapeSpec::Disc { radius, .. } => radius,
+                ShapeSpec::Annulus { r_outer, .. } => r_outer,
+                _ => return fail(&k, "a lattice origin is for discs and annuli only"),
+            };
+            if b.lattice.as_deref() == Some("polar") {
+                return fail(&k, "a lattice origin is for the square lattice only");
+            }
+            if o.len() != s.dim {
+                return fail(
+                    &k,
+                    format!("must have {} components (got {})", s.dim, o.len()),
+                );
+            }
+            if let Some(v) = o.iter().find(|v| !(v.is_finite() && v.abs() <= r_out)) {
+                return fail(
+                    &k,
+                    format!("{v} must lie within the outer radius {r_out} of the centre"),
+                );
+            }
+        }
         match &b.velocity {
             Some(VelocitySpec::Uniform { value }) => {
                 dims(&format!("{key}.velocity.value"), value, s.dim)?
