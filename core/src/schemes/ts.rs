@@ -158,9 +158,12 @@ fn continuity_pass<const D: usize, E: Effects, X: Executor>(
                 m += outer(&gw, &(pr.n * pr.r));
                 kk += outer(&gw, &((vstar - vi) * 2.0));
             });
-            let l_min = min_sym_eigenvalue(&m);
             out.div = match inverse(&m) {
-                Some(inv) if l_min < lam && det(&m) >= eps && !failed::<D, E>(sys, i) => {
+                Some(inv)
+                    if min_sym_eigenvalue(&m) < lam
+                        && det(&m) >= eps
+                        && !failed::<D, E>(sys, i) =>
+                {
                     (inv * kk).trace()
                 }
                 _ => kk.trace(),

@@ -292,32 +292,16 @@ fn node_clip(
     r_out: f64,
     dx: f64,
 ) {
-    let n: Vec<usize> = (0..3)
-        .map(|a| {
-            if a < dim {
-                ((r_out - o[a]) / dx).round() as usize
-            } else {
-                1
-            }
-        })
-        .collect();
-    let vol = dx.powi(dim as i32);
-    let off = |a: usize, i: usize| if a < dim { o[a] + i as f64 * dx } else { 0.0 };
-    for kz in 0..n[2] {
-        for ky in 0..n[1] {
-            for kx in 0..n[0] {
-                let d = [off(0, kx), off(1, ky), off(2, kz)];
-                let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-                if r_in * r_in <= r2 && r2 < r_out * r_out {
-                    let mut x = [0.0; 3];
-                    for a in 0..dim {
-                        x[a] = c[a] + d[a];
-                    }
-                    pts.push((x, vol));
-                }
-            }
-        }
-    }
+    let n = |a: usize| ((r_out - o[a]) / dx).round() as i64;
+    clip_sites(
+        pts,
+        dim,
+        c,
+        dx,
+        |a| 0..n(a),
+        |a, i| o[a] + i as f64 * dx,
+        |r2| r_in * r_in <= r2 && r2 < r_out * r_out,
+    );
 }
 
 /// Cartesian lattice, offset by half a spacing from the centre, clipped to r_in <= r < r_out.
@@ -330,25 +314,42 @@ fn square_clip(
     dx: f64,
 ) {
     let n = (r_out / dx).ceil() as i64 + 1;
+    clip_sites(
+        pts,
+        dim,
+        c,
+        dx,
+        |_| -n..n,
+        |_, k| (k as f64 + 0.5) * dx,
+        |r2| {
+            let r = r2.sqrt();
+            r >= r_in && r < r_out
+        },
+    );
+}
+
+/// The sites `c + (off(0, kx), off(1, ky), off(2, kz))` for k in `range(axis)` on the
+/// axes the dimension has, each of volume `dx^dim`, where `keep(r²)` of the offset holds.
+fn clip_sites(
+    pts: &mut Vec<([f64; 3], f64)>,
+    dim: usize,
+    c: &[f64],
+    dx: f64,
+    range: impl Fn(usize) -> std::ops::Range<i64>,
+    off: impl Fn(usize, i64) -> f64,
+    keep: impl Fn(f64) -> bool,
+) {
     let vol = dx.powi(dim as i32);
-    let zr = if dim == 3 { -n..n } else { 0..1 };
-    for kz in zr {
-        for ky in -n..n {
-            for kx in -n..n {
-                let off = [
-                    (kx as f64 + 0.5) * dx,
-                    (ky as f64 + 0.5) * dx,
-                    if dim == 3 {
-                        (kz as f64 + 0.5) * dx
-                    } else {
-                        0.0
-                    },
-                ];
-                let r = (off[0] * off[0] + off[1] * off[1] + off[2] * off[2]).sqrt();
-                if r >= r_in && r < r_out {
+    let axis = |a: usize| if a < dim { range(a) } else { 0..1 };
+    let at = |a: usize, k: i64| if a < dim { off(a, k) } else { 0.0 };
+    for kz in axis(2) {
+        for ky in axis(1) {
+            for kx in axis(0) {
+                let d = [at(0, kx), at(1, ky), at(2, kz)];
+                if keep(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) {
                     let mut x = [0.0; 3];
                     for a in 0..dim {
-                        x[a] = c[a] + off[a];
+                        x[a] = c[a] + d[a];
                     }
                     pts.push((x, vol));
                 }

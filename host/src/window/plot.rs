@@ -12,55 +12,53 @@ pub fn write_point(dir: &Path, p: &HugoniotPoint) -> Result<(), String> {
     use crate::output::write_atomic;
     let io = |e: std::io::Error| format!("{}: {e}", dir.display());
     std::fs::create_dir_all(dir).map_err(io)?;
-    {
-        let stem = format!("profile_up{}", p.up);
-        write_atomic(
-            dir.join(format!("{stem}.csv")),
-            p.profile.to_csv().as_bytes(),
-        )
-        .map_err(io)?;
-        let bins = p.profile.bins();
-        let line = |name: &str, f: &dyn Fn(&super::profile::Bin) -> f64| Series {
-            name: name.into(),
-            points: bins.iter().map(|b| (b.x * 1e6, f(b))).collect(),
-            style: SeriesStyle::Line,
-        };
-        let title = format!(
-            "u_p = {} m/s, u_s = {:.1} m/s: averaged over {} profiles",
-            p.up, p.us, p.profile.instants
-        );
-        let stress = XyPlot {
-            title: title.clone(),
-            x_label: "x in the window, um".into(),
-            y_label: "-sigma_xx, GPa".into(),
-            series: vec![
-                line("bulk -sigma_xx (volume average, pores at zero)", &|b| {
-                    b.stress_bulk * 1e-9
-                }),
-                line("matrix -sigma_xx (mean over particles)", &|b| {
-                    b.stress * 1e-9
-                }),
-            ],
-            ..Default::default()
-        };
-        let density = XyPlot {
-            title,
-            x_label: "x in the window, um".into(),
-            y_label: "density, kg/m3".into(),
-            series: vec![
-                line("mean particle density", &|b| b.rho),
-                line("bulk density (pores included)", &|b| b.rho_bulk),
-            ],
-            ..Default::default()
-        };
-        for ext in ["png", "svg"] {
-            stress
-                .save(&dir.join(format!("{stem}_stress.{ext}")))
-                .map_err(|e| e.to_string())?;
-            density
-                .save(&dir.join(format!("{stem}_density.{ext}")))
-                .map_err(|e| e.to_string())?;
-        }
+    let stem = format!("profile_up{}", p.up);
+    write_atomic(
+        dir.join(format!("{stem}.csv")),
+        p.profile.to_csv().as_bytes(),
+    )
+    .map_err(io)?;
+    let bins = p.profile.bins();
+    let line = |name: &str, f: &dyn Fn(&super::profile::Bin) -> f64| Series {
+        name: name.into(),
+        points: bins.iter().map(|b| (b.x * 1e6, f(b))).collect(),
+        style: SeriesStyle::Line,
+    };
+    let title = format!(
+        "u_p = {} m/s, u_s = {:.1} m/s: averaged over {} profiles",
+        p.up, p.us, p.profile.instants
+    );
+    let stress = XyPlot {
+        title: title.clone(),
+        x_label: "x in the window, um".into(),
+        y_label: "-sigma_xx, GPa".into(),
+        series: vec![
+            line("bulk -sigma_xx (volume average, pores at zero)", &|b| {
+                b.stress_bulk * 1e-9
+            }),
+            line("matrix -sigma_xx (mean over particles)", &|b| {
+                b.stress * 1e-9
+            }),
+        ],
+        ..Default::default()
+    };
+    let density = XyPlot {
+        title,
+        x_label: "x in the window, um".into(),
+        y_label: "density, kg/m3".into(),
+        series: vec![
+            line("mean particle density", &|b| b.rho),
+            line("bulk density (pores included)", &|b| b.rho_bulk),
+        ],
+        ..Default::default()
+    };
+    for ext in ["png", "svg"] {
+        stress
+            .save(&dir.join(format!("{stem}_stress.{ext}")))
+            .map_err(|e| e.to_string())?;
+        density
+            .save(&dir.join(format!("{stem}_density.{ext}")))
+            .map_err(|e| e.to_string())?;
     }
     Ok(())
 }
