@@ -53,6 +53,14 @@ pub struct Pm;
 fn muscl_pair(lim: Limiter, phi_i: Real, phi_j: Real, gi_rji: Real, gj_rji: Real) -> (Real, Real) {
     let half_jump = 0.5 * (phi_j - phi_i);
     let d = phi_j - phi_i;
+    if let Limiter::Minmod = lim {
+        // the same values without the limiter dispatch and the bound (which never acts
+        // for minmod): tkc's hot path, 22 reconstructions per side of every pair
+        return (
+            phi_i + 0.5 * Limiter::Minmod.limit(gi_rji, d),
+            phi_j - 0.5 * Limiter::Minmod.limit(gj_rji, d),
+        );
+    }
     (
         phi_i + bounded_extrapolation(0.5 * lim.limit(gi_rji, d), half_jump),
         phi_j - bounded_extrapolation(0.5 * lim.limit(gj_rji, d), half_jump),
