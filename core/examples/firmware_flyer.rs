@@ -45,8 +45,9 @@ mod runner {
         s: [Sym3; N],
         eps_p: [Real; N],
         sums: [PairSums<1>; N],
-        idx: [u32; N * CAP],
-        cnt: [u32; N],
+        nb: [u32; NeighborList::storage_len(N, CAP)],
+        geom: [PairGeom<1>; N * CAP / 2],
+        star: [TsStar; N * CAP / 2],
     }
 
     /// What the run reports.
@@ -99,8 +100,13 @@ mod runner {
                     grad_v: gsph_core::math::Matrix::<1>::new(0.0),
                     v0: Vector::<1>::new(0.0),
                 }; N],
-                idx: [0; N * CAP],
-                cnt: [0; N],
+                nb: [0; NeighborList::storage_len(N, CAP)],
+                geom: [PairGeom {
+                    n: Vector::<1>::new(0.0),
+                    r: 0.0,
+                    dw: 0.0,
+                }; N * CAP / 2],
+                star: [TsStar { u: 0.0, p: 0.0 }; N * CAP / 2],
             }
         }
     }
@@ -140,10 +146,11 @@ mod runner {
                 s,
                 eps_p,
                 sums,
-                idx,
-                cnt,
+                nb,
+                geom,
+                star,
             } = st;
-            let mut list = NeighborList::new(CAP, idx, cnt)
+            let mut list = NeighborList::new(CAP, N, nb)
                 .map_err(|_| StepError::Storage { field: "neighbors" })?;
             let hh: &[Real] = h;
             build_naive(
@@ -182,12 +189,19 @@ mod runner {
                 nbrs: list.view(),
                 options: SchemeOptions::default(),
             };
+            let pairs = list.view().unordered_pairs();
+            if pairs > geom.len() {
+                return Err(StepError::Storage { field: "pairs" });
+            }
             let mut ws = Workspace {
                 sums,
                 grad: &mut [],
                 grad_stress: &mut [],
                 corr: &mut [],
                 av: &mut [],
+                geom: &mut geom[..pairs],
+                ts_star: &mut star[..pairs],
+                pm_star: &mut [],
                 primed: false,
             };
             step(&mut sys, &mut ws, &params, &Serial)?;

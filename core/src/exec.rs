@@ -98,3 +98,51 @@ impl<T: Send> Split for Optional<'_, T> {
         (Optional(a), Optional(b))
     }
 }
+
+/// The rows of a compressed-row array over a run of particles: the records of the pairs
+/// each particle owns (see [`crate::neighbors`]), or its neighbours. `start` holds the
+/// run's row offsets (absolute, one more entry than particles) and `data` exactly the run's
+/// rows, so splitting at particle `mid` splits the records at that particle's first row
+/// entry. Each row is written by the chunk of its particle only.
+#[derive(Debug)]
+pub struct Rows<'a, T> {
+    /// Row offsets of the run's particles (absolute), `len + 1` entries.
+    pub start: &'a [u32],
+    /// The entries of the run's rows.
+    pub data: &'a mut [T],
+}
+
+impl<'a, T> Rows<'a, T> {
+    /// The row of local particle `k` of the run.
+    #[inline]
+    pub fn of(&mut self, k: usize) -> &mut [T] {
+        let base = self.start[0];
+        let (s, e) = (
+            (self.start[k] - base) as usize,
+            (self.start[k + 1] - base) as usize,
+        );
+        &mut self.data[s..e]
+    }
+}
+
+impl<T: Send> Split for Rows<'_, T> {
+    #[inline]
+    fn len(&self) -> usize {
+        self.start.len() - 1
+    }
+    #[inline]
+    fn split_at(self, mid: usize) -> (Self, Self) {
+        let cut = (self.start[mid] - self.start[0]) as usize;
+        let (a, b) = self.data.split_at_mut(cut);
+        (
+            Rows {
+                start: &self.start[..=mid],
+                data: a,
+            },
+            Rows {
+                start: &self.start[mid..],
+                data: b,
+            },
+        )
+    }
+}

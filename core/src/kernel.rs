@@ -52,6 +52,7 @@ impl Kernel {
     /// `W = sigma_D / h^D f(q)` (see the module doc for the constants and their origin).
     ///
     /// Panics if `dim` is not 1, 2 or 3.
+    #[inline(always)]
     pub const fn sigma(self, dim: usize) -> Real {
         match (self, dim) {
             (Kernel::CubicSpline, 1) => 2.0 / 3.0,

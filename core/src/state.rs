@@ -284,6 +284,59 @@ impl<const D: usize> Default for AvRates<D> {
     }
 }
 
+/// The geometry of one pair, computed once per step on the side of its owner (see
+/// [`crate::neighbors`]); `r = 0` marks a pair outside the kernel support.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PairGeom<const D: usize> {
+    /// Unit vector from the owner to the other particle.
+    pub n: Vector<D>,
+    /// Distance, m (0: outside the support).
+    pub r: Real,
+    /// dW/dr at (r, h_ij), m^-(D+1).
+    pub dw: Real,
+}
+
+impl<const D: usize> Default for PairGeom<D> {
+    fn default() -> Self {
+        PairGeom {
+            n: Vector::<D>::zeros(),
+            r: 0.0,
+            dw: 0.0,
+        }
+    }
+}
+
+/// The star state of one pair of the time-split family's hydrodynamic Riemann problem,
+/// solved on the side of the pair's owner (`u` along the axis from the owner to the other
+/// particle).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TsStar {
+    /// Contact velocity along the axis, m/s.
+    pub u: Real,
+    /// Contact pressure, Pa.
+    pub p: Real,
+}
+
+/// The star state of one pair of the contact family's elastic Riemann problem, solved on
+/// the side of the pair's owner (traction on the contact plane whose normal points from
+/// the owner to the other particle; seen from the other side it is `-t`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PmStar<const D: usize> {
+    /// Contact velocity, m/s.
+    pub v: Vector<D>,
+    /// Contact traction, Pa (tension positive).
+    pub t: Vector<D>,
+}
+
+impl<const D: usize> Default for PmStar<D> {
+    fn default() -> Self {
+        PmStar {
+            v: Vector::<D>::zeros(),
+            t: Vector::<D>::zeros(),
+        }
+    }
+}
+
 /// Per-step scratch and scheme state owned by the caller. Arrays a family or effect set
 /// does not use are empty (see [`Layout`]).
 #[derive(Debug)]
@@ -298,6 +351,12 @@ pub struct Workspace<'a, const D: usize> {
     pub corr: &'a mut [Correction<D>],
     /// Leap-frog rates (`av`); persistent between steps.
     pub av: &'a mut [AvRates<D>],
+    /// Pair geometry (all schemes), one per unordered pair of the lists.
+    pub geom: &'a mut [PairGeom<D>],
+    /// Star states of the pairs (`ts` family), one per unordered pair of the lists.
+    pub ts_star: &'a mut [TsStar],
+    /// Star states of the pairs (`pm` family), one per unordered pair of the lists.
+    pub pm_star: &'a mut [PmStar<D>],
     /// True once `av` holds the rates of the current state (set by the first `av` step).
     pub primed: bool,
 }
@@ -313,6 +372,10 @@ pub struct Layout {
     pub corr: bool,
     /// [`Workspace::av`].
     pub av: bool,
+    /// [`Workspace::ts_star`] (one record per unordered pair).
+    pub ts_star: bool,
+    /// [`Workspace::pm_star`] (one record per unordered pair).
+    pub pm_star: bool,
 }
 
 impl Layout {
@@ -326,6 +389,8 @@ impl Layout {
                 && effects.contains(EffectSet::STRENGTH),
             corr: effects.contains(EffectSet::CORRECTION),
             av: matches!(family, Family::Av),
+            ts_star: matches!(family, Family::Ts),
+            pm_star: matches!(family, Family::Pm),
         }
     }
 }
@@ -469,38 +534,45 @@ impl core::fmt::Display for StepError {
 /// slices are empty otherwise).
 pub fn check_finite<const D: usize>(sys: &System<'_, D>) -> Result<(), StepError> {
     for i in 0..sys.len() {
-        let bad = |field| Err(StepError::NonFinite { particle: i, field });
-        if !sys.x[i].iter().all(|c| c.is_finite()) {
-            return bad("position");
-        }
-        if !sys.v[i].iter().all(|c| c.is_finite()) {
-            return bad("velocity");
-        }
-        if !sys.rho[i].is_finite() {
-            return bad("density");
-        }
-        if sys.rho[i] <= 0.0 {
-            return Err(StepError::NonPositiveDensity { particle: i });
-        }
-        if !sys.e[i].is_finite() {
-            return bad("internal energy");
-        }
-        if !sys.p[i].is_finite() {
-            return bad("pressure");
-        }
-        if !sys.s.is_empty() && !sys.s[i].is_finite() {
-            return bad("stress deviator");
-        }
-        let bad_opt = |v: &[Real]| v.get(i).is_some_and(|x| !x.is_finite());
-        if bad_opt(sys.eps_p) {
-            return bad("plastic strain");
-        }
-        if bad_opt(sys.damage) {
-            return bad("damage");
-        }
-        if bad_opt(sys.temp) {
-            return bad("temperature");
-        }
+        check_finite_one(sys, i)?;
+    }
+    Ok(())
+}
+
+/// [`check_finite`] of particle `i` alone.
+#[inline]
+pub fn check_finite_one<const D: usize>(sys: &System<'_, D>, i: usize) -> Result<(), StepError> {
+    let bad = |field| Err(StepError::NonFinite { particle: i, field });
+    if !sys.x[i].iter().all(|c| c.is_finite()) {
+        return bad("position");
+    }
+    if !sys.v[i].iter().all(|c| c.is_finite()) {
+        return bad("velocity");
+    }
+    if !sys.rho[i].is_finite() {
+        return bad("density");
+    }
+    if sys.rho[i] <= 0.0 {
+        return Err(StepError::NonPositiveDensity { particle: i });
+    }
+    if !sys.e[i].is_finite() {
+        return bad("internal energy");
+    }
+    if !sys.p[i].is_finite() {
+        return bad("pressure");
+    }
+    if !sys.s.is_empty() && !sys.s[i].is_finite() {
+        return bad("stress deviator");
+    }
+    let bad_opt = |v: &[Real]| v.get(i).is_some_and(|x| !x.is_finite());
+    if bad_opt(sys.eps_p) {
+        return bad("plastic strain");
+    }
+    if bad_opt(sys.damage) {
+        return bad("damage");
+    }
+    if bad_opt(sys.temp) {
+        return bad("temperature");
     }
     Ok(())
 }

@@ -137,7 +137,9 @@ fn run<const D: usize, E: Effects>(c: &Case) -> Result<Totals, StepError> {
     let mut eps = vec![0.0; n];
     let mut sums = vec![PairSums::<D>::default(); n];
     let mut grad = vec![Gradients::<D>::default(); if c.muscl { n } else { 0 }];
-    let (mut idx, mut cnt) = (vec![0u32; n * n], vec![0u32; n]);
+    let mut storage = vec![0u32; NeighborList::storage_len(n, n)];
+    let mut geom = vec![PairGeom::<D>::default(); n * n];
+    let mut stars = vec![TsStar::default(); n * n];
     let mats = [mat];
     let options = SchemeOptions {
         riemann: if c.two_shock {
@@ -149,7 +151,7 @@ fn run<const D: usize, E: Effects>(c: &Case) -> Result<Totals, StepError> {
     };
     let mut out: Totals = (0.0, 0.0, [0.0; 2], [0.0; 2]);
     for it in 0..=STEPS {
-        let mut list = NeighborList::new(n, &mut idx, &mut cnt).expect("storage");
+        let mut list = NeighborList::new(n, n, &mut storage).expect("storage");
         let hh = h.clone();
         build_naive(&x, &Periodic::none(), |i, j| hh[i] + hh[j], &mut list).expect("list");
         let mut sys = System {
@@ -187,12 +189,16 @@ fn run<const D: usize, E: Effects>(c: &Case) -> Result<Totals, StepError> {
             nbrs: list.view(),
             options,
         };
+        let pairs = list.view().unordered_pairs();
         let mut ws = Workspace {
             sums: &mut sums,
             grad: &mut grad,
             grad_stress: &mut [],
             corr: &mut [],
             av: &mut [],
+            geom: &mut geom[..pairs],
+            ts_star: &mut stars[..pairs],
+            pm_star: &mut [],
             primed: false,
         };
         Ts::step::<D, E, Serial>(&mut sys, &mut ws, &params, &Serial)?;

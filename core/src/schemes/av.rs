@@ -16,14 +16,14 @@
 //! time-integration error (leap-frog, second order).
 
 use super::common::{
-    cauchy, deviator_rate, equivalent_strain_rate, for_each_pair, outer, refresh_eos,
-    return_deviator,
+    cauchy, deviator_rate, equivalent_strain_rate, for_each_pair, geometry_pass, outer,
+    refresh_eos, return_deviator,
 };
 use super::SchemeFamily;
 use crate::effects::{EffectSet, Effects};
 use crate::exec::Executor;
 use crate::math::{Matrix, Real, Sym3, Vector};
-use crate::state::{AvRates, Family, StepError, StepParams, System, Workspace};
+use crate::state::{AvRates, Family, PairGeom, StepError, StepParams, System, Workspace};
 
 /// The artificial-viscosity family.
 #[derive(Clone, Copy, Debug, Default)]
@@ -33,9 +33,12 @@ pub struct Av;
 fn rates<const D: usize, E: Effects, X: Executor>(
     sys: &System<'_, D>,
     rates: &mut [AvRates<D>],
+    geom: &mut [PairGeom<D>],
     params: &StepParams<'_, D>,
     exec: &X,
 ) {
+    geometry_pass::<D, E, X>(sys.x, sys.h, params, geom, exec);
+    let geom: &[PairGeom<D>] = geom;
     let alpha = params.options.av_alpha;
     let beta = params.options.av_beta;
     exec.run(rates, |off, chunk: &mut [AvRates<D>]| {
@@ -47,7 +50,7 @@ fn rates<const D: usize, E: Effects, X: Executor>(
             let mut de: Real = 0.0;
             let mut div: Real = 0.0;
             let mut grad_v = Matrix::<D>::zeros();
-            for_each_pair::<D, E>(sys.x, sys.h, params, i, |pr| {
+            for_each_pair(params, geom, i, |pr, _| {
                 let j = pr.j;
                 let rhoj = sys.rho[j];
                 let vij = vi - sys.v[j];
@@ -104,11 +107,11 @@ impl SchemeFamily for Av {
     ) -> Result<(), StepError> {
         let dt = params.dt;
         let hdt = 0.5 * dt;
-        if ws.av.len() != sys.len() {
+        if ws.av.len() != sys.len() || ws.geom.len() != params.nbrs.unordered_pairs() {
             return Err(StepError::Storage { field: "av" });
         }
         if !ws.primed {
-            rates::<D, E, X>(sys, ws.av, params, exec);
+            rates::<D, E, X>(sys, ws.av, ws.geom, params, exec);
             ws.primed = true;
         }
         // Kick, drift, and predict the state at the end of the step.
@@ -137,7 +140,7 @@ impl SchemeFamily for Av {
                 }
             },
         );
-        rates::<D, E, X>(sys, ws.av, params, exec);
+        rates::<D, E, X>(sys, ws.av, ws.geom, params, exec);
         // Second kick with the rates of the predicted state.
         exec.run(
             (sys.reborrow(), &ws.av[..]),

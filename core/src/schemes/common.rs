@@ -2,9 +2,11 @@
 //! update (Hooke + Jaumann + plastic return) and the equation-of-state refresh.
 
 use crate::effects::Effects;
+use crate::exec::{Executor, Rows, Split};
 use crate::material::{strength, Material, Strength};
 use crate::math::{real, Matrix, Real, Sym3, Vector};
-use crate::state::{smoothing_length, StepParams, System};
+use crate::neighbors::Entry;
+use crate::state::{smoothing_length, PairGeom, StepParams, System};
 
 /// One interacting pair (i, j) as seen from particle i.
 #[derive(Clone, Copy, Debug)]
@@ -21,42 +23,143 @@ pub(crate) struct Pair<const D: usize> {
     pub grad: Vector<D>,
 }
 
-/// Calls `f` for every neighbour of `i` inside the kernel support of `h_ij = (h_i+h_j)/2`.
-/// Positions are taken from `x` (minimum image on periodic axes when `E::PERIODIC`).
+/// The geometry of pair (i, j) seen from `i`, or `None` outside the kernel support of
+/// `h_ij = (h_i + h_j)/2` (minimum image on periodic axes when `E::PERIODIC`). Symmetric:
+/// (j, i) is inside exactly when (i, j) is, with the opposite `n` and `grad`.
 #[inline(always)]
-pub(crate) fn for_each_pair<const D: usize, E: Effects>(
+pub(crate) fn pair_geometry<const D: usize, E: Effects>(
     x: &[Vector<D>],
     h: &[Real],
     params: &StepParams<'_, D>,
     i: usize,
-    mut f: impl FnMut(&Pair<D>),
-) {
-    let xi = x[i];
-    let hi = h[i];
-    let support = params.kernel.support();
-    for &j in params.nbrs.of(i) {
-        let j = j as usize;
-        let mut rij = xi - x[j];
-        if E::PERIODIC {
-            rij = params.periodic.min_image(rij);
-        }
-        let r2 = rij.norm_squared();
-        let hij = 0.5 * (hi + h[j]);
-        let rmax = support * hij;
-        if r2 >= rmax * rmax || r2 <= 0.0 {
-            continue;
-        }
-        let r = real::sqrt(r2);
-        let dw = params.kernel.dw::<D>(r, hij);
-        let e = rij / r;
-        f(&Pair {
-            j,
-            r,
-            n: -e,
-            dw,
-            grad: e * dw,
-        });
+    j: usize,
+) -> Option<Pair<D>> {
+    let mut rij = x[i] - x[j];
+    if E::PERIODIC {
+        rij = params.periodic.min_image(rij);
     }
+    let r2 = rij.norm_squared();
+    let hij = 0.5 * (h[i] + h[j]);
+    let rmax = params.kernel.support() * hij;
+    if r2 >= rmax * rmax || r2 <= 0.0 {
+        return None;
+    }
+    let r = real::sqrt(r2);
+    let dw = params.kernel.dw::<D>(r, hij);
+    let e = rij / r;
+    Some(Pair {
+        j,
+        r,
+        n: -e,
+        dw,
+        grad: e * dw,
+    })
+}
+
+/// The geometry of every pair at the start of a pass sequence, computed once, on the side
+/// of its owner: `n` from the owner to the other particle; `r = 0` outside the kernel
+/// support. Positions and smoothing lengths must not change while it is in use.
+pub(crate) fn geometry_pass<const D: usize, E: Effects, X: Executor>(
+    x: &[Vector<D>],
+    h: &[Real],
+    params: &StepParams<'_, D>,
+    geom: &mut [PairGeom<D>],
+    exec: &X,
+) {
+    let nb = params.nbrs;
+    exec.run(
+        Rows {
+            start: nb.pair_start,
+            data: geom,
+        },
+        |off, mut chunk: Rows<'_, PairGeom<D>>| {
+            for k in 0..chunk.len() {
+                let i = off + k;
+                for (g, &j) in chunk.of(k).iter_mut().zip(nb.owned(i)) {
+                    *g = match pair_geometry::<D, E>(x, h, params, i, j as usize) {
+                        Some(pr) => PairGeom {
+                            n: pr.n,
+                            r: pr.r,
+                            dw: pr.dw,
+                        },
+                        None => PairGeom::default(),
+                    };
+                }
+            }
+        },
+    );
+}
+
+/// The pair seen from `i` from its cached geometry. A pair outside the support has zero
+/// `n`, `r`, `dw` and `grad`, so every sum it enters gets an exact zero: the gathers do not
+/// branch on it (a branch on a pattern this irregular costs more than the arithmetic).
+#[inline(always)]
+fn seen_from<const D: usize>(g: &PairGeom<D>, e: Entry) -> Pair<D> {
+    let n = if e.owner { g.n } else { -g.n };
+    Pair {
+        j: e.j,
+        r: g.r,
+        n,
+        dw: g.dw,
+        grad: n * (-g.dw),
+    }
+}
+
+/// Calls `f` for every neighbour of `i`, in the canonical order of the lists (see
+/// [`crate::neighbors`]), with the pair seen from `i` (from the cached geometry of
+/// [`geometry_pass`]), the pair's number (its record in a pair buffer) and whether `i`
+/// owns it (a record solved with `i` on the left, along `pr.n`; otherwise along `-pr.n`).
+/// Pairs outside the kernel support are included with zero geometry (`r = 0`, zero `n`,
+/// `dw` and `grad`): `f` must give them zero weight, which every sum weighted by `dw` or
+/// `grad` does.
+#[inline(always)]
+pub(crate) fn for_each_pair<const D: usize>(
+    params: &StepParams<'_, D>,
+    geom: &[PairGeom<D>],
+    i: usize,
+    mut f: impl FnMut(&Pair<D>, Entry),
+) {
+    params
+        .nbrs
+        .for_each(i, |e| f(&seen_from(&geom[e.pair], e), e));
+}
+
+/// Solves every pair once, on the side of its owner: `recs[p] = solve(i, &pair)` for each
+/// pair `p` owned by `i` inside the kernel support (`pair` seen from `i`, the left side);
+/// pairs outside the support get the default (zero) record.
+pub(crate) fn solve_pairs<const D: usize, X: Executor, R: Send + Default>(
+    params: &StepParams<'_, D>,
+    geom: &[PairGeom<D>],
+    recs: &mut [R],
+    exec: &X,
+    solve: impl Fn(usize, &Pair<D>) -> R + Sync,
+) {
+    let nb = params.nbrs;
+    exec.run(
+        Rows {
+            start: nb.pair_start,
+            data: recs,
+        },
+        |off, mut chunk: Rows<'_, R>| {
+            for k in 0..chunk.len() {
+                let i = off + k;
+                let p0 = nb.pair_start[i] as usize;
+                for (q, (slot, &j)) in chunk.of(k).iter_mut().zip(nb.owned(i)).enumerate() {
+                    let g = &geom[p0 + q];
+                    *slot = if g.r > 0.0 {
+                        let e = Entry {
+                            j: j as usize,
+                            pair: p0 + q,
+                            owner: true,
+                        };
+                        solve(i, &seen_from(g, e))
+                    } else {
+                        R::default()
+                    };
+                }
+            }
+        },
+    );
 }
 
 /// `a ⊗ b` as a `D x D` matrix (`(a ⊗ b)_kl = a_k b_l`).

@@ -25,8 +25,8 @@
 //! `Phi_r = Phi_j - minmod(grad Phi_j . r_ji, Phi_j - Phi_i)/2` (004 eqs 13–15).
 
 use super::common::{
-    advance_deviator, cauchy, failed, for_each_pair, min_sym_eigenvalue, outer, refresh_eos,
-    refresh_pressure,
+    advance_deviator, cauchy, failed, for_each_pair, geometry_pass, min_sym_eigenvalue, outer,
+    refresh_eos, refresh_pressure, solve_pairs, Pair,
 };
 use super::SchemeFamily;
 use crate::effects::{EffectSet, Effects};
@@ -35,8 +35,8 @@ use crate::limiter::{bounded_extrapolation, Limiter};
 use crate::math::{det, inverse, Matrix, Real, Sym3, Vector};
 use crate::riemann::{acoustic_star_vector, elastic_star_vector, two_shock_star, ShockSide};
 use crate::state::{
-    Correction, Family, Gradients, PairSums, RiemannSolver, StepError, StepParams, System,
-    Workspace,
+    Correction, Family, Gradients, PairGeom, PairSums, PmStar, RiemannSolver, StepError,
+    StepParams, System, Workspace,
 };
 
 /// The contact family (`pm`, `tkc`).
@@ -82,8 +82,9 @@ pub const NEAR_SURFACE_TOLERANCE: Real = 1e-9;
 /// Kernel correction: L_i, its inverse and the free-surface flags (2: smallest
 /// eigenvalue of L below `surface_lambda`; 1: a flag-2 particle within `h_i`, up to
 /// [`NEAR_SURFACE_TOLERANCE`]; 0 otherwise).
-pub(crate) fn correction_pass<const D: usize, E: Effects, X: Executor>(
+pub(crate) fn correction_pass<const D: usize, X: Executor>(
     sys: &System<'_, D>,
+    geom: &[PairGeom<D>],
     corr: &mut [Correction<D>],
     sums: &mut [PairSums<D>],
     params: &StepParams<'_, D>,
@@ -95,7 +96,7 @@ pub(crate) fn correction_pass<const D: usize, E: Effects, X: Executor>(
         for (k, out) in chunk.iter_mut().enumerate() {
             let i = off + k;
             let mut l = Matrix::<D>::zeros();
-            for_each_pair::<D, E>(sys.x, sys.h, params, i, |pr| {
+            for_each_pair(params, geom, i, |pr, _| {
                 let vol = sys.m[pr.j] / sys.rho[pr.j];
                 // L = sum V_j grad_i W_ij ⊗ (x_j - x_i), with x_j - x_i = r n
                 l += outer(&pr.grad, &(pr.n * pr.r)) * vol;
@@ -118,8 +119,8 @@ pub(crate) fn correction_pass<const D: usize, E: Effects, X: Executor>(
             let i = off + k;
             let mut near = c[i].boundary == 2;
             let reach = sys.h[i] * within;
-            for_each_pair::<D, E>(sys.x, sys.h, params, i, |pr| {
-                if c[pr.j].boundary == 2 && pr.r <= reach {
+            for_each_pair(params, geom, i, |pr, _| {
+                if c[pr.j].boundary == 2 && pr.r > 0.0 && pr.r <= reach {
                     near = true;
                 }
             });
@@ -142,6 +143,7 @@ pub(crate) fn correction_pass<const D: usize, E: Effects, X: Executor>(
 /// Gradients of the reconstructed quantities (corrected when `E::CORRECTION`).
 fn gradient_pass<const D: usize, E: Effects, X: Executor>(
     sys: &System<'_, D>,
+    geom: &[PairGeom<D>],
     corr: &[Correction<D>],
     grad: &mut [Gradients<D>],
     grad_stress: &mut [[Vector<D>; 6]],
@@ -159,7 +161,7 @@ fn gradient_pass<const D: usize, E: Effects, X: Executor>(
                 let cti = crate::math::real::sqrt(
                     params.materials[sys.mat[i] as usize].shear_modulus / sys.rho[i],
                 );
-                for_each_pair::<D, E>(sys.x, sys.h, params, i, |pr| {
+                for_each_pair(params, geom, i, |pr, _| {
                     let j = pr.j;
                     let vol = sys.m[j] / sys.rho[j];
                     let gw = if E::CORRECTION {
@@ -212,17 +214,29 @@ impl SchemeFamily for Pm {
             || (E::CORRECTION && ws.corr.len() != n)
             || (E::MUSCL && ws.grad.len() != n)
             || (E::MUSCL && E::STRENGTH && ws.grad_stress.len() != n)
+            || ws.pm_star.len() != params.nbrs.unordered_pairs()
+            || ws.geom.len() != params.nbrs.unordered_pairs()
         {
             return Err(StepError::Storage { field: "workspace" });
         }
         let dt = params.dt;
+        geometry_pass::<D, E, X>(sys.x, sys.h, params, ws.geom, exec);
         {
             let sysr: &System<'_, D> = sys;
+            let geom: &[PairGeom<D>] = ws.geom;
             if E::CORRECTION {
-                correction_pass::<D, E, X>(sysr, ws.corr, ws.sums, params, exec);
+                correction_pass::<D, X>(sysr, geom, ws.corr, ws.sums, params, exec);
             }
             if E::MUSCL {
-                gradient_pass::<D, E, X>(sysr, ws.corr, ws.grad, ws.grad_stress, params, exec);
+                gradient_pass::<D, E, X>(
+                    sysr,
+                    geom,
+                    ws.corr,
+                    ws.grad,
+                    ws.grad_stress,
+                    params,
+                    exec,
+                );
             }
         }
         if E::MUSCL {
@@ -273,7 +287,9 @@ impl SchemeFamily for Pm {
     }
 }
 
-/// One pass over the pairs (see [`pair_sums`]).
+/// One pass over the pairs: every pair's star state solved once on its owner's side
+/// ([`pair_star`]), then the sums of each particle gathered in canonical order
+/// ([`gather`]).
 fn pair_pass<const D: usize, E: Effects, X: Executor, const KIN: bool, const DYN: bool>(
     sys: &System<'_, D>,
     ws: &mut Workspace<'_, D>,
@@ -283,10 +299,15 @@ fn pair_pass<const D: usize, E: Effects, X: Executor, const KIN: bool, const DYN
     let corr: &[Correction<D>] = ws.corr;
     let grad: &[Gradients<D>] = ws.grad;
     let grad_s: &[[Vector<D>; 6]] = ws.grad_stress;
+    let geom: &[PairGeom<D>] = ws.geom;
+    solve_pairs::<D, X, PmStar<D>>(params, geom, ws.pm_star, exec, |i, pr| {
+        pair_star::<D, E>(sys, corr, grad, grad_s, params, i, pr)
+    });
+    let stars: &[PmStar<D>] = ws.pm_star;
     exec.run(&mut *ws.sums, |off, chunk: &mut [PairSums<D>]| {
         for (k, out) in chunk.iter_mut().enumerate() {
             let i = off + k;
-            let new = pair_sums::<D, E, KIN, DYN>(sys, corr, grad, grad_s, params, i);
+            let new = gather::<D, E, KIN, DYN>(sys, geom, corr, stars, params, i);
             if KIN {
                 out.div = new.div;
                 out.grad_v = new.grad_v;
@@ -339,120 +360,139 @@ fn dynamic_update<const D: usize, E: Effects>(
     }
 }
 
-/// The pair sums of particle i: the kinematic sums (velocity divergence and gradient
-/// from the contact velocities) when `KIN`, the dynamic sums (acceleration and power at
-/// the contacts) when `DYN`. With correction (`tkc`, seed 004 eq 11) `power` is the total
-/// energy rate `sum f_ij . V*_ij`; otherwise (`pm`, seed 000 eq 16) the internal energy
-/// rate `sum f_ij . (V*_ij - v_i)`.
+/// The star state of pair (i, j) with `i` on the left (`pr` seen from `i`): MUSCL states
+/// (with `E::MUSCL`), tractions on the (corrected, with `E::CORRECTION`) axis, the elastic
+/// Riemann problem, and no tension across the contact of a failed particle.
 #[inline(always)]
-fn pair_sums<const D: usize, E: Effects, const KIN: bool, const DYN: bool>(
+fn pair_star<const D: usize, E: Effects>(
     sys: &System<'_, D>,
     corr: &[Correction<D>],
     grad: &[Gradients<D>],
     grad_s: &[[Vector<D>; 6]],
     params: &StepParams<'_, D>,
     i: usize,
-) -> PairSums<D> {
+    pr: &Pair<D>,
+) -> PmStar<D> {
     let mats = params.materials;
+    let j = pr.j;
+    let (vi, rhoi, rhoj) = (sys.v[i], sys.rho[i], sys.rho[j]);
+    let ct_i = crate::math::real::sqrt(mats[sys.mat[i] as usize].shear_modulus / rhoi);
+    let ct_j = crate::math::real::sqrt(mats[sys.mat[j] as usize].shear_modulus / rhoj);
+    let sig_i = cauchy::<D, E>(sys, i);
+    let sig_j = cauchy::<D, E>(sys, j);
+    let (mut rho_l, mut rho_r) = (rhoi, rhoj);
+    let (mut cl_l, mut cl_r) = (sys.cl[i], sys.cl[j]);
+    let (mut ct_l, mut ct_r) = (ct_i, ct_j);
+    let (mut v_l, mut v_r) = (vi, sys.v[j]);
+    let (mut s_l, mut s_r) = (sig_i, sig_j);
+    let failed_pair = failed::<D, E>(sys, i) || failed::<D, E>(sys, j);
+    if E::MUSCL && !failed_pair {
+        let lim = params.options.limiter;
+        let rji = pr.n * pr.r;
+        let (gi, gj) = (&grad[i], &grad[j]);
+        (rho_l, rho_r) = muscl_pair(lim, rhoi, rhoj, gi.rho.dot(&rji), gj.rho.dot(&rji));
+        (cl_l, cl_r) = muscl_pair(lim, cl_l, cl_r, gi.cl.dot(&rji), gj.cl.dot(&rji));
+        (ct_l, ct_r) = muscl_pair(lim, ct_l, ct_r, gi.ct.dot(&rji), gj.ct.dot(&rji));
+        let dvi = gi.v * rji;
+        let dvj = gj.v * rji;
+        for a in 0..D {
+            (v_l[a], v_r[a]) = muscl_pair(lim, vi[a], sys.v[j][a], dvi[a], dvj[a]);
+        }
+        if E::STRENGTH {
+            let (si, sj) = (sig_i.to_array(), sig_j.to_array());
+            let (mut al, mut ar) = ([0.0; 6], [0.0; 6]);
+            for c in 0..6 {
+                (al[c], ar[c]) = muscl_pair(
+                    lim,
+                    si[c],
+                    sj[c],
+                    grad_s[i][c].dot(&rji),
+                    grad_s[j][c].dot(&rji),
+                );
+            }
+            (s_l, s_r) = (Sym3::from_array(al), Sym3::from_array(ar));
+        } else {
+            let (pl, pr_) = muscl_pair(lim, sys.p[i], sys.p[j], gi.p.dot(&rji), gj.p.dot(&rji));
+            (s_l, s_r) = (Sym3::isotropic(-pl), Sym3::isotropic(-pr_));
+        }
+    }
+    let axis = if E::CORRECTION {
+        (corr[i].l_inv + corr[j].l_inv) * pr.n * 0.5
+    } else {
+        pr.n
+    };
+    let t_l = s_l.dot_vec(&axis);
+    let t_r = s_r.dot_vec(&axis);
+    let (vs, mut ts) = match params.options.riemann {
+        RiemannSolver::Acoustic => acoustic_star_vector(
+            &pr.n,
+            &v_l,
+            &t_l,
+            rho_l * cl_l,
+            rho_l * ct_l,
+            &v_r,
+            &t_r,
+            rho_r * cl_r,
+            rho_r * ct_r,
+        ),
+        // the longitudinal wave as a shock or expansion with Us = c_l + s up (the
+        // EOS's Hugoniot slope), the transverse waves acoustic
+        RiemannSolver::TwoShock => elastic_star_vector(
+            &pr.n,
+            &v_l,
+            &t_l,
+            rho_l * ct_l,
+            &v_r,
+            &t_r,
+            rho_r * ct_r,
+            |ul, sl, ur, sr| {
+                let side = |u: Real, s: Real, rho: Real, c: Real, m: usize| ShockSide {
+                    u,
+                    p: -s,
+                    rho,
+                    c,
+                    s: mats[sys.mat[m] as usize].eos.hugoniot_slope(),
+                };
+                let (u, p) =
+                    two_shock_star(side(ul, sl, rho_l, cl_l, i), side(ur, sr, rho_r, cl_r, j));
+                (u, -p)
+            },
+        ),
+    };
+    if failed_pair {
+        // seed 000 Algorithm 1, in the full-stress Riemann problem: no tension across
+        // the contact of a failed particle
+        let tn = ts.dot(&pr.n);
+        if tn > 0.0 {
+            ts -= pr.n * tn;
+        }
+    }
+    PmStar { v: vs, t: ts }
+}
+
+/// The pair sums of particle i from the solved star states: the kinematic sums (velocity
+/// divergence and gradient from the contact velocities) when `KIN`, the dynamic sums
+/// (acceleration and power at the contacts) when `DYN`. With correction (`tkc`, seed 004
+/// eq 11) `power` is the total energy rate `sum f_ij . V*_ij`; otherwise (`pm`, seed 000
+/// eq 16) the internal energy rate `sum f_ij . (V*_ij - v_i)`.
+#[inline(always)]
+fn gather<const D: usize, E: Effects, const KIN: bool, const DYN: bool>(
+    sys: &System<'_, D>,
+    geom: &[PairGeom<D>],
+    corr: &[Correction<D>],
+    stars: &[PmStar<D>],
+    params: &StepParams<'_, D>,
+    i: usize,
+) -> PairSums<D> {
     let vi = sys.v[i];
     let rhoi = sys.rho[i];
-    let sig_i = cauchy::<D, E>(sys, i);
-    let gi_mat = mats[sys.mat[i] as usize].shear_modulus;
-    let ct_i = crate::math::real::sqrt(gi_mat / rhoi);
     let mut out = PairSums::<D>::default();
-    for_each_pair::<D, E>(sys.x, sys.h, params, i, |pr| {
+    for_each_pair(params, geom, i, |pr, e| {
         let j = pr.j;
-        let rhoj = sys.rho[j];
-        let ct_j = crate::math::real::sqrt(mats[sys.mat[j] as usize].shear_modulus / rhoj);
-        let sig_j = cauchy::<D, E>(sys, j);
-        let (mut rho_l, mut rho_r) = (rhoi, rhoj);
-        let (mut cl_l, mut cl_r) = (sys.cl[i], sys.cl[j]);
-        let (mut ct_l, mut ct_r) = (ct_i, ct_j);
-        let (mut v_l, mut v_r) = (vi, sys.v[j]);
-        let (mut s_l, mut s_r) = (sig_i, sig_j);
-        let failed_pair = failed::<D, E>(sys, i) || failed::<D, E>(sys, j);
-        if E::MUSCL && !failed_pair {
-            let lim = params.options.limiter;
-            let rji = pr.n * pr.r;
-            let (gi, gj) = (&grad[i], &grad[j]);
-            (rho_l, rho_r) = muscl_pair(lim, rhoi, rhoj, gi.rho.dot(&rji), gj.rho.dot(&rji));
-            (cl_l, cl_r) = muscl_pair(lim, cl_l, cl_r, gi.cl.dot(&rji), gj.cl.dot(&rji));
-            (ct_l, ct_r) = muscl_pair(lim, ct_l, ct_r, gi.ct.dot(&rji), gj.ct.dot(&rji));
-            let dvi = gi.v * rji;
-            let dvj = gj.v * rji;
-            for a in 0..D {
-                (v_l[a], v_r[a]) = muscl_pair(lim, vi[a], sys.v[j][a], dvi[a], dvj[a]);
-            }
-            if E::STRENGTH {
-                let (si, sj) = (sig_i.to_array(), sig_j.to_array());
-                let (mut al, mut ar) = ([0.0; 6], [0.0; 6]);
-                for c in 0..6 {
-                    (al[c], ar[c]) = muscl_pair(
-                        lim,
-                        si[c],
-                        sj[c],
-                        grad_s[i][c].dot(&rji),
-                        grad_s[j][c].dot(&rji),
-                    );
-                }
-                (s_l, s_r) = (Sym3::from_array(al), Sym3::from_array(ar));
-            } else {
-                let (pl, pr_) = muscl_pair(lim, sys.p[i], sys.p[j], gi.p.dot(&rji), gj.p.dot(&rji));
-                (s_l, s_r) = (Sym3::isotropic(-pl), Sym3::isotropic(-pr_));
-            }
-        }
-        let axis = if E::CORRECTION {
-            (corr[i].l_inv + corr[j].l_inv) * pr.n * 0.5
-        } else {
-            pr.n
-        };
-        let t_l = s_l.dot_vec(&axis);
-        let t_r = s_r.dot_vec(&axis);
-        let (vs, mut ts) = match params.options.riemann {
-            RiemannSolver::Acoustic => acoustic_star_vector(
-                &pr.n,
-                &v_l,
-                &t_l,
-                rho_l * cl_l,
-                rho_l * ct_l,
-                &v_r,
-                &t_r,
-                rho_r * cl_r,
-                rho_r * ct_r,
-            ),
-            // the longitudinal wave as a shock or expansion with Us = c_l + s up (the
-            // EOS's Hugoniot slope), the transverse waves acoustic
-            RiemannSolver::TwoShock => elastic_star_vector(
-                &pr.n,
-                &v_l,
-                &t_l,
-                rho_l * ct_l,
-                &v_r,
-                &t_r,
-                rho_r * ct_r,
-                |ul, sl, ur, sr| {
-                    let side = |u: Real, s: Real, rho: Real, c: Real, m: usize| ShockSide {
-                        u,
-                        p: -s,
-                        rho,
-                        c,
-                        s: mats[sys.mat[m] as usize].eos.hugoniot_slope(),
-                    };
-                    let (u, p) =
-                        two_shock_star(side(ul, sl, rho_l, cl_l, i), side(ur, sr, rho_r, cl_r, j));
-                    (u, -p)
-                },
-            ),
-        };
-        if failed_pair {
-            // seed 000 Algorithm 1, in the full-stress Riemann problem: no tension across
-            // the contact of a failed particle
-            let tn = ts.dot(&pr.n);
-            if tn > 0.0 {
-                ts -= pr.n * tn;
-            }
-        }
-        let mj = sys.m[j];
+        let st = &stars[e.pair];
+        // the owner's traction acts on the face whose normal points away from it
+        let (vs, ts) = (st.v, if e.owner { st.t } else { -st.t });
+        let (mj, rhoj) = (sys.m[j], sys.rho[j]);
         let dv = vs - vi;
         if DYN {
             let f = -2.0 * mj * pr.dw / (rhoi * rhoj);

@@ -52,8 +52,10 @@ struct Flyer {
     gs: [[Vector<1>; 6]; N],
     corr: [Correction<1>; N],
     av: [AvRates<1>; N],
-    idx: [u32; N * CAP],
-    cnt: [u32; N],
+    nb: [u32; NeighborList::storage_len(N, CAP)],
+    geom: [PairGeom<1>; N * CAP],
+    ts_star: [TsStar; N * CAP],
+    pm_star: [PmStar<1>; N * CAP],
 }
 
 fn material() -> Material {
@@ -94,8 +96,10 @@ fn flyer() -> Flyer {
         gs: [[Vector::<1>::zeros(); 6]; N],
         corr: [Correction::default(); N],
         av: [AvRates::default(); N],
-        idx: [0; N * CAP],
-        cnt: [0; N],
+        nb: [0; NeighborList::storage_len(N, CAP)],
+        geom: [PairGeom::default(); N * CAP],
+        ts_star: [TsStar::default(); N * CAP],
+        pm_star: [PmStar::default(); N * CAP],
     };
     for i in 0..N {
         f.x[i] = Vector::<1>::new((i as Real + 0.5) * dx);
@@ -137,10 +141,12 @@ fn run<F: SchemeFamily, E: Effects>(t_end: Real) -> (Real, Real, Real, Real, Fly
             gs,
             corr,
             av,
-            idx,
-            cnt,
+            nb,
+            geom,
+            ts_star,
+            pm_star,
         } = &mut f;
-        let mut list = NeighborList::new(CAP, idx, cnt).unwrap();
+        let mut list = NeighborList::new(CAP, N, nb).unwrap();
         let hh: &[Real] = h;
         build_naive(
             &x[..],
@@ -180,12 +186,16 @@ fn run<F: SchemeFamily, E: Effects>(t_end: Real) -> (Real, Real, Real, Real, Fly
             nbrs: list.view(),
             options: SchemeOptions::default(),
         };
+        let pairs = list.view().unordered_pairs();
         let mut ws = Workspace {
             sums,
             grad,
             grad_stress: gs,
             corr,
             av,
+            geom: &mut geom[..pairs],
+            ts_star: &mut ts_star[..pairs],
+            pm_star: &mut pm_star[..pairs],
             primed,
         };
         F::step::<1, E, Serial>(&mut sys, &mut ws, &params, &Serial).unwrap();
@@ -294,9 +304,8 @@ fn tkc_free_surface_detection_uses_the_eigenvalues_of_l() {
     let (mut v, m, mat) = ([Vector::<2>::zeros(); M], [1.0; M], [0u16; M]);
     let (mut rho, mut e, mut p, mut c, mut cl, mut h) =
         ([1.0; M], [0.0; M], [0.0; M], [1.0; M], [1.0; M], [1.2; M]);
-    let mut idx = [0u32; M * 32];
-    let mut cnt = [0u32; M];
-    let mut list = NeighborList::new(32, &mut idx, &mut cnt).unwrap();
+    let mut storage = [0u32; NeighborList::storage_len(M, 32)];
+    let mut list = NeighborList::new(32, M, &mut storage).unwrap();
     build_naive(&x[..], &Periodic::none(), |_, _| 2.4, &mut list).unwrap();
     let sys = System {
         x: &mut x,
@@ -326,9 +335,10 @@ fn tkc_free_surface_detection_uses_the_eigenvalues_of_l() {
     };
     let mut corr = [Correction::<2>::default(); M];
     let mut sums = [PairSums::<2>::default(); M];
-    super::pm::correction_pass::<2, PlasticTkc2, Serial>(
-        &sys, &mut corr, &mut sums, &params, &Serial,
-    );
+    let mut geom = [PairGeom::<2>::default(); M * 32];
+    let geom = &mut geom[..params.nbrs.unordered_pairs()];
+    super::common::geometry_pass::<2, PlasticTkc2, Serial>(sys.x, sys.h, &params, geom, &Serial);
+    super::pm::correction_pass::<2, Serial>(&sys, geom, &mut corr, &mut sums, &params, &Serial);
     let at = |i: usize, j: usize| i + 10 * j;
     // an edge particle, its inner neighbour, and a centre particle
     let (edge, second, centre) = (at(0, 5), at(1, 5), at(5, 5));

@@ -52,8 +52,8 @@
 //! `riemann_states`: the place where first order is forced and tension is cut.
 
 use super::common::{
-    advance_deviator, failed, for_each_pair, min_sym_eigenvalue, outer, pair_pressure, refresh_eos,
-    refresh_pressure,
+    advance_deviator, failed, for_each_pair, geometry_pass, min_sym_eigenvalue, outer,
+    pair_pressure, refresh_eos, refresh_pressure, solve_pairs,
 };
 use super::SchemeFamily;
 use crate::effects::{EffectSet, Effects};
@@ -62,7 +62,8 @@ use crate::limiter::bounded_extrapolation;
 use crate::math::{det, inverse, real, Matrix, Real, Vector};
 use crate::riemann::{pressure_star, two_shock_star, PressureSide, ShockSide};
 use crate::state::{
-    Family, Gradients, MusclTime, PairSums, RiemannSolver, StepError, StepParams, System, Workspace,
+    Family, Gradients, MusclTime, PairGeom, PairSums, RiemannSolver, StepError, StepParams, System,
+    TsStar, Workspace,
 };
 
 /// The time-split family (`ts1`, `ts2`).
@@ -74,6 +75,7 @@ pub struct Ts;
 /// grad rho and grad P for the reconstruction; also records the start-of-step velocity.
 fn front_gradient_pass<const D: usize, E: Effects, X: Executor>(
     sys: &System<'_, D>,
+    geom: &[PairGeom<D>],
     sums: &mut [PairSums<D>],
     grad: &mut [Gradients<D>],
     params: &StepParams<'_, D>,
@@ -91,7 +93,7 @@ fn front_gradient_pass<const D: usize, E: Effects, X: Executor>(
                 }
                 let mut gr = Gradients::<D>::default();
                 let pi = pair_pressure::<D, E>(sys, i);
-                for_each_pair::<D, E>(sys.x, sys.h, params, i, |pr| {
+                for_each_pair(params, geom, i, |pr, _| {
                     let j = pr.j;
                     let gw = pr.grad * (sys.m[j] / sys.rho[j]);
                     gr.v += outer(&(sys.v[j] - vi), &gw);
@@ -138,20 +140,30 @@ fn front_gradient_pass<const D: usize, E: Effects, X: Executor>(
 fn continuity_pass<const D: usize, E: Effects, X: Executor>(
     sys: &System<'_, D>,
     grad: &[Gradients<D>],
+    geom: &[PairGeom<D>],
+    stars: &mut [TsStar],
     sums: &mut [PairSums<D>],
     params: &StepParams<'_, D>,
     exec: &X,
 ) {
     let (lam, eps) = (params.options.surface_lambda, params.options.det_epsilon);
+    // each pair's contact velocity once, on the owner's side
+    solve_pairs::<D, X, TsStar>(params, geom, stars, exec, |i, pr| {
+        let (u, _) = star::<D, E>(sys, grad, params, i, pr.j, &pr.n, pr.r);
+        TsStar { u, p: 0.0 }
+    });
+    let stars: &[TsStar] = stars;
     exec.run(sums, |off, chunk: &mut [PairSums<D>]| {
         for (k, out) in chunk.iter_mut().enumerate() {
             let i = off + k;
             let vi = sys.v[i];
             let mut m = Matrix::<D>::zeros();
             let mut kk = Matrix::<D>::zeros();
-            for_each_pair::<D, E>(sys.x, sys.h, params, i, |pr| {
+            for_each_pair(params, geom, i, |pr, e| {
                 let j = pr.j;
-                let (us, _) = star::<D, E>(sys, grad, params, i, j, &pr.n, pr.r);
+                // the owner solved along its own axis: seen from i the component flips
+                let u = stars[e.pair].u;
+                let us = if e.owner { u } else { -u };
                 let gw = pr.grad * (sys.m[j] / sys.rho[j]);
                 let mean = (vi + sys.v[j]) * 0.5;
                 let vstar = mean + pr.n * (us - mean.dot(&pr.n));
@@ -227,8 +239,9 @@ fn star<const D: usize, E: Effects>(
 }
 
 /// Deviatoric pass: `acc = sum F_ij/m_i`, `power = sum F_ij.vbar_ij/m_i`.
-fn deviatoric_pass<const D: usize, E: Effects, X: Executor>(
+fn deviatoric_pass<const D: usize, X: Executor>(
     sys: &System<'_, D>,
+    geom: &[PairGeom<D>],
     sums: &mut [PairSums<D>],
     params: &StepParams<'_, D>,
     exec: &X,
@@ -239,7 +252,7 @@ fn deviatoric_pass<const D: usize, E: Effects, X: Executor>(
             let (vi, si, rhoi) = (sys.v[i], sys.s[i], sys.rho[i]);
             let mut acc = Vector::<D>::zeros();
             let mut power = 0.0;
-            for_each_pair::<D, E>(sys.x, sys.h, params, i, |pr| {
+            for_each_pair(params, geom, i, |pr, _| {
                 let j = pr.j;
                 let (mj, rhoj, vj) = (sys.m[j], sys.rho[j], sys.v[j]);
                 let f = (si + sys.s[j]).dot_vec(&pr.grad) * (mj / (rhoi * rhoj));
@@ -364,25 +377,34 @@ fn riemann_states<const D: usize, E: Effects>(
     (l, rr)
 }
 
-/// Hydrodynamic pass: `acc = sum G_ij/m_i`, `power = sum G_ij.(u* n)/m_i`.
+/// Hydrodynamic pass: `acc = sum G_ij/m_i`, `power = sum G_ij.(u* n)/m_i`, each pair's
+/// star state solved once on its owner's side.
 fn hydro_pass<const D: usize, E: Effects, X: Executor>(
     sys: &System<'_, D>,
     grad: &[Gradients<D>],
+    geom: &[PairGeom<D>],
+    stars: &mut [TsStar],
     sums: &mut [PairSums<D>],
     params: &StepParams<'_, D>,
     exec: &X,
 ) {
+    solve_pairs::<D, X, TsStar>(params, geom, stars, exec, |i, pr| {
+        let (u, p) = star::<D, E>(sys, grad, params, i, pr.j, &pr.n, pr.r);
+        TsStar { u, p }
+    });
+    let stars: &[TsStar] = stars;
     exec.run(sums, |off, chunk: &mut [PairSums<D>]| {
         for (k, out) in chunk.iter_mut().enumerate() {
             let i = off + k;
             let rhoi = sys.rho[i];
             let mut acc = Vector::<D>::zeros();
             let mut power = 0.0;
-            for_each_pair::<D, E>(sys.x, sys.h, params, i, |pr| {
+            for_each_pair(params, geom, i, |pr, e| {
                 let j = pr.j;
-                let (us, ps) = star::<D, E>(sys, grad, params, i, j, &pr.n, pr.r);
+                let st = stars[e.pair];
+                let us = if e.owner { st.u } else { -st.u };
                 // G_ij/m_i = -2 m_j P* grad_i W /(rho_i rho_j), grad_i W = -n W'
-                let g = 2.0 * sys.m[j] * ps * pr.dw / (rhoi * sys.rho[j]);
+                let g = 2.0 * sys.m[j] * st.p * pr.dw / (rhoi * sys.rho[j]);
                 acc += pr.n * g;
                 power += g * us;
             });
@@ -408,7 +430,11 @@ impl SchemeFamily for Ts {
         exec: &X,
     ) -> Result<(), StepError> {
         let n = sys.len();
-        if ws.sums.len() != n || (E::MUSCL && ws.grad.len() != n) {
+        if ws.sums.len() != n
+            || (E::MUSCL && ws.grad.len() != n)
+            || ws.ts_star.len() != params.nbrs.unordered_pairs()
+            || ws.geom.len() != params.nbrs.unordered_pairs()
+        {
             return Err(StepError::Storage { field: "workspace" });
         }
         let dt = params.dt;
@@ -419,8 +445,10 @@ impl SchemeFamily for Ts {
         //    then density and deviator) is forward Euler, whose amplification factor
         //    |1 + i w dt| > 1 lets waves grow wherever the Riemann dissipation vanishes:
         //    always in the deviatoric step, and in smooth flow with MUSCL.
-        front_gradient_pass::<D, E, X>(sys, ws.sums, ws.grad, params, exec);
-        continuity_pass::<D, E, X>(sys, ws.grad, ws.sums, params, exec);
+        geometry_pass::<D, E, X>(sys.x, sys.h, params, ws.geom, exec);
+        let geom: &[PairGeom<D>] = ws.geom;
+        front_gradient_pass::<D, E, X>(sys, geom, ws.sums, ws.grad, params, exec);
+        continuity_pass::<D, E, X>(sys, ws.grad, geom, ws.ts_star, ws.sums, params, exec);
         exec.run(
             (sys.reborrow(), &ws.sums[..]),
             |_, (mut s, sums): (System<'_, D>, &[PairSums<D>])| {
@@ -436,7 +464,7 @@ impl SchemeFamily for Ts {
         );
         // 2. Deviatoric step (only with strength): no dissipation.
         if E::STRENGTH {
-            deviatoric_pass::<D, E, X>(sys, ws.sums, params, exec);
+            deviatoric_pass::<D, X>(sys, geom, ws.sums, params, exec);
             exec.run(
                 (sys.reborrow(), &ws.sums[..]),
                 |_, (mut s, sums): (System<'_, D>, &[PairSums<D>])| {
@@ -453,7 +481,7 @@ impl SchemeFamily for Ts {
             );
         }
         // 3. Hydrodynamic step with the new pressure (reconstruction slopes from step 1).
-        hydro_pass::<D, E, X>(sys, ws.grad, ws.sums, params, exec);
+        hydro_pass::<D, E, X>(sys, ws.grad, geom, ws.ts_star, ws.sums, params, exec);
         exec.run(
             (sys.reborrow(), &ws.sums[..]),
             |_, (mut s, sums): (System<'_, D>, &[PairSums<D>])| {

@@ -47,7 +47,7 @@ fn material() -> Material {
 /// the system after the start-of-step gradient pass, and the step parameters.
 fn with_failed_particle(
     failed: usize,
-    f: impl FnOnce(&System<'_, 1>, &[Gradients<1>], &StepParams<'_, 1>),
+    f: impl FnOnce(&System<'_, 1>, &[Gradients<1>], &[PairGeom<1>], &StepParams<'_, 1>),
 ) {
     let mats = [material()];
     let mut x = [Vector::<1>::zeros(); N];
@@ -71,8 +71,8 @@ fn with_failed_particle(
     }
     p[failed] = -100e9;
     damage[failed] = 1.0;
-    let (mut idx, mut cnt) = ([0u32; N * CAP], [0u32; N]);
-    let mut list = NeighborList::new(CAP, &mut idx, &mut cnt).unwrap();
+    let mut storage = [0u32; NeighborList::storage_len(N, CAP)];
+    let mut list = NeighborList::new(CAP, N, &mut storage).unwrap();
     build_naive(&x[..], &Periodic::none(), |_, _| 2.0 * 1.2 * DX, &mut list).unwrap();
     let sys = System {
         x: &mut x,
@@ -101,12 +101,17 @@ fn with_failed_particle(
     };
     let mut sums = [PairSums::<1>::default(); N];
     let mut grad = [Gradients::<1>::default(); N];
-    front_gradient_pass::<1, Failing, Serial>(&sys, &mut sums, &mut grad, &params, &Serial);
-    f(&sys, &grad, &params);
+    let mut geom = [PairGeom::<1>::default(); N * CAP];
+    let geom = &mut geom[..params.nbrs.unordered_pairs()];
+    geometry_pass::<1, Failing, Serial>(sys.x, sys.h, &params, geom, &Serial);
+    front_gradient_pass::<1, Failing, Serial>(&sys, geom, &mut sums, &mut grad, &params, &Serial);
+    f(&sys, &grad, geom, &params);
 }
 
 /// [`with_failed_particle`] with the failed particle in the middle of the line.
-fn with_failed_line(f: impl FnOnce(&System<'_, 1>, &[Gradients<1>], &StepParams<'_, 1>)) {
+fn with_failed_line(
+    f: impl FnOnce(&System<'_, 1>, &[Gradients<1>], &[PairGeom<1>], &StepParams<'_, 1>),
+) {
     with_failed_particle(4, f)
 }
 
@@ -115,7 +120,7 @@ fn with_failed_line(f: impl FnOnce(&System<'_, 1>, &[Gradients<1>], &StepParams<
 /// so it stays of the order of the intact pressure differences (1 GPa per spacing).
 #[test]
 fn pressure_gradients_use_the_clamped_pressure_of_failed_neighbours() {
-    with_failed_line(|_, grad, _| {
+    with_failed_line(|_, grad, _, _| {
         for i in [2usize, 3, 5, 6] {
             let g = grad[i].p[0];
             assert!(
@@ -131,7 +136,7 @@ fn pressure_gradients_use_the_clamped_pressure_of_failed_neighbours() {
 /// leaves, and the pairs with the failed particle are first order.
 #[test]
 fn intact_pairs_reconstruct_within_their_own_range() {
-    with_failed_line(|sys, grad, params| {
+    with_failed_line(|sys, grad, _, params| {
         for i in 0..N {
             for &j in params.nbrs.of(i) {
                 let j = j as usize;
@@ -175,11 +180,13 @@ fn intact_pairs_reconstruct_within_their_own_range() {
 /// SPH sum `2 sum_j V_j (v*_ij - v_0) . grad W`.
 fn end_divergence(failed: usize) -> (Real, Real) {
     let mut out = (0.0, 0.0);
-    with_failed_particle(failed, |sys, grad, params| {
+    with_failed_particle(failed, |sys, grad, geom, params| {
         let mut sums = [PairSums::<1>::default(); N];
-        continuity_pass::<1, Failing, Serial>(sys, grad, &mut sums, params, &Serial);
+        let mut stars = [TsStar::default(); N * CAP];
+        let stars = &mut stars[..params.nbrs.unordered_pairs()];
+        continuity_pass::<1, Failing, Serial>(sys, grad, geom, stars, &mut sums, params, &Serial);
         let mut plain = 0.0;
-        for_each_pair::<1, Failing>(sys.x, sys.h, params, 0, |pr| {
+        for_each_pair(params, geom, 0, |pr, _| {
             let (us, _) = star::<1, Failing>(sys, grad, params, 0, pr.j, &pr.n, pr.r);
             let vstar = pr.n * us;
             plain += 2.0 * (sys.m[pr.j] / sys.rho[pr.j]) * (vstar - sys.v[0]).dot(&pr.grad);

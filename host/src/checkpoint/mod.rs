@@ -40,7 +40,7 @@ pub const CHECKPOINT_H5: &str = "checkpoint.h5";
 /// Magic bytes at the start of a checkpoint.
 pub const MAGIC: &[u8; 8] = b"GSPHCKPT";
 /// The format version this build writes and reads.
-pub const FORMAT_VERSION: u32 = 1;
+pub const FORMAT_VERSION: u32 = 2;
 const HEADER: usize = 32;
 
 /// A checkpoint problem; `Display` is one line.

@@ -125,11 +125,12 @@ impl<const D: usize> Sim<D> {
         first
     }
 
-    /// Sizes the neighbour lists for the current particle count and marks them stale.
+    /// Empties the neighbour lists (for the current particle count) and marks them stale.
     fn resize_lists(&mut self) {
-        let n = self.len();
-        self.nbr_index.resize(n * self.capacity, 0);
-        self.nbr_count.resize(n, 0);
+        self.lists = crate::neighbors::Lists::empty(self.len());
+        self.geom.clear();
+        self.ts_star.clear();
+        self.pm_star.clear();
         self.build_x.clear();
         self.build_h.clear();
     }

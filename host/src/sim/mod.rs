@@ -2,6 +2,7 @@
 //! around the core's slice-based step.
 
 use crate::exec::Rayon;
+use crate::neighbors::{morton_order, Lists};
 use crate::output::{ParticleRow, ParticleTable};
 use crate::scene::{InitialParticles, Scene};
 use gsph_core::effects::EffectSet;
@@ -9,7 +10,7 @@ use gsph_core::kernel::Kernel;
 use gsph_core::limiter::Limiter;
 use gsph_core::material::Material;
 use gsph_core::math::{Real, Sym3, Vector};
-use gsph_core::neighbors::{Neighbors, Periodic};
+use gsph_core::neighbors::{NeighborError, Periodic};
 use gsph_core::schemes::{Scheme, StepFn};
 use gsph_core::state::*;
 use std::any::Any;
@@ -33,6 +34,56 @@ fn select<const D: usize>(scheme: Scheme, effects: EffectSet) -> Option<StepFn<D
         3 => select_3d::<Rayon>(family, effects)
             .and_then(|f| (&f as &dyn Any).downcast_ref::<StepFn<D, Rayon>>().copied()),
         _ => None,
+    }
+}
+
+/// A neighbour overflow naming the particle by its id (particles are renumbered in memory).
+fn overflow_by_id(e: NeighborError, ids: &[u32]) -> NeighborError {
+    match e {
+        NeighborError::Overflow {
+            particle,
+            found,
+            capacity,
+        } => NeighborError::Overflow {
+            particle: ids[particle] as usize,
+            found,
+            capacity,
+        },
+        other => other,
+    }
+}
+
+/// A step error naming the particle by its id; when several particles fail the finite
+/// check, the one of lowest id (so the message does not depend on the memory order).
+fn cause_by_id<const D: usize>(cause: StepError, ids: &[u32], sys: &System<'_, D>) -> StepError {
+    let bad = |i: usize| check_finite_one(sys, i).err();
+    match cause {
+        StepError::NonFinite { .. } | StepError::NonPositiveDensity { .. } => {
+            let worst = (0..sys.len())
+                .filter_map(|i| bad(i).map(|c| (ids[i], c)))
+                .min_by_key(|(id, _)| *id);
+            match worst {
+                Some((id, StepError::NonFinite { field, .. })) => StepError::NonFinite {
+                    particle: id as usize,
+                    field,
+                },
+                Some((id, StepError::NonPositiveDensity { .. })) => StepError::NonPositiveDensity {
+                    particle: id as usize,
+                },
+                // the core named a particle the finite check passes (a time step, say)
+                _ => match cause {
+                    StepError::NonFinite { particle, field } => StepError::NonFinite {
+                        particle: ids[particle] as usize,
+                        field,
+                    },
+                    StepError::NonPositiveDensity { particle } => StepError::NonPositiveDensity {
+                        particle: ids[particle] as usize,
+                    },
+                    other => other,
+                },
+            }
+        }
+        other => other,
     }
 }
 
@@ -125,10 +176,15 @@ pub struct Sim<const D: usize> {
     grad_stress: Vec<[Vector<D>; 6]>,
     corr: Vec<Correction<D>>,
     av: Vec<AvRates<D>>,
+    geom: Vec<PairGeom<D>>,
+    ts_star: Vec<TsStar>,
+    pm_star: Vec<PmStar<D>>,
     primed: bool,
-    nbr_index: Vec<u32>,
-    nbr_count: Vec<u32>,
+    lists: Lists,
     capacity: usize,
+    /// Renumber particles in Morton order at every neighbour-list rebuild (results do not
+    /// depend on it: sums run in id order).
+    pub reorder: bool,
     build_x: Vec<Vector<D>>,
     build_h: Vec<Real>,
     /// Materials.
@@ -264,10 +320,13 @@ impl<const D: usize> Sim<D> {
             grad_stress: Vec::new(),
             corr: Vec::new(),
             av: Vec::new(),
+            geom: Vec::new(),
+            ts_star: Vec::new(),
+            pm_star: Vec::new(),
             primed: false,
-            nbr_index: Vec::new(),
-            nbr_count: Vec::new(),
+            lists: Lists::default(),
             capacity,
+            reorder: true,
             build_x: Vec::new(),
             build_h: Vec::new(),
             materials,
@@ -324,26 +383,105 @@ impl<const D: usize> Sim<D> {
             + self.grad.len() * size_of::<Gradients<D>>()
             + self.grad_stress.len() * size_of::<[Vector<D>; 6]>()
             + self.corr.len() * size_of::<Correction<D>>()
-            + self.av.len() * size_of::<AvRates<D>>();
-        let lists = (self.nbr_index.len() + self.nbr_count.len()) * 4;
+            + self.av.len() * size_of::<AvRates<D>>()
+            + self.geom.len() * size_of::<PairGeom<D>>()
+            + self.ts_star.len() * size_of::<TsStar>()
+            + self.pm_star.len() * size_of::<PmStar<D>>();
+        let lists = self.lists.bytes();
         (state + ws + lists) / n
     }
 
+    /// Renumbers the particles in Morton order (see [`morton_order`]), then builds the
+    /// neighbour lists at the current positions.
     fn rebuild(&mut self) -> Result<(), SimError> {
+        if self.reorder {
+            let hmax = self.h.iter().cloned().fold(0.0, f64::max);
+            let order = morton_order(&self.x, &self.ids, hmax, &self.periodic);
+            self.permute(&order);
+        }
+        self.build_x.clone_from(&self.x);
+        self.build_h.clone_from(&self.h);
+        self.build_lists()?;
+        self.rebuilds += 1;
+        Ok(())
+    }
+
+    /// Builds the neighbour lists at the positions and smoothing lengths of the last
+    /// rebuild (`build_x`, `build_h`) and sizes the pair buffers.
+    fn build_lists(&mut self) -> Result<(), SimError> {
         crate::neighbors::build(
-            &self.x,
-            &self.h,
+            &self.build_x,
+            &self.build_h,
+            &self.ids,
             self.kernel.support(),
             self.skin,
             &self.periodic,
             self.capacity,
-            &mut self.nbr_index,
-            &mut self.nbr_count,
+            &mut self.lists,
         )
-        .map_err(SimError::Neighbors)?;
-        self.build_x.clone_from(&self.x);
-        self.build_h.clone_from(&self.h);
-        self.rebuilds += 1;
+        .map_err(|e| SimError::Neighbors(overflow_by_id(e, &self.ids)))?;
+        let pairs = self.lists.unordered_pairs();
+        let layout = Layout::of(self.scheme.family(), self.effects);
+        self.geom.resize(pairs, PairGeom::default());
+        if layout.ts_star {
+            self.ts_star.resize(pairs, TsStar::default());
+        }
+        if layout.pm_star {
+            self.pm_star.resize(pairs, PmStar::default());
+        }
+        Ok(())
+    }
+
+    /// Moves particle `order[k]` to place `k` in every per-particle array.
+    fn permute(&mut self, order: &[u32]) {
+        fn apply<T: Copy>(v: &mut Vec<T>, order: &[u32]) {
+            if v.len() == order.len() {
+                *v = order.iter().map(|&i| v[i as usize]).collect();
+            }
+        }
+        let mut place = vec![0usize; order.len()];
+        for (k, &i) in order.iter().enumerate() {
+            place[i as usize] = k;
+        }
+        for d in self.driven.iter_mut() {
+            d.0 = place[d.0];
+        }
+        apply(&mut self.ids, order);
+        apply(&mut self.x, order);
+        apply(&mut self.v, order);
+        apply(&mut self.m, order);
+        apply(&mut self.mat, order);
+        apply(&mut self.rho, order);
+        apply(&mut self.e, order);
+        apply(&mut self.p, order);
+        apply(&mut self.c, order);
+        apply(&mut self.cl, order);
+        apply(&mut self.h, order);
+        apply(&mut self.s, order);
+        apply(&mut self.eps_p, order);
+        apply(&mut self.damage, order);
+        apply(&mut self.temp, order);
+        apply(&mut self.sums, order);
+        apply(&mut self.grad, order);
+        apply(&mut self.grad_stress, order);
+        apply(&mut self.corr, order);
+        apply(&mut self.av, order);
+        apply(&mut self.build_x, order);
+        apply(&mut self.build_h, order);
+    }
+
+    /// Rebuilds the neighbour lists (renumbering the particles, see [`Sim::reorder`]) when
+    /// some pair may have entered the kernel support since the last build. [`Sim::step`]
+    /// calls it first; a caller that holds particle indices across a step (the moving
+    /// window) calls it before taking them.
+    pub fn maintain(&mut self) -> Result<(), SimError> {
+        if self.lists_stale() {
+            let (step, t) = (self.step + 1, self.t);
+            self.rebuild().map_err(|e| match e {
+                SimError::Neighbors(n) => SimError::Rebuild { step, t, cause: n },
+                other => other,
+            })?;
+        }
         Ok(())
     }
 
@@ -364,17 +502,15 @@ impl<const D: usize> Sim<D> {
         2.0 * dmax2.sqrt() >= self.kernel.support() * hmin * (self.skin - growth)
     }
 
+    /// Refuses particles nearer than half their spacing (`spacing` indexed by id).
     fn check_overlap(&self, spacing: &[f64]) -> Result<(), SimError> {
-        let nb = Neighbors {
-            capacity: self.capacity,
-            index: &self.nbr_index,
-            count: &self.nbr_count,
-        };
+        let nb = self.lists.view();
         for i in 0..self.len() {
             for &j in nb.of(i) {
                 let j = j as usize;
                 let d = self.periodic.min_image(self.x[i] - self.x[j]).norm();
-                if d < 0.5 * spacing[i].min(spacing[j]) {
+                let (si, sj) = (spacing[self.ids[i] as usize], spacing[self.ids[j] as usize]);
+                if d < 0.5 * si.min(sj) {
                     let mut at = [0.0; 3];
                     at[..D].copy_from_slice(self.x[i].as_slice());
                     return Err(SimError::Overlap {
@@ -430,21 +566,8 @@ impl<const D: usize> Sim<D> {
     /// Advances by `dt`.
     pub fn step(&mut self, dt: Real) -> Result<(), SimError> {
         let t0 = self.t;
-        if self.lists_stale() {
-            self.rebuild().map_err(|e| match e {
-                SimError::Neighbors(n) => SimError::Rebuild {
-                    step: self.step + 1,
-                    t: t0,
-                    cause: n,
-                },
-                other => other,
-            })?;
-        }
-        let nbrs = Neighbors {
-            capacity: self.capacity,
-            index: &self.nbr_index,
-            count: &self.nbr_count,
-        };
+        self.maintain()?;
+        let nbrs = self.lists.view();
         let pairs = nbrs.pairs() as u64;
         let params = StepParams {
             dt,
@@ -477,6 +600,9 @@ impl<const D: usize> Sim<D> {
             grad_stress: &mut self.grad_stress,
             corr: &mut self.corr,
             av: &mut self.av,
+            geom: &mut self.geom,
+            ts_star: &mut self.ts_star,
+            pm_star: &mut self.pm_star,
             primed: self.primed,
         };
         let step = self.step + 1;
@@ -484,8 +610,11 @@ impl<const D: usize> Sim<D> {
         // driven particles move at exactly their prescribed velocity: x0 + v0 dt from
         // where the step started, whatever the step computed for them
         let x_start: Vec<Vector<D>> = self.driven.iter().map(|&(i, _)| sys.x[i]).collect();
-        (self.step_fn)(&mut sys, &mut ws, &params, &self.exec).map_err(fail)?;
-        check_finite(&sys).map_err(fail)?;
+        let r =
+            (self.step_fn)(&mut sys, &mut ws, &params, &self.exec).and_then(|_| check_finite(&sys));
+        if let Err(cause) = r {
+            return Err(fail(cause_by_id(cause, &self.ids, &sys)));
+        }
         for (&(i, v0), &x0) in self.driven.iter().zip(&x_start) {
             self.v[i] = v0;
             self.x[i] = self.periodic.wrap(x0 + v0 * dt);
@@ -501,7 +630,17 @@ impl<const D: usize> Sim<D> {
     /// 0 interior, 1 near a boundary particle, 2 boundary particle (computed from the state
     /// at the start of that step). Empty without kernel correction; all 0 before a step.
     pub fn boundary_flags(&self) -> Vec<u8> {
-        self.corr.iter().map(|c| c.boundary).collect()
+        if self.corr.is_empty() {
+            return Vec::new();
+        }
+        self.by_id().map(|i| self.corr[i].boundary).collect()
+    }
+
+    /// Particle indices in id order.
+    pub fn by_id(&self) -> impl Iterator<Item = usize> {
+        let mut order: Vec<usize> = (0..self.len()).collect();
+        order.sort_unstable_by_key(|&i| self.ids[i]);
+        order.into_iter()
     }
 
     /// Total energy (kinetic + internal), J.
@@ -527,9 +666,10 @@ impl<const D: usize> Sim<D> {
     }
 
     /// The particle table (final.csv columns).
+    /// Rows in id order, whatever the order of the particles in memory.
     pub fn table(&self) -> ParticleTable {
         let mut t = ParticleTable::with_capacity(self.len());
-        for i in 0..self.len() {
+        for i in self.by_id() {
             let g = |v: &Vector<D>, a: usize| if a < D { v[a] } else { 0.0 };
             let s = if self.s.is_empty() {
                 Sym3::ZERO

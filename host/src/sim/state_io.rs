@@ -2,9 +2,9 @@
 //!
 //! Saved: ids, every per-particle array (effect storage included), the scheme workspace
 //! (pair sums, MUSCL and stress gradients, kernel corrections, the `av` leap-frog rates
-//! and the `primed` flag), the neighbour lists with the positions and smoothing lengths
-//! they were built at (so the rebuild schedule and the pair order continue unchanged),
-//! time, step and counters. Not saved: what the scene determines (materials, kernel,
+//! and the `primed` flag), the positions and smoothing lengths the neighbour lists were
+//! built at (the lists are rebuilt from them on restore, without renumbering, so the
+//! rebuild schedule and the particle order continue unchanged), time, step and counters. Not saved: what the scene determines (materials, kernel,
 //! options, effects, the step function, driven particles), which a restart rebuilds from
 //! the scene text stored in the checkpoint.
 //!
@@ -45,8 +45,6 @@ impl<const D: usize> Sim<D> {
         e.put(&self.grad_stress);
         e.put(&self.corr);
         e.put(&self.av);
-        e.put(&self.nbr_index);
-        e.put(&self.nbr_count);
         e.put(&self.build_x);
         e.put(&self.build_h);
     }
@@ -54,7 +52,7 @@ impl<const D: usize> Sim<D> {
     /// Replaces the state of this simulation (built from the same scene) with the state
     /// read from `d`. Every array must have the length the scene gives it (the workspace
     /// arrays may also be empty or full where the scheme fills them on its first step) and
-    /// every neighbour index must name a particle; on error `self` is left unusable.
+    /// ids must be unique; on error `self` is left unusable.
     pub fn restore_checkpoint(&mut self, d: &mut Dec<'_>) -> Result<(), DecodeError> {
         let n = self.len();
         self.t = d.get()?;
@@ -112,20 +110,16 @@ impl<const D: usize> Sim<D> {
         field(d, "grad_stress", &mut self.grad_stress, n, false)?;
         field(d, "corr", &mut self.corr, n, false)?;
         field(d, "av", &mut self.av, n, false)?;
-        field(d, "nbr_index", &mut self.nbr_index, n, true)?;
-        field(d, "nbr_count", &mut self.nbr_count, n, true)?;
         field(d, "build_x", &mut self.build_x, n, true)?;
         field(d, "build_h", &mut self.build_h, n, true)?;
-        let cap = self.capacity;
-        let bad_list = (0..n).any(|i| {
-            let c = self.nbr_count[i] as usize;
-            c > cap
-                || self.nbr_index[i * cap..i * cap + c]
-                    .iter()
-                    .any(|&j| j as usize >= n)
-        });
-        if bad_list {
-            return Err(DecodeError("a neighbour list names no particle".into()));
+        let mut ids = self.ids.clone();
+        ids.sort_unstable();
+        if ids.windows(2).any(|w| w[0] == w[1]) {
+            return Err(DecodeError("two particles have the same id".into()));
+        }
+        if !self.build_x.is_empty() {
+            self.build_lists()
+                .map_err(|e| DecodeError(format!("neighbour lists: {e}")))?;
         }
         if self.materials.len() <= self.mat.iter().copied().max().unwrap_or(0) as usize {
             return Err(DecodeError("a material index names no material".into()));

@@ -164,6 +164,8 @@ impl<const D: usize> Window<D> {
     /// One step of `sim` with the window's boundary conditions; every `every` steps,
     /// the exchange of particles through the ends.
     pub fn step(&mut self, sim: &mut Sim<D>, dt: f64) -> Result<(), SimError> {
+        // a rebuild renumbers the particles: do it before taking their indices
+        sim.maintain()?;
         let regions: Vec<Region> = sim.x.iter().map(|x| self.region(x[0])).collect();
         for (i, r) in regions.iter().enumerate() {
             if *r == Region::Exit2 && !self.held.contains_key(&sim.ids[i]) {
