@@ -199,6 +199,7 @@ mod runner {
                 grad_stress: &mut [],
                 corr: &mut [],
                 av: &mut [],
+                art: &mut [],
                 geom: &mut geom[..pairs],
                 ts_star: &mut star[..pairs],
                 pm_star: &mut [],

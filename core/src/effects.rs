@@ -24,6 +24,9 @@ pub trait Effects: Copy + Send + Sync + 'static {
     const MUSCL: bool;
     /// Periodic boundaries along at least one axis.
     const PERIODIC: bool;
+    /// Monaghan's artificial stress against the tensile instability (Gray, Monaghan &
+    /// Swift 2001), in every scheme's pair forces.
+    const ARTIFICIAL_STRESS: bool;
     /// The set as a run-time value.
     const SET: EffectSet;
 }
@@ -52,9 +55,11 @@ impl EffectSet {
     pub const PERIODIC: EffectSet = EffectSet(1 << 6);
     /// Moving window (handled by the host driver; no pair-kernel code depends on it).
     pub const MOVING_WINDOW: EffectSet = EffectSet(1 << 7);
+    /// See [`Effects::ARTIFICIAL_STRESS`].
+    pub const ARTIFICIAL_STRESS: EffectSet = EffectSet(1 << 8);
 
     /// Every named effect with its bit, in display order.
-    pub const NAMED: [(&'static str, EffectSet); 8] = [
+    pub const NAMED: [(&'static str, EffectSet); 9] = [
         ("strength", Self::STRENGTH),
         ("plasticity", Self::PLASTICITY),
         ("damage", Self::DAMAGE),
@@ -62,6 +67,7 @@ impl EffectSet {
         ("correction", Self::CORRECTION),
         ("muscl", Self::MUSCL),
         ("periodic", Self::PERIODIC),
+        ("artificial_stress", Self::ARTIFICIAL_STRESS),
         ("moving_window", Self::MOVING_WINDOW),
     ];
 

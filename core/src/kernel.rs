@@ -110,6 +110,13 @@ impl Kernel {
         }
     }
 
+    /// The dimensionless shape `f(q)` of `W = sigma_D / h^D f(q)` (zero for
+    /// `q >= support()`): ratios of kernel values at one `h` need only this.
+    #[inline(always)]
+    pub fn shape_value<const D: usize>(self, q: Real) -> Real {
+        self.shape::<D>(q).0
+    }
+
     /// Kernel value `W(r, h) = sigma_D / h^D f(r/h)` in m^-D (`r >= 0`, `h > 0` in m).
     #[inline]
     pub fn w<const D: usize>(self, r: Real, h: Real) -> Real {

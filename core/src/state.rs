@@ -13,6 +13,7 @@ use crate::limiter::Limiter;
 use crate::material::Material;
 use crate::math::{real, Matrix, Real, Sym3, Vector};
 use crate::neighbors::{Neighbors, Periodic};
+use crate::schemes::artificial_stress::ArtificialStress;
 
 /// The particles of a run (structure of arrays). All slices have the same length `n`,
 /// except optional fields, which are empty when their effect is absent.
@@ -351,6 +352,8 @@ pub struct Workspace<'a, const D: usize> {
     pub corr: &'a mut [Correction<D>],
     /// Leap-frog rates (`av`); persistent between steps.
     pub av: &'a mut [AvRates<D>],
+    /// Artificial stress tensors `R_i` (effect `artificial_stress`).
+    pub art: &'a mut [Matrix<D>],
     /// Pair geometry (all schemes), one per unordered pair of the lists.
     pub geom: &'a mut [PairGeom<D>],
     /// Star states of the pairs (`ts` family), one per unordered pair of the lists.
@@ -372,6 +375,8 @@ pub struct Layout {
     pub corr: bool,
     /// [`Workspace::av`].
     pub av: bool,
+    /// [`Workspace::art`].
+    pub art: bool,
     /// [`Workspace::ts_star`] (one record per unordered pair).
     pub ts_star: bool,
     /// [`Workspace::pm_star`] (one record per unordered pair).
@@ -389,6 +394,7 @@ impl Layout {
                 && effects.contains(EffectSet::STRENGTH),
             corr: effects.contains(EffectSet::CORRECTION),
             av: matches!(family, Family::Av),
+            art: effects.contains(EffectSet::ARTIFICIAL_STRESS),
             ts_star: matches!(family, Family::Ts),
             pm_star: matches!(family, Family::Pm),
         }
@@ -450,6 +456,11 @@ pub struct SchemeOptions {
     pub surface_lambda: Real,
     /// L is not inverted where det L is below this (`tkc`, `ts`).
     pub det_epsilon: Real,
+    /// Artificial stress (read with the effect `artificial_stress`).
+    pub artificial_stress: ArtificialStress,
+    /// Keep every particle's smoothing length as it starts (the peers' colliding rings,
+    /// and codes with a fixed h); otherwise `h = h_factor (m/rho)^(1/D)` after each step.
+    pub constant_h: bool,
 }
 
 impl Default for SchemeOptions {
@@ -462,6 +473,8 @@ impl Default for SchemeOptions {
             muscl_time: MusclTime::None,
             surface_lambda: 0.75,
             det_epsilon: 0.05,
+            artificial_stress: ArtificialStress::default(),
+            constant_h: false,
         }
     }
 }

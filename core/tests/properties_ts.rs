@@ -38,6 +38,7 @@ impl<const M: bool> Effects for Plastic<M> {
     const CORRECTION: bool = false;
     const MUSCL: bool = M;
     const PERIODIC: bool = false;
+    const ARTIFICIAL_STRESS: bool = false;
     const SET: EffectSet = if M {
         EffectSet::STRENGTH
             .union(EffectSet::PLASTICITY)
@@ -196,6 +197,7 @@ fn run<const D: usize, E: Effects>(c: &Case) -> Result<Totals, StepError> {
             grad_stress: &mut [],
             corr: &mut [],
             av: &mut [],
+            art: &mut [],
             geom: &mut geom[..pairs],
             ts_star: &mut stars[..pairs],
             pm_star: &mut [],

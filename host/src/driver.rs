@@ -322,10 +322,12 @@ fn run_dim<const D: usize>(
     } else {
         &[]
     };
+    let monitor_names = monitor.series_names();
     for name in extra
         .iter()
-        .chain(monitor.series_names().iter())
-        .chain(window_names)
+        .copied()
+        .chain(monitor_names.iter().map(String::as_str))
+        .chain(window_names.iter().copied())
     {
         series.push(',');
         series.push_str(name);
@@ -381,7 +383,7 @@ fn run_dim<const D: usize>(
             break;
         }
         let t_out = t_end * next_out as f64 / n_out as f64;
-        let mut dt = sim.checked_dt(scene.cfl)?;
+        let mut dt = sim.next_dt(scene.cfl(), scene.dt)?;
         if sim.t + dt >= t_out {
             dt = t_out - sim.t;
         }
@@ -483,7 +485,7 @@ fn run_dim<const D: usize>(
         }
     }
     for (k, v) in rec.monitor.measures(&table) {
-        s.insert(k.into(), json!(v));
+        s.insert(k, json!(v));
     }
     if let Some(w) = &window {
         for (k, v) in Window::<D>::series_names()

@@ -10,6 +10,7 @@ pub mod driver;
 pub mod exec;
 pub mod materials;
 pub mod monitor;
+pub mod monitor_elastic;
 pub mod neighbors;
 pub mod output;
 pub mod plot;

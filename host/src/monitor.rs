@@ -3,6 +3,7 @@
 //! smallest density. Series columns are sampled on the series schedule; summary keys are
 //! computed from the final state (peaks: over the sampled series).
 
+use crate::monitor_elastic::Elastic;
 use crate::output::table::ParticleTable;
 use crate::scene::{InitialParticles, Scene, SceneError};
 use gsph_core::material::Material;
@@ -105,6 +106,7 @@ pub struct Monitor {
     /// `damaging[k]`: material k accumulates damage.
     damaging: Vec<bool>,
     heat: bool,
+    elastic: Option<Elastic>,
 }
 
 impl Monitor {
@@ -167,22 +169,29 @@ impl Monitor {
             t_end: scene.t_end,
             damaging: materials.iter().map(Material::has_damage).collect(),
             heat: materials.iter().any(Material::has_heat),
+            elastic: scene
+                .monitor
+                .as_ref()
+                .and_then(|m| Elastic::new(m, scene.dim, parts, materials)),
         })
     }
 
     /// True if the series needs a particle table at each sample.
     pub fn samples(&self) -> bool {
-        self.back_face.is_some() || self.front.is_some()
+        self.back_face.is_some() || self.front.is_some() || self.elastic.is_some()
     }
 
     /// Names of the series columns.
-    pub fn series_names(&self) -> Vec<&'static str> {
+    pub fn series_names(&self) -> Vec<String> {
         let mut names = Vec::new();
         if self.back_face.is_some() {
-            names.push("back_face_velocity");
+            names.push("back_face_velocity".to_string());
         }
         if self.front.is_some() {
-            names.push("front_position");
+            names.push("front_position".to_string());
+        }
+        if let Some(el) = &self.elastic {
+            names.extend(el.names());
         }
         names
     }
@@ -207,6 +216,9 @@ impl Monitor {
             fr.samples.push((t, pos));
             out.push(pos);
         }
+        if let Some(el) = self.elastic.as_mut() {
+            out.extend(el.sample(table));
+        }
         out
     }
 
@@ -216,6 +228,9 @@ impl Monitor {
         let mut out = Vec::new();
         if let Some(bf) = &self.back_face {
             out.extend([bf.peak, bf.peak_time]);
+        }
+        if let Some(el) = &self.elastic {
+            out.extend(el.accumulated());
         }
         if let Some(fr) = &self.front {
             out.extend(fr.samples.iter().flat_map(|&(t, x)| [t, x]));
@@ -234,6 +249,9 @@ impl Monitor {
             (bf.peak, bf.peak_time) = (peak, time);
             rest = &rest[2..];
         }
+        if let Some(el) = self.elastic.as_mut() {
+            rest = &rest[el.restore(rest)?..];
+        }
         match self.front.as_mut() {
             Some(fr) if rest.len() % 2 == 0 => {
                 fr.samples = rest.chunks_exact(2).map(|p| (p[0], p[1])).collect();
@@ -248,20 +266,24 @@ impl Monitor {
     }
 
     /// Summary keys from the final state.
-    pub fn measures(&self, table: &ParticleTable) -> Vec<(&'static str, f64)> {
+    pub fn measures(&mut self, table: &ParticleTable) -> Vec<(String, f64)> {
         let n = table.len();
         let mut out = vec![(
-            "density_min",
+            "density_min".to_string(),
             table.rho.iter().copied().fold(f64::INFINITY, f64::min),
         )];
+        if let Some(el) = self.elastic.as_mut() {
+            out.extend(el.measures(table));
+        }
+        let mut out_static: Vec<(&'static str, f64)> = Vec::new();
         if let Some(bf) = &self.back_face {
-            out.push(("back_face_velocity_peak", bf.peak));
-            out.push(("back_face_velocity_peak_time", bf.peak_time));
+            out_static.push(("back_face_velocity_peak", bf.peak));
+            out_static.push(("back_face_velocity_peak_time", bf.peak_time));
         }
         if let Some(fr) = &self.front {
             let (pos, k, bins) = fr.locate(table);
-            out.push(("front_position", pos));
-            out.push(("front_speed", fr.speed(fr.fit_from * self.t_end)));
+            out_static.push(("front_position", pos));
+            out_static.push(("front_speed", fr.speed(fr.fit_from * self.t_end)));
             // mean velocity of the particles in the bins behind the front
             let behind = (fr.behind / fr.bin).round().max(1.0) as usize;
             let (sum, count) = k.map_or((f64::NAN, 1), |k| {
@@ -269,14 +291,14 @@ impl Monitor {
                     .iter()
                     .fold((0.0, 0usize), |(s, c), &(bs, bc)| (s + bs, c + bc))
             });
-            out.push(("behind_front_velocity", sum / count.max(1) as f64));
+            out_static.push(("behind_front_velocity", sum / count.max(1) as f64));
             // and ahead of it (the state the front runs into)
             let (sum, count) = k.map_or((f64::NAN, 1), |k| {
                 bins[(k + 1).min(bins.len())..(k + 1 + behind).min(bins.len())]
                     .iter()
                     .fold((0.0, 0usize), |(s, c), &(bs, bc)| (s + bs, c + bc))
             });
-            out.push(("ahead_front_velocity", sum / count.max(1) as f64));
+            out_static.push(("ahead_front_velocity", sum / count.max(1) as f64));
         }
         if self.damaging.iter().any(|&d| d) {
             // areas (volumes in 3D) m/rho of the particles of damage-bearing materials
@@ -293,11 +315,11 @@ impl Monitor {
                 }
             }
             let all = all.max(f64::MIN_POSITIVE);
-            out.push(("damaged_area_fraction", failed / all));
-            out.push(("damage_mean", weighted / all));
+            out_static.push(("damaged_area_fraction", failed / all));
+            out_static.push(("damage_mean", weighted / all));
         }
         if self.heat {
-            out.push((
+            out_static.push((
                 "temperature_max",
                 table
                     .temperature
@@ -306,6 +328,7 @@ impl Monitor {
                     .fold(f64::NEG_INFINITY, f64::max),
             ));
         }
+        out.extend(out_static.into_iter().map(|(k, v)| (k.to_string(), v)));
         out
     }
 }

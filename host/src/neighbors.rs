@@ -327,6 +327,30 @@ pub fn build<const D: usize>(
     Ok(())
 }
 
+/// The distance from each particle to its nearest neighbour, or infinity if none lies
+/// within `reach` (no periodic images).
+pub fn nearest_distances<const D: usize>(x: &[Vector<D>], reach: f64) -> Vec<f64> {
+    if x.is_empty() {
+        return Vec::new();
+    }
+    let grid = Grid::new(x, reach, &Periodic::none());
+    (0..x.len())
+        .into_par_iter()
+        .map(|i| {
+            let mut best = f64::INFINITY;
+            grid.for_candidates(&x[i], |j| {
+                if j != i {
+                    let d = (x[i] - x[j]).norm();
+                    if d < reach {
+                        best = best.min(d);
+                    }
+                }
+            });
+            best
+        })
+        .collect()
+}
+
 /// A permutation that puts particles in Morton (Z-curve) order of cells `cell` wide, ties
 /// broken by key: `order[k]` is the particle that goes to place `k`. Neighbours then sit
 /// close together in memory, so the pair passes gather their state from a few cache lines.
@@ -385,6 +409,16 @@ pub fn morton_order<const D: usize>(
 mod tests {
     use super::*;
     use gsph_core::neighbors::{build_naive, NeighborList};
+
+    #[test]
+    fn nearest_distances_on_a_row() {
+        let x: Vec<Vector<3>> = [0.0, 1.0, 1.5, 4.0]
+            .iter()
+            .map(|&a| Vector::<3>::new(a, 0.0, 0.0))
+            .collect();
+        let d = nearest_distances(&x, 2.0);
+        assert_eq!(d, vec![1.0, 0.5, 0.5, f64::INFINITY]);
+    }
 
     #[test]
     fn morton_order_is_a_permutation_that_keeps_cells_together() {

@@ -39,6 +39,19 @@ pub enum SimError {
         /// Cause.
         cause: NeighborError,
     },
+    /// A fixed time step longer than the stability limit.
+    TimeStep {
+        /// Step number (1-based).
+        step: u64,
+        /// Time at the start of the step, s.
+        t: f64,
+        /// The fixed step, s.
+        dt: f64,
+        /// The CFL-1 limit, s.
+        limit: f64,
+        /// The particle (id) that sets the limit.
+        particle: u32,
+    },
     /// The specialisation for this scene is not compiled into this build.
     NotCompiled {
         /// Dimension.
@@ -68,6 +81,10 @@ impl std::fmt::Display for SimError {
             ),
             SimError::Step { step, t, cause } => write!(f, "step {step} (t = {t:.6e} s): {cause}"),
             SimError::Rebuild { step, t, cause } => write!(f, "step {step} (t = {t:.6e} s): {cause}"),
+            SimError::TimeStep { step, t, dt, limit, particle } => write!(
+                f,
+                "step {step} (t = {t:.6e} s): the fixed time step dt = {dt:.4e} s exceeds the stability limit h/(c_l + |v|) = {limit:.4e} s of particle {particle} (lower `dt`, or remove it for the CFL step)"
+            ),
             SimError::NotCompiled { dim, scheme, effects } => {
                 // One line: what is missing, and the features that compile it (README
                 // "Compile-time-selected builds").

@@ -8,7 +8,7 @@ use gsph_core::state::Family;
 
 /// The feature that compiles the specialisations containing each effect, as declared to
 /// `specialise!` in `core/src/dispatch.rs` (a unit test checks the two agree).
-const EFFECT_FEATURES: [(EffectSet, &str); 7] = [
+const EFFECT_FEATURES: [(EffectSet, &str); 8] = [
     (EffectSet::STRENGTH, "effects-strength"),
     (EffectSet::PLASTICITY, "effects-strength"),
     (EffectSet::DAMAGE, "effects-damage"),
@@ -16,6 +16,7 @@ const EFFECT_FEATURES: [(EffectSet, &str); 7] = [
     (EffectSet::CORRECTION, "effects-correction"),
     (EffectSet::MUSCL, "effects-muscl"),
     (EffectSet::PERIODIC, "effects-periodic"),
+    (EffectSet::ARTIFICIAL_STRESS, "effects-artificial-stress"),
 ];
 
 /// The name of a scheme family as in its `scheme-*` feature and step names.
@@ -106,6 +107,7 @@ mod tests {
             "effects-periodic" => cfg!(feature = "effects-periodic"),
             "effects-muscl" => cfg!(feature = "effects-muscl"),
             "effects-correction" => cfg!(feature = "effects-correction"),
+            "effects-artificial-stress" => cfg!(feature = "effects-artificial-stress"),
             _ => panic!("unknown feature {f}"),
         };
         for s in CATALOGUE {

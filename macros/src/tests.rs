@@ -92,17 +92,17 @@ fn family(m: &Model, name: &str) -> usize {
 fn gsph_counts() {
     // Closed subsets of the material chain (plasticity needs strength; damage and heat need
     // plasticity): hydro, s, s+p, s+p+damage, s+p+heat, s+p+damage+heat = 6; times periodic
-    // on/off = 12. Per family the extras: av none (1), pm correction x muscl (4), ts muscl
-    // (2). Sets valid for some family: 12 * 4 = 48. Step functions per dimension:
-    // 12 * (1 + 4 + 2) = 84; over three dimensions 252.
+    // on/off and artificial stress on/off = 24. Per family the extras: av none (1), pm
+    // correction x muscl (4), ts muscl (2). Sets valid for some family: 24 * 4 = 96. Step
+    // functions per dimension: 24 * (1 + 4 + 2) = 168; over three dimensions 504.
     let m = model("gsph");
-    assert_eq!(m.sets().len(), 48);
+    assert_eq!(m.sets().len(), 96);
     let specs = m.specialisations();
-    assert_eq!(specs.len(), 252);
+    assert_eq!(specs.len(), 504);
     for d in 1..=3 {
-        assert_eq!(specs.iter().filter(|s| s.dim == d).count(), 84);
+        assert_eq!(specs.iter().filter(|s| s.dim == d).count(), 168);
     }
-    for (f, n) in [("av", 12), ("pm", 48), ("ts", 24)] {
+    for (f, n) in [("av", 24), ("pm", 96), ("ts", 48)] {
         let f = family(&m, f);
         assert_eq!(
             specs.iter().filter(|s| s.dim == 2 && s.family == f).count(),

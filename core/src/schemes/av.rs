@@ -13,11 +13,14 @@
 //!
 //! The pair force is antisymmetric, so momentum is conserved to round-off; the energy
 //! rate is the exact counterpart of the force, so total energy is conserved up to the
-//! time-integration error (leap-frog, second order).
+//! time-integration error (leap-frog, second order). With the effect `artificial_stress`
+//! the pair force gains `f_ij^n (R_i + R_j) . grad_i W_ij` (see
+//! [`super::artificial_stress`]), in the force and so in the energy rate.
 
+use super::artificial_stress::{inverse_reference, pair_acceleration, pair_factor};
 use super::common::{
-    cauchy, deviator_rate, equivalent_strain_rate, for_each_pair, geometry_pass, outer,
-    refresh_eos, return_deviator,
+    artificial_stress_tensors, cauchy, deviator_rate, equivalent_strain_rate, for_each_pair,
+    geometry_pass, outer, refresh_eos, return_deviator,
 };
 use super::SchemeFamily;
 use crate::effects::{EffectSet, Effects};
@@ -34,11 +37,20 @@ fn rates<const D: usize, E: Effects, X: Executor>(
     sys: &System<'_, D>,
     rates: &mut [AvRates<D>],
     geom: &mut [PairGeom<D>],
+    art: &mut [Matrix<D>],
     params: &StepParams<'_, D>,
     exec: &X,
 ) {
     geometry_pass::<D, E, X>(sys.x, sys.h, params, geom, exec);
     let geom: &[PairGeom<D>] = geom;
+    let asp = params.options.artificial_stress;
+    let inv_wref = if E::ARTIFICIAL_STRESS {
+        artificial_stress_tensors::<D, E, X>(sys, art, params, exec);
+        inverse_reference::<D>(params.kernel, params.h_factor)
+    } else {
+        0.0
+    };
+    let art: &[Matrix<D>] = art;
     let alpha = params.options.av_alpha;
     let beta = params.options.av_beta;
     exec.run(rates, |off, chunk: &mut [AvRates<D>]| {
@@ -64,7 +76,12 @@ fn rates<const D: usize, E: Effects, X: Executor>(
                     pi_ij = (-alpha * cij * mu + beta * mu * mu) / (0.5 * (rhoi + rhoj));
                 }
                 let sig = sig_i + cauchy::<D, E>(sys, j);
-                let t = sig.dot_vec(&pr.grad) / (rhoi * rhoj) - pr.grad * pi_ij;
+                let mut t = sig.dot_vec(&pr.grad) / (rhoi * rhoj) - pr.grad * pi_ij;
+                if E::ARTIFICIAL_STRESS {
+                    let hij = 0.5 * (sys.h[i] + sys.h[j]);
+                    let f = pair_factor::<D>(params.kernel, pr.r, hij, inv_wref, asp.exponent);
+                    t += pair_acceleration(1.0, f, &art[i], &art[j], &pr.grad);
+                }
                 let mj = sys.m[j];
                 acc += t * mj;
                 de -= 0.5 * mj * vij.dot(&t);
@@ -97,7 +114,8 @@ impl SchemeFamily for Av {
         .union(EffectSet::PLASTICITY)
         .union(EffectSet::DAMAGE)
         .union(EffectSet::HEAT)
-        .union(EffectSet::PERIODIC);
+        .union(EffectSet::PERIODIC)
+        .union(EffectSet::ARTIFICIAL_STRESS);
 
     fn step<const D: usize, E: Effects, X: Executor>(
         sys: &mut System<'_, D>,
@@ -107,11 +125,14 @@ impl SchemeFamily for Av {
     ) -> Result<(), StepError> {
         let dt = params.dt;
         let hdt = 0.5 * dt;
-        if ws.av.len() != sys.len() || ws.geom.len() != params.nbrs.unordered_pairs() {
+        if ws.av.len() != sys.len()
+            || ws.geom.len() != params.nbrs.unordered_pairs()
+            || (E::ARTIFICIAL_STRESS && ws.art.len() != sys.len())
+        {
             return Err(StepError::Storage { field: "av" });
         }
         if !ws.primed {
-            rates::<D, E, X>(sys, ws.av, ws.geom, params, exec);
+            rates::<D, E, X>(sys, ws.av, ws.geom, ws.art, params, exec);
             ws.primed = true;
         }
         // Kick, drift, and predict the state at the end of the step.
@@ -136,11 +157,11 @@ impl SchemeFamily for Av {
                     if E::PERIODIC {
                         s.x[k] = params.periodic.wrap(s.x[k]);
                     }
-                    refresh_eos(&mut s, k, mat, params.h_factor);
+                    refresh_eos(&mut s, k, mat, params);
                 }
             },
         );
-        rates::<D, E, X>(sys, ws.av, ws.geom, params, exec);
+        rates::<D, E, X>(sys, ws.av, ws.geom, ws.art, params, exec);
         // Second kick with the rates of the predicted state.
         exec.run(
             (sys.reborrow(), &ws.av[..]),
@@ -155,7 +176,7 @@ impl SchemeFamily for Av {
                         let trial = a.s_half + a.ds * hdt;
                         return_deviator::<D, E>(&mut s, k, mat, trial, a.rate, dt, true);
                     }
-                    refresh_eos(&mut s, k, mat, params.h_factor);
+                    refresh_eos(&mut s, k, mat, params);
                 }
             },
         );

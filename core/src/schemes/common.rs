@@ -162,6 +162,23 @@ pub(crate) fn solve_pairs<const D: usize, X: Executor, R: Send + Default>(
     );
 }
 
+/// The artificial stress tensor `R_i` of every particle from its current stress and
+/// density (effect `artificial_stress`; see [`super::artificial_stress`]).
+pub(crate) fn artificial_stress_tensors<const D: usize, E: Effects, X: Executor>(
+    sys: &System<'_, D>,
+    art: &mut [Matrix<D>],
+    params: &StepParams<'_, D>,
+    exec: &X,
+) {
+    let eps = params.options.artificial_stress.epsilon;
+    exec.run(art, |off, chunk: &mut [Matrix<D>]| {
+        for (k, r) in chunk.iter_mut().enumerate() {
+            let i = off + k;
+            *r = super::artificial_stress::tensor::<D>(&cauchy::<D, E>(sys, i), sys.rho[i], eps);
+        }
+    });
+}
+
 /// `a ⊗ b` as a `D x D` matrix (`(a ⊗ b)_kl = a_k b_l`).
 #[inline(always)]
 pub(crate) fn outer<const D: usize>(a: &Vector<D>, b: &Vector<D>) -> Matrix<D> {
@@ -263,20 +280,19 @@ pub(crate) fn deviator_rate<const D: usize>(s: &Sym3, mat: &Material, grad_v: &M
     Sym3::sym_of(grad_v).deviator() * (2.0 * mat.shear_modulus) + s.jaumann(grad_v)
 }
 
-/// Refreshes pressure, sound speeds and smoothing length of local particle `k` of a chunk.
+/// Refreshes pressure, sound speeds and smoothing length of local particle `k` of a chunk
+/// (the smoothing length stays as it is with [`crate::state::SchemeOptions::constant_h`]).
 #[inline(always)]
 pub(crate) fn refresh_eos<const D: usize>(
     sys: &mut System<'_, D>,
     k: usize,
     mat: &Material,
-    h_factor: Real,
+    params: &StepParams<'_, D>,
 ) {
-    let st = mat.eos(sys.rho[k], sys.e[k]);
-    let c2 = real::max(st.c2, 0.0);
-    sys.p[k] = st.p;
-    sys.c[k] = real::sqrt(c2);
-    sys.cl[k] = mat.c_long(sys.rho[k], c2);
-    sys.h[k] = smoothing_length::<D>(h_factor, sys.m[k], sys.rho[k]);
+    refresh_pressure(sys, k, mat);
+    if !params.options.constant_h {
+        sys.h[k] = smoothing_length::<D>(params.h_factor, sys.m[k], sys.rho[k]);
+    }
 }
 
 /// Refreshes pressure and sound speeds of local particle `k` (smoothing length unchanged).

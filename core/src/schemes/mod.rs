@@ -13,6 +13,7 @@
 // Per-particle updates index several structure-of-arrays slices with one index.
 #![allow(clippy::needless_range_loop)]
 
+pub mod artificial_stress;
 pub mod av;
 pub(crate) mod common;
 pub mod pm;

@@ -24,9 +24,10 @@
 //! contact with `Phi_l = Phi_i + minmod(Phi_j - Phi_i, grad Phi_i . r_ji)/2` and
 //! `Phi_r = Phi_j - minmod(grad Phi_j . r_ji, Phi_j - Phi_i)/2` (004 eqs 13–15).
 
+use super::artificial_stress::{inverse_reference, pair_acceleration, pair_factor};
 use super::common::{
-    advance_deviator, cauchy, failed, for_each_pair, geometry_pass, min_sym_eigenvalue, outer,
-    refresh_eos, refresh_pressure, solve_pairs, Pair,
+    advance_deviator, artificial_stress_tensors, cauchy, failed, for_each_pair, geometry_pass,
+    min_sym_eigenvalue, outer, refresh_eos, refresh_pressure, solve_pairs, Pair,
 };
 use super::SchemeFamily;
 use crate::effects::{EffectSet, Effects};
@@ -201,7 +202,8 @@ impl SchemeFamily for Pm {
         .union(EffectSet::HEAT)
         .union(EffectSet::PERIODIC)
         .union(EffectSet::CORRECTION)
-        .union(EffectSet::MUSCL);
+        .union(EffectSet::MUSCL)
+        .union(EffectSet::ARTIFICIAL_STRESS);
 
     fn step<const D: usize, E: Effects, X: Executor>(
         sys: &mut System<'_, D>,
@@ -216,6 +218,7 @@ impl SchemeFamily for Pm {
             || (E::MUSCL && E::STRENGTH && ws.grad_stress.len() != n)
             || ws.pm_star.len() != params.nbrs.unordered_pairs()
             || ws.geom.len() != params.nbrs.unordered_pairs()
+            || (E::ARTIFICIAL_STRESS && ws.art.len() != n)
         {
             return Err(StepError::Storage { field: "workspace" });
         }
@@ -257,6 +260,9 @@ impl SchemeFamily for Pm {
                     }
                 },
             );
+            if E::ARTIFICIAL_STRESS {
+                artificial_stress_tensors::<D, E, X>(sys, ws.art, params, exec);
+            }
             pair_pass::<D, E, X, false, true>(sys, ws, params, exec);
             exec.run(
                 (sys.reborrow(), &ws.sums[..]),
@@ -264,11 +270,14 @@ impl SchemeFamily for Pm {
                     for k in 0..s.len() {
                         let mat = &params.materials[s.mat[k] as usize];
                         dynamic_update::<D, E>(&mut s, k, &sums[k], params);
-                        refresh_eos(&mut s, k, mat, params.h_factor);
+                        refresh_eos(&mut s, k, mat, params);
                     }
                 },
             );
         } else {
+            if E::ARTIFICIAL_STRESS {
+                artificial_stress_tensors::<D, E, X>(sys, ws.art, params, exec);
+            }
             pair_pass::<D, E, X, true, true>(sys, ws, params, exec);
             exec.run(
                 (sys.reborrow(), &ws.sums[..]),
@@ -278,7 +287,7 @@ impl SchemeFamily for Pm {
                         // explicit Euler (seed 000): every rate from the same old state
                         dynamic_update::<D, E>(&mut s, k, &sums[k], params);
                         kinematic_update::<D, E>(&mut s, k, mat, &sums[k], dt);
-                        refresh_eos(&mut s, k, mat, params.h_factor);
+                        refresh_eos(&mut s, k, mat, params);
                     }
                 },
             );
@@ -300,6 +309,7 @@ fn pair_pass<const D: usize, E: Effects, X: Executor, const KIN: bool, const DYN
     let grad: &[Gradients<D>] = ws.grad;
     let grad_s: &[[Vector<D>; 6]] = ws.grad_stress;
     let geom: &[PairGeom<D>] = ws.geom;
+    let art: &[Matrix<D>] = ws.art;
     solve_pairs::<D, X, PmStar<D>>(params, geom, ws.pm_star, exec, |i, pr| {
         pair_star::<D, E>(sys, corr, grad, grad_s, params, i, pr)
     });
@@ -307,7 +317,7 @@ fn pair_pass<const D: usize, E: Effects, X: Executor, const KIN: bool, const DYN
     exec.run(&mut *ws.sums, |off, chunk: &mut [PairSums<D>]| {
         for (k, out) in chunk.iter_mut().enumerate() {
             let i = off + k;
-            let new = gather::<D, E, KIN, DYN>(sys, geom, corr, stars, params, i);
+            let new = gather::<D, E, KIN, DYN>(sys, geom, corr, art, stars, params, i);
             if KIN {
                 out.div = new.div;
                 out.grad_v = new.grad_v;
@@ -480,12 +490,19 @@ fn gather<const D: usize, E: Effects, const KIN: bool, const DYN: bool>(
     sys: &System<'_, D>,
     geom: &[PairGeom<D>],
     corr: &[Correction<D>],
+    art: &[Matrix<D>],
     stars: &[PmStar<D>],
     params: &StepParams<'_, D>,
     i: usize,
 ) -> PairSums<D> {
     let vi = sys.v[i];
     let rhoi = sys.rho[i];
+    let asp = params.options.artificial_stress;
+    let inv_wref = if E::ARTIFICIAL_STRESS {
+        inverse_reference::<D>(params.kernel, params.h_factor)
+    } else {
+        0.0
+    };
     let mut out = PairSums::<D>::default();
     for_each_pair(params, geom, i, |pr, e| {
         let j = pr.j;
@@ -498,6 +515,16 @@ fn gather<const D: usize, E: Effects, const KIN: bool, const DYN: bool>(
             let f = -2.0 * mj * pr.dw / (rhoi * rhoj);
             out.acc += ts * f;
             out.power += f * ts.dot(if E::CORRECTION { &vs } else { &dv });
+            if E::ARTIFICIAL_STRESS {
+                // a pair force outside the Riemann problem: its work at the pair's mean
+                // velocity (total energy form with correction, internal otherwise)
+                let hij = 0.5 * (sys.h[i] + sys.h[j]);
+                let fa = pair_factor::<D>(params.kernel, pr.r, hij, inv_wref, asp.exponent);
+                let a = pair_acceleration(mj, fa, &art[i], &art[j], &pr.grad);
+                let vbar = (vi + sys.v[j]) * 0.5;
+                out.acc += a;
+                out.power += a.dot(&if E::CORRECTION { vbar } else { vbar - vi });
+            }
         }
         if KIN {
             let gw = if E::CORRECTION {

@@ -22,6 +22,7 @@ macro_rules! fx {
             const CORRECTION: bool = $c;
             const MUSCL: bool = $m;
             const PERIODIC: bool = false;
+            const ARTIFICIAL_STRESS: bool = false;
             const SET: EffectSet = EffectSet::HYDRO;
         }
     };
@@ -193,6 +194,7 @@ fn run<F: SchemeFamily, E: Effects>(t_end: Real) -> (Real, Real, Real, Real, Fly
             grad_stress: gs,
             corr,
             av,
+            art: &mut [],
             geom: &mut geom[..pairs],
             ts_star: &mut ts_star[..pairs],
             pm_star: &mut pm_star[..pairs],
@@ -374,5 +376,6 @@ impl Effects for PlasticTkc2 {
     const CORRECTION: bool = true;
     const MUSCL: bool = true;
     const PERIODIC: bool = false;
+    const ARTIFICIAL_STRESS: bool = false;
     const SET: EffectSet = EffectSet::HYDRO;
 }

@@ -51,15 +51,16 @@
 //! Failed particles (damage = 1; seed 000 Algorithm 1) are handled in
 //! `riemann_states`: the place where first order is forced and tension is cut.
 
+use super::artificial_stress::{inverse_reference, pair_acceleration, pair_factor};
 use super::common::{
-    advance_deviator, failed, for_each_pair, geometry_pass, min_sym_eigenvalue, outer,
-    pair_pressure, refresh_eos, refresh_pressure, solve_pairs,
+    advance_deviator, artificial_stress_tensors, failed, for_each_pair, geometry_pass,
+    min_sym_eigenvalue, outer, pair_pressure, refresh_eos, refresh_pressure, solve_pairs,
 };
 use super::SchemeFamily;
 use crate::effects::{EffectSet, Effects};
 use crate::exec::{Executor, Optional};
 use crate::limiter::bounded_extrapolation;
-use crate::math::{det, inverse, real, Matrix, Real, Vector};
+use crate::math::{det, inverse, real, Matrix, Real, Sym3, Vector};
 use crate::riemann::{pressure_star, two_shock_star, PressureSide, ShockSide};
 use crate::state::{
     Family, Gradients, MusclTime, PairGeom, PairSums, RiemannSolver, StepError, StepParams, System,
@@ -238,24 +239,43 @@ fn star<const D: usize, E: Effects>(
     }
 }
 
-/// Deviatoric pass: `acc = sum F_ij/m_i`, `power = sum F_ij.vbar_ij/m_i`.
-fn deviatoric_pass<const D: usize, X: Executor>(
+/// Deviatoric pass: `acc = sum F_ij/m_i`, `power = sum F_ij.vbar_ij/m_i`. With the effect
+/// `artificial_stress`, `F_ij` gains `m_i m_j f_ij^n (R_i + R_j) . grad_i W_ij` (also for a
+/// material without strength, whose deviatoric step then carries only that force).
+fn deviatoric_pass<const D: usize, E: Effects, X: Executor>(
     sys: &System<'_, D>,
     geom: &[PairGeom<D>],
+    art: &[Matrix<D>],
     sums: &mut [PairSums<D>],
     params: &StepParams<'_, D>,
     exec: &X,
 ) {
+    let asp = params.options.artificial_stress;
+    let inv_wref = if E::ARTIFICIAL_STRESS {
+        inverse_reference::<D>(params.kernel, params.h_factor)
+    } else {
+        0.0
+    };
     exec.run(sums, |off, chunk: &mut [PairSums<D>]| {
         for (k, out) in chunk.iter_mut().enumerate() {
             let i = off + k;
-            let (vi, si, rhoi) = (sys.v[i], sys.s[i], sys.rho[i]);
+            let (vi, rhoi) = (sys.v[i], sys.rho[i]);
+            let si = if E::STRENGTH { sys.s[i] } else { Sym3::ZERO };
             let mut acc = Vector::<D>::zeros();
             let mut power = 0.0;
             for_each_pair(params, geom, i, |pr, _| {
                 let j = pr.j;
                 let (mj, rhoj, vj) = (sys.m[j], sys.rho[j], sys.v[j]);
-                let f = (si + sys.s[j]).dot_vec(&pr.grad) * (mj / (rhoi * rhoj));
+                let mut f = if E::STRENGTH {
+                    (si + sys.s[j]).dot_vec(&pr.grad) * (mj / (rhoi * rhoj))
+                } else {
+                    Vector::<D>::zeros()
+                };
+                if E::ARTIFICIAL_STRESS {
+                    let hij = 0.5 * (sys.h[i] + sys.h[j]);
+                    let fa = pair_factor::<D>(params.kernel, pr.r, hij, inv_wref, asp.exponent);
+                    f += pair_acceleration(mj, fa, &art[i], &art[j], &pr.grad);
+                }
                 acc += f;
                 power += f.dot(&((vi + vj) * 0.5));
             });
@@ -421,7 +441,8 @@ impl SchemeFamily for Ts {
         .union(EffectSet::DAMAGE)
         .union(EffectSet::HEAT)
         .union(EffectSet::PERIODIC)
-        .union(EffectSet::MUSCL);
+        .union(EffectSet::MUSCL)
+        .union(EffectSet::ARTIFICIAL_STRESS);
 
     fn step<const D: usize, E: Effects, X: Executor>(
         sys: &mut System<'_, D>,
@@ -434,6 +455,7 @@ impl SchemeFamily for Ts {
             || (E::MUSCL && ws.grad.len() != n)
             || ws.ts_star.len() != params.nbrs.unordered_pairs()
             || ws.geom.len() != params.nbrs.unordered_pairs()
+            || (E::ARTIFICIAL_STRESS && ws.art.len() != n)
         {
             return Err(StepError::Storage { field: "workspace" });
         }
@@ -462,9 +484,12 @@ impl SchemeFamily for Ts {
                 }
             },
         );
-        // 2. Deviatoric step (only with strength): no dissipation.
-        if E::STRENGTH {
-            deviatoric_pass::<D, X>(sys, geom, ws.sums, params, exec);
+        // 2. Deviatoric step (with strength or artificial stress): no dissipation.
+        if E::ARTIFICIAL_STRESS {
+            artificial_stress_tensors::<D, E, X>(sys, ws.art, params, exec);
+        }
+        if E::STRENGTH || E::ARTIFICIAL_STRESS {
+            deviatoric_pass::<D, E, X>(sys, geom, ws.art, ws.sums, params, exec);
             exec.run(
                 (sys.reborrow(), &ws.sums[..]),
                 |_, (mut s, sums): (System<'_, D>, &[PairSums<D>])| {
@@ -496,7 +521,7 @@ impl SchemeFamily for Ts {
                     if E::PERIODIC {
                         s.x[k] = params.periodic.wrap(s.x[k]);
                     }
-                    refresh_eos(&mut s, k, mat, params.h_factor);
+                    refresh_eos(&mut s, k, mat, params);
                 }
             },
         );

@@ -19,6 +19,7 @@ impl Effects for Failing {
     const CORRECTION: bool = false;
     const MUSCL: bool = true;
     const PERIODIC: bool = false;
+    const ARTIFICIAL_STRESS: bool = false;
     const SET: EffectSet = EffectSet::HYDRO;
 }
 

@@ -5,9 +5,8 @@ use serde::Deserialize;
 fn one() -> f64 {
     1.0
 }
-fn default_cfl() -> f64 {
-    0.5
-}
+/// The CFL number when a scene sets neither `cfl` nor `dt`.
+pub const DEFAULT_CFL: f64 = 0.5;
 fn default_h_factor() -> f64 {
     1.2
 }
@@ -40,9 +39,16 @@ pub struct Scene {
     /// Factor on the number of particles along each axis (spacing / factor).
     #[serde(default = "one")]
     pub resolution_scale: f64,
-    /// CFL number on h / (c_l + |v|).
-    #[serde(default = "default_cfl")]
-    pub cfl: f64,
+    /// CFL number on h / (c_l + |v|) (default [`DEFAULT_CFL`]; excludes `dt`).
+    #[serde(default)]
+    pub cfl: Option<f64>,
+    /// A fixed time step, s, instead of the CFL-controlled one (excludes `cfl`; a step
+    /// longer than the CFL-1 limit h / (c_l + |v|) stops the run).
+    #[serde(default)]
+    pub dt: Option<f64>,
+    /// Keep every particle's smoothing length at its initial `h_factor (m/rho)^(1/dim)`.
+    #[serde(default)]
+    pub constant_h: bool,
     /// Kernel: cubic_spline, wendland_c2, gaussian.
     #[serde(default = "default_kernel")]
     pub kernel: String,
@@ -96,6 +102,21 @@ pub struct MonitorSpec {
     /// A wave front moving along +`axis`: see [`FrontSpec`].
     #[serde(default)]
     pub front: Option<FrontSpec>,
+    /// The centre-of-mass velocity of each body: series columns `body{k}_vx`, `_vy`,
+    /// `_vz` (as many as the dimension), summary keys of the same names.
+    #[serde(default)]
+    pub bodies: bool,
+    /// The elastic strain energy `sum V (p²/(2K) + S:S/(4G))` (K = rho0 c0² and G of each
+    /// material at its reference state): series column and summary key `strain_energy`.
+    #[serde(default)]
+    pub strain_energy: bool,
+    /// Pairs nearer than this fraction of the lattice spacing (the clumping of the tensile
+    /// instability; 0 < f < 1): series columns `close_fraction` (the fraction of particles
+    /// with such a neighbour) and `min_distance` (the nearest pair over the spacing);
+    /// summary keys of the same names at the end and `close_fraction_max`,
+    /// `min_distance_min` over the samples.
+    #[serde(default)]
+    pub close_pairs: Option<f64>,
 }
 
 /// The position of a wave front driven from the low end of `axis`: particles are binned
@@ -141,6 +162,11 @@ pub struct BackFaceSpec {
 }
 
 impl Scene {
+    /// The CFL number (the scene's, or [`DEFAULT_CFL`]).
+    pub fn cfl(&self) -> f64 {
+        self.cfl.unwrap_or(DEFAULT_CFL)
+    }
+
     /// Deserialises from a TOML table. The error is one line, `KEY: cause` (the key path
     /// as in `materials[0].rho0`), or the bare cause at the top level.
     pub fn deserialize_table(t: toml::Table) -> Result<Scene, String> {
@@ -186,6 +212,14 @@ pub struct OptionsSpec {
     /// MUSCL reconstruction for scheme pm (adds the `muscl` effect; tkc always has it).
     #[serde(default)]
     pub muscl: Option<bool>,
+    /// Monaghan's artificial stress against the tensile instability (Gray, Monaghan &
+    /// Swift 2001), its epsilon (they use 0.3): adds the `artificial_stress` effect, read by
+    /// every scheme.
+    #[serde(default)]
+    pub artificial_stress: Option<f64>,
+    /// The exponent n of the artificial stress's `(W(r)/W(dp))^n` (default 4).
+    #[serde(default)]
+    pub artificial_stress_exponent: Option<u32>,
 }
 
 /// Output schedule.

@@ -88,9 +88,56 @@ pub fn validate(s: &Scene) -> R {
     }
     positive("t_end", s.t_end)?;
     positive("resolution_scale", s.resolution_scale)?;
-    positive("cfl", s.cfl)?;
-    if s.cfl > 1.0 {
-        return fail("cfl", format!("must be at most 1 (got {})", num(s.cfl)));
+    if let Some(cfl) = s.cfl {
+        positive("cfl", cfl)?;
+        if cfl > 1.0 {
+            return fail("cfl", format!("must be at most 1 (got {})", num(cfl)));
+        }
+    }
+    if let Some(dt) = s.dt {
+        positive("dt", dt)?;
+        if dt > s.t_end {
+            return fail(
+                "dt",
+                format!(
+                    "a fixed time step longer than t_end = {} (got {})",
+                    num(s.t_end),
+                    num(dt)
+                ),
+            );
+        }
+        if s.cfl.is_some() {
+            return fail(
+                "dt",
+                "a fixed time step and `cfl` exclude each other (remove one of them)",
+            );
+        }
+    }
+    if let Some(e) = s.options.artificial_stress {
+        positive("options.artificial_stress", e)?;
+        if e > 1.0 {
+            return fail(
+                "options.artificial_stress",
+                format!(
+                    "must be at most 1 (got {}; Gray, Monaghan & Swift use 0.3)",
+                    num(e)
+                ),
+            );
+        }
+    }
+    if let Some(n) = s.options.artificial_stress_exponent {
+        if s.options.artificial_stress.is_none() {
+            return fail(
+                "options.artificial_stress_exponent",
+                "read only with options.artificial_stress (set its epsilon too)",
+            );
+        }
+        if !(1..=16).contains(&n) {
+            return fail(
+                "options.artificial_stress_exponent",
+                format!("must be between 1 and 16 (got {n}; Gray, Monaghan & Swift use 4)"),
+            );
+        }
     }
     if !KERNELS.contains(&s.kernel.as_str()) {
         return fail(
@@ -382,6 +429,17 @@ pub fn validate(s: &Scene) -> R {
             return fail(
                 "monitor.back_face.normal",
                 format!("must be 1 or -1 (got {})", bf.normal),
+            );
+        }
+    }
+    if let Some(f) = s.monitor.as_ref().and_then(|m| m.close_pairs) {
+        if !(f > 0.0 && f < 1.0) {
+            return fail(
+                "monitor.close_pairs",
+                format!(
+                    "a fraction of the lattice spacing between 0 and 1 (got {})",
+                    num(f)
+                ),
             );
         }
     }

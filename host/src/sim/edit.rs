@@ -61,6 +61,7 @@ impl<const D: usize> Sim<D> {
         filter(&mut self.grad_stress, keep);
         filter(&mut self.corr, keep);
         filter(&mut self.av, keep);
+        filter(&mut self.art, keep);
         self.resize_lists();
     }
 
@@ -119,6 +120,9 @@ impl<const D: usize> Sim<D> {
             }
             if layout.av {
                 self.av.push(AvRates::default());
+            }
+            if layout.art {
+                self.art.push(gsph_core::math::Matrix::<D>::zeros());
             }
         }
         self.resize_lists();

@@ -9,7 +9,7 @@ use gsph_core::effects::EffectSet;
 use gsph_core::kernel::Kernel;
 use gsph_core::limiter::Limiter;
 use gsph_core::material::Material;
-use gsph_core::math::{Real, Sym3, Vector};
+use gsph_core::math::{Matrix, Real, Sym3, Vector};
 use gsph_core::neighbors::{NeighborError, Periodic};
 use gsph_core::schemes::{Scheme, StepFn};
 use gsph_core::state::*;
@@ -112,6 +112,9 @@ pub fn resolve_effects(scene: &Scene, materials: &[Material]) -> EffectSet {
     if scene.options.muscl == Some(true) {
         e = e.union(EffectSet::MUSCL);
     }
+    if scene.options.artificial_stress.is_some() {
+        e = e.union(EffectSet::ARTIFICIAL_STRESS);
+    }
     e.closed()
 }
 
@@ -176,6 +179,7 @@ pub struct Sim<const D: usize> {
     grad_stress: Vec<[Vector<D>; 6]>,
     corr: Vec<Correction<D>>,
     av: Vec<AvRates<D>>,
+    art: Vec<Matrix<D>>,
     geom: Vec<PairGeom<D>>,
     ts_star: Vec<TsStar>,
     pm_star: Vec<PmStar<D>>,
@@ -221,6 +225,16 @@ fn vec_of<const D: usize>(a: &[f64; 3]) -> Vector<D> {
 impl<const D: usize> Sim<D> {
     /// Builds a simulation from a validated scene and its particles.
     pub fn new(scene: &Scene, parts: &InitialParticles) -> Result<Self, SimError> {
+        Self::with_reorder(scene, parts, true)
+    }
+
+    /// [`Sim::new`], with or without renumbering the particles in Morton order at
+    /// neighbour-list rebuilds ([`Sim::reorder`]; results are the same either way).
+    pub fn with_reorder(
+        scene: &Scene,
+        parts: &InitialParticles,
+        reorder: bool,
+    ) -> Result<Self, SimError> {
         let materials: Vec<Material> = scene
             .materials
             .iter()
@@ -278,6 +292,13 @@ impl<const D: usize> Sim<D> {
         if let Some(v) = opt.det_epsilon {
             options.det_epsilon = v;
         }
+        if let Some(eps) = opt.artificial_stress {
+            options.artificial_stress.epsilon = eps;
+        }
+        if let Some(n) = opt.artificial_stress_exponent {
+            options.artificial_stress.exponent = n;
+        }
+        options.constant_h = scene.constant_h;
         let periodic = match &scene.periodic {
             None => Periodic::none(),
             Some(p) => {
@@ -320,13 +341,14 @@ impl<const D: usize> Sim<D> {
             grad_stress: Vec::new(),
             corr: Vec::new(),
             av: Vec::new(),
+            art: Vec::new(),
             geom: Vec::new(),
             ts_star: Vec::new(),
             pm_star: Vec::new(),
             primed: false,
             lists: Lists::default(),
             capacity,
-            reorder: true,
+            reorder,
             build_x: Vec::new(),
             build_h: Vec::new(),
             materials,
@@ -384,6 +406,7 @@ impl<const D: usize> Sim<D> {
             + self.grad_stress.len() * size_of::<[Vector<D>; 6]>()
             + self.corr.len() * size_of::<Correction<D>>()
             + self.av.len() * size_of::<AvRates<D>>()
+            + self.art.len() * size_of::<Matrix<D>>()
             + self.geom.len() * size_of::<PairGeom<D>>()
             + self.ts_star.len() * size_of::<TsStar>()
             + self.pm_star.len() * size_of::<PmStar<D>>();
@@ -466,6 +489,7 @@ impl<const D: usize> Sim<D> {
         apply(&mut self.grad_stress, order);
         apply(&mut self.corr, order);
         apply(&mut self.av, order);
+        apply(&mut self.art, order);
         apply(&mut self.build_x, order);
         apply(&mut self.build_h, order);
     }
@@ -563,6 +587,30 @@ impl<const D: usize> Sim<D> {
         })
     }
 
+    /// The next time step of a run: `fixed` if given (an error if it exceeds the CFL-1
+    /// limit `min h / (c_l + |v|)`, which would blow the run up), else the CFL step.
+    pub fn next_dt(&mut self, cfl: Real, fixed: Option<Real>) -> Result<Real, SimError> {
+        let Some(dt) = fixed else {
+            return self.checked_dt(cfl);
+        };
+        let limit = self.checked_dt(1.0)?;
+        if dt > limit {
+            let particle = (0..self.len())
+                .filter(|&i| self.h[i] / (self.cl[i] + self.v[i].norm()) <= limit)
+                .map(|i| self.ids[i])
+                .min()
+                .unwrap_or(0);
+            return Err(SimError::TimeStep {
+                step: self.step + 1,
+                t: self.t,
+                dt,
+                limit,
+                particle,
+            });
+        }
+        Ok(dt)
+    }
+
     /// Advances by `dt`.
     pub fn step(&mut self, dt: Real) -> Result<(), SimError> {
         let t0 = self.t;
@@ -600,6 +648,7 @@ impl<const D: usize> Sim<D> {
             grad_stress: &mut self.grad_stress,
             corr: &mut self.corr,
             av: &mut self.av,
+            art: &mut self.art,
             geom: &mut self.geom,
             ts_star: &mut self.ts_star,
             pm_star: &mut self.pm_star,

@@ -195,7 +195,9 @@ impl<const D: usize> Run<'_, D> {
     ) -> Result<(), String> {
         let t_end = s.0.t + duration;
         while s.0.t < t_end {
-            let dt = s.0.checked_dt(self.scene.cfl).map_err(|e| e.to_string())?;
+            let dt =
+                s.0.next_dt(self.scene.cfl(), self.scene.dt)
+                    .map_err(|e| e.to_string())?;
             s.1.step(&mut s.0, dt).map_err(|e| e.to_string())?;
             self.steps += 1;
             if !each(s) {

@@ -10,5 +10,6 @@ gsph_macros::specialise! {
         correction: CORRECTION only [pm] feature "effects-correction",
         muscl: MUSCL only [pm, ts] feature "effects-muscl",
         periodic: PERIODIC feature "effects-periodic",
+        artificial_stress: ARTIFICIAL_STRESS feature "effects-artificial-stress",
     ];
 }
