@@ -48,6 +48,7 @@ mod runner {
         nb: [u32; NeighborList::storage_len(N, CAP)],
         geom: [PairGeom<1>; N * CAP / 2],
         star: [TsStar; N * CAP / 2],
+        aux: [Aux; N],
     }
 
     /// What the run reports.
@@ -107,6 +108,11 @@ mod runner {
                     dw: 0.0,
                 }; N * CAP / 2],
                 star: [TsStar { u: 0.0, p: 0.0 }; N * CAP / 2],
+                aux: [Aux {
+                    inv_rho: 0.0,
+                    vol: 0.0,
+                    ct: 0.0,
+                }; N],
             }
         }
     }
@@ -149,6 +155,7 @@ mod runner {
                 nb,
                 geom,
                 star,
+                aux,
             } = st;
             let mut list = NeighborList::new(CAP, N, nb)
                 .map_err(|_| StepError::Storage { field: "neighbors" })?;
@@ -200,6 +207,8 @@ mod runner {
                 corr: &mut [],
                 av: &mut [],
                 art: &mut [],
+                fac: &mut [],
+                aux,
                 geom: &mut geom[..pairs],
                 ts_star: &mut star[..pairs],
                 pm_star: &mut [],

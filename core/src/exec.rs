@@ -103,7 +103,8 @@ impl<T: Send> Split for Optional<'_, T> {
 /// each particle owns (see [`crate::neighbors`]), or its neighbours. `start` holds the
 /// run's row offsets (absolute, one more entry than particles) and `data` exactly the run's
 /// rows, so splitting at particle `mid` splits the records at that particle's first row
-/// entry. Each row is written by the chunk of its particle only.
+/// entry. Each row is written by the chunk of its particle only. Empty `data` (the rows of
+/// an absent effect) splits into empty halves.
 #[derive(Debug)]
 pub struct Rows<'a, T> {
     /// Row offsets of the run's particles (absolute), `len + 1` entries.
@@ -132,7 +133,12 @@ impl<T: Send> Split for Rows<'_, T> {
     }
     #[inline]
     fn split_at(self, mid: usize) -> (Self, Self) {
-        let cut = (self.start[mid] - self.start[0]) as usize;
+        // empty data: rows of an absent effect (or no entries at all) stay empty
+        let cut = if self.data.is_empty() {
+            0
+        } else {
+            (self.start[mid] - self.start[0]) as usize
+        };
         let (a, b) = self.data.split_at_mut(cut);
         (
             Rows {

@@ -145,6 +145,19 @@ impl Kernel {
         (norm * f, norm * inv_h * df)
     }
 
+    /// The shape `f(r/h)` and `dW/dr (r, h)` at once (zero at and beyond the support): the
+    /// pair geometry needs the slope, the artificial stress the ratio of shapes.
+    #[inline(always)]
+    pub fn shape_dw<const D: usize>(self, r: Real, h: Real) -> (Real, Real) {
+        if r >= self.support() * h {
+            return (0.0, 0.0);
+        }
+        let inv_h = 1.0 / h;
+        let (f, df) = self.shape::<D>(r * inv_h);
+        let norm = self.sigma(D) * real::powi(inv_h, D as u32);
+        (f, norm * inv_h * df)
+    }
+
     /// grad_i W(x_i - x_j) given `rij = x_i - x_j` and `r = |rij| > 0` (m^-(D+1)):
     /// `dW/dr rij / r`.
     pub fn gradient<const D: usize>(self, rij: &Vector<D>, r: Real, h: Real) -> Vector<D> {

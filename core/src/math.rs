@@ -194,14 +194,17 @@ pub mod real {
             0.0
         }
     }
-    /// `x^n` for a small integer power, by repeated multiplication.
+    /// `x^n` for a small integer power, by repeated squaring (`x^4 = (x²)²`: two
+    /// multiplications, whatever the exponent's value at run time).
     #[inline(always)]
     pub fn powi(x: Real, n: u32) -> Real {
-        let mut r = 1.0;
-        let mut k = 0;
-        while k < n {
-            r *= x;
-            k += 1;
+        let (mut r, mut b, mut k) = (1.0, x, n);
+        while k > 0 {
+            if k & 1 == 1 {
+                r *= b;
+            }
+            b *= b;
+            k >>= 1;
         }
         r
     }

@@ -285,6 +285,18 @@ impl<const D: usize> Default for AvRates<D> {
     }
 }
 
+/// Per-particle quantities that the pair loops read from neighbours, computed once per
+/// particle (not once per pair) whenever the density changes.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Aux {
+    /// `1 / rho`, m³/kg.
+    pub inv_rho: Real,
+    /// Volume `m / rho`, m³ (per unit area in 2D, per unit cross-section in 1D).
+    pub vol: Real,
+    /// Transverse sound speed `sqrt(G / rho)`, m/s (`pm` family; 0 otherwise).
+    pub ct: Real,
+}
+
 /// The geometry of one pair, computed once per step on the side of its owner (see
 /// [`crate::neighbors`]); `r = 0` marks a pair outside the kernel support.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -356,6 +368,10 @@ pub struct Workspace<'a, const D: usize> {
     pub art: &'a mut [Matrix<D>],
     /// Pair geometry (all schemes), one per unordered pair of the lists.
     pub geom: &'a mut [PairGeom<D>],
+    /// The artificial stress factor `f_ij^n` of each pair (effect `artificial_stress`).
+    pub fac: &'a mut [Real],
+    /// Per-particle quantities the pair loops read from neighbours (all schemes).
+    pub aux: &'a mut [Aux],
     /// Star states of the pairs (`ts` family), one per unordered pair of the lists.
     pub ts_star: &'a mut [TsStar],
     /// Star states of the pairs (`pm` family), one per unordered pair of the lists.
@@ -375,7 +391,7 @@ pub struct Layout {
     pub corr: bool,
     /// [`Workspace::av`].
     pub av: bool,
-    /// [`Workspace::art`].
+    /// [`Workspace::art`] and [`Workspace::fac`] (one per unordered pair).
     pub art: bool,
     /// [`Workspace::ts_star`] (one record per unordered pair).
     pub ts_star: bool,

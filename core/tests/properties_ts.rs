@@ -141,6 +141,7 @@ fn run<const D: usize, E: Effects>(c: &Case) -> Result<Totals, StepError> {
     let mut storage = vec![0u32; NeighborList::storage_len(n, n)];
     let mut geom = vec![PairGeom::<D>::default(); n * n];
     let mut stars = vec![TsStar::default(); n * n];
+    let mut aux = vec![Aux::default(); n];
     let mats = [mat];
     let options = SchemeOptions {
         riemann: if c.two_shock {
@@ -198,6 +199,8 @@ fn run<const D: usize, E: Effects>(c: &Case) -> Result<Totals, StepError> {
             corr: &mut [],
             av: &mut [],
             art: &mut [],
+            fac: &mut [],
+            aux: &mut aux,
             geom: &mut geom[..pairs],
             ts_star: &mut stars[..pairs],
             pm_star: &mut [],

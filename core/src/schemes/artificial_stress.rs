@@ -68,14 +68,13 @@ pub fn tensor<const D: usize>(sigma: &Sym3, rho: Real, eps: Real) -> Matrix<D> {
             if r1 == r2 {
                 return Matrix::<D>::identity() * r1;
             }
-            // direction of the larger principal stress: angle theta with tan 2 theta = 2c/(a-b)
-            let theta = 0.5 * real::atan2(2.0 * c, a - b);
-            let (cs, sn) = (real::cos(theta), real::sin(theta));
-            let (xx, yy, xy) = (
-                r1 * cs * cs + r2 * sn * sn,
-                r1 * sn * sn + r2 * cs * cs,
-                (r1 - r2) * cs * sn,
-            );
+            // direction (cos t, sin t) of the larger principal stress, without
+            // trigonometry: cos 2t = (a - b)/(2 rad), sin 2t = c/rad, so cos² t = (1 +
+            // cos 2t)/2, sin² t = (1 - cos 2t)/2, cos t sin t = sin 2t / 2 (rad > 0 here:
+            // r1 != r2 needs distinct principal stresses)
+            let (c2t, s2t) = (0.5 * (a - b) / rad, c / rad);
+            let (cc, ss, cs) = (0.5 * (1.0 + c2t), 0.5 * (1.0 - c2t), 0.5 * s2t);
+            let (xx, yy, xy) = (r1 * cc + r2 * ss, r1 * ss + r2 * cc, (r1 - r2) * cs);
             Matrix::<D>::from_fn(|p, q| match (p, q) {
                 (0, 0) => xx,
                 (1, 1) => yy,

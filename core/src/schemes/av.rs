@@ -17,16 +17,16 @@
 //! the pair force gains `f_ij^n (R_i + R_j) . grad_i W_ij` (see
 //! [`super::artificial_stress`]), in the force and so in the energy rate.
 
-use super::artificial_stress::{inverse_reference, pair_acceleration, pair_factor};
+use super::artificial_stress::pair_acceleration;
 use super::common::{
     artificial_stress_tensors, cauchy, deviator_rate, equivalent_strain_rate, for_each_pair,
-    geometry_pass, outer, refresh_eos, return_deviator,
+    geometry_pass, outer, refresh_aux, refresh_eos, return_deviator,
 };
 use super::SchemeFamily;
 use crate::effects::{EffectSet, Effects};
 use crate::exec::Executor;
 use crate::math::{Matrix, Real, Sym3, Vector};
-use crate::state::{AvRates, Family, PairGeom, StepError, StepParams, System, Workspace};
+use crate::state::{Aux, AvRates, Family, PairGeom, StepError, StepParams, System, Workspace};
 
 /// The artificial-viscosity family.
 #[derive(Clone, Copy, Debug, Default)]
@@ -36,59 +36,59 @@ pub struct Av;
 fn rates<const D: usize, E: Effects, X: Executor>(
     sys: &System<'_, D>,
     rates: &mut [AvRates<D>],
-    geom: &mut [PairGeom<D>],
-    art: &mut [Matrix<D>],
+    scratch: Scratch<'_, D>,
     params: &StepParams<'_, D>,
     exec: &X,
 ) {
-    geometry_pass::<D, E, X>(sys.x, sys.h, params, geom, exec);
-    let geom: &[PairGeom<D>] = geom;
-    let asp = params.options.artificial_stress;
-    let inv_wref = if E::ARTIFICIAL_STRESS {
+    let Scratch {
+        geom,
+        fac,
+        art,
+        aux,
+    } = scratch;
+    geometry_pass::<D, E, X>(sys.x, sys.h, params, geom, fac, exec);
+    refresh_aux::<D, false, X>(sys, aux, params, exec);
+    if E::ARTIFICIAL_STRESS {
         artificial_stress_tensors::<D, E, X>(sys, art, params, exec);
-        inverse_reference::<D>(params.kernel, params.h_factor)
-    } else {
-        0.0
-    };
-    let art: &[Matrix<D>] = art;
+    }
+    let (geom, fac, art, aux): (&[PairGeom<D>], &[Real], &[Matrix<D>], &[Aux]) =
+        (geom, fac, art, aux);
     let alpha = params.options.av_alpha;
     let beta = params.options.av_beta;
     exec.run(rates, |off, chunk: &mut [AvRates<D>]| {
         for (k, out) in chunk.iter_mut().enumerate() {
             let i = off + k;
             let sig_i = cauchy::<D, E>(sys, i);
-            let (vi, rhoi) = (sys.v[i], sys.rho[i]);
+            let (vi, rhoi, hi, cli) = (sys.v[i], sys.rho[i], sys.h[i], sys.cl[i]);
+            let inv_i = aux[i].inv_rho;
             let mut acc = Vector::<D>::zeros();
             let mut de: Real = 0.0;
             let mut div: Real = 0.0;
             let mut grad_v = Matrix::<D>::zeros();
-            for_each_pair(params, geom, i, |pr, _| {
+            for_each_pair(params, geom, i, |pr, e| {
                 let j = pr.j;
-                let rhoj = sys.rho[j];
+                let aj = aux[j];
                 let vij = vi - sys.v[j];
                 // (v_i - v_j).(x_i - x_j) = -r (v_ij . n)
                 let vr = -pr.r * vij.dot(&pr.n);
                 let mut pi_ij = 0.0;
                 if vr < 0.0 {
-                    let hij = 0.5 * (sys.h[i] + sys.h[j]);
+                    let hij = 0.5 * (hi + sys.h[j]);
                     let mu = hij * vr / (pr.r * pr.r + 0.01 * hij * hij);
-                    let cij = 0.5 * (sys.cl[i] + sys.cl[j]);
-                    pi_ij = (-alpha * cij * mu + beta * mu * mu) / (0.5 * (rhoi + rhoj));
+                    let cij = 0.5 * (cli + sys.cl[j]);
+                    pi_ij = (-alpha * cij * mu + beta * mu * mu) / (0.5 * (rhoi + sys.rho[j]));
                 }
                 let sig = sig_i + cauchy::<D, E>(sys, j);
-                let mut t = sig.dot_vec(&pr.grad) / (rhoi * rhoj) - pr.grad * pi_ij;
+                let mut t = sig.dot_vec(&pr.grad) * (inv_i * aj.inv_rho) - pr.grad * pi_ij;
                 if E::ARTIFICIAL_STRESS {
-                    let hij = 0.5 * (sys.h[i] + sys.h[j]);
-                    let f = pair_factor::<D>(params.kernel, pr.r, hij, inv_wref, asp.exponent);
-                    t += pair_acceleration(1.0, f, &art[i], &art[j], &pr.grad);
+                    t += pair_acceleration(1.0, fac[e.pair], &art[i], &art[j], &pr.grad);
                 }
                 let mj = sys.m[j];
                 acc += t * mj;
                 de -= 0.5 * mj * vij.dot(&t);
-                let vol_j = mj / rhoj;
-                div -= vol_j * vij.dot(&pr.grad);
+                div -= aj.vol * vij.dot(&pr.grad);
                 if E::STRENGTH {
-                    grad_v -= outer(&vij, &pr.grad) * vol_j;
+                    grad_v -= outer(&vij, &pr.grad) * aj.vol;
                 }
             });
             out.acc = acc;
@@ -108,6 +108,14 @@ fn rates<const D: usize, E: Effects, X: Executor>(
     });
 }
 
+/// The workspace arrays the rates are evaluated with.
+struct Scratch<'a, const D: usize> {
+    geom: &'a mut [PairGeom<D>],
+    fac: &'a mut [Real],
+    art: &'a mut [Matrix<D>],
+    aux: &'a mut [Aux],
+}
+
 impl SchemeFamily for Av {
     const FAMILY: Family = Family::Av;
     const SUPPORTED: EffectSet = EffectSet::STRENGTH
@@ -125,14 +133,27 @@ impl SchemeFamily for Av {
     ) -> Result<(), StepError> {
         let dt = params.dt;
         let hdt = 0.5 * dt;
+        let pairs = params.nbrs.unordered_pairs();
         if ws.av.len() != sys.len()
-            || ws.geom.len() != params.nbrs.unordered_pairs()
-            || (E::ARTIFICIAL_STRESS && ws.art.len() != sys.len())
+            || ws.aux.len() != sys.len()
+            || ws.geom.len() != pairs
+            || (E::ARTIFICIAL_STRESS && (ws.art.len() != sys.len() || ws.fac.len() != pairs))
         {
             return Err(StepError::Storage { field: "av" });
         }
         if !ws.primed {
-            rates::<D, E, X>(sys, ws.av, ws.geom, ws.art, params, exec);
+            rates::<D, E, X>(
+                sys,
+                ws.av,
+                Scratch {
+                    geom: ws.geom,
+                    fac: ws.fac,
+                    art: ws.art,
+                    aux: ws.aux,
+                },
+                params,
+                exec,
+            );
             ws.primed = true;
         }
         // Kick, drift, and predict the state at the end of the step.
@@ -161,7 +182,18 @@ impl SchemeFamily for Av {
                 }
             },
         );
-        rates::<D, E, X>(sys, ws.av, ws.geom, ws.art, params, exec);
+        rates::<D, E, X>(
+            sys,
+            ws.av,
+            Scratch {
+                geom: ws.geom,
+                fac: ws.fac,
+                art: ws.art,
+                aux: ws.aux,
+            },
+            params,
+            exec,
+        );
         // Second kick with the rates of the predicted state.
         exec.run(
             (sys.reborrow(), &ws.av[..]),

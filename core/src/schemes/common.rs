@@ -6,7 +6,7 @@ use crate::exec::{Executor, Rows, Split};
 use crate::material::{strength, Material, Strength};
 use crate::math::{real, Matrix, Real, Sym3, Vector};
 use crate::neighbors::Entry;
-use crate::state::{smoothing_length, PairGeom, StepParams, System};
+use crate::state::{smoothing_length, Aux, PairGeom, StepParams, System};
 
 /// One interacting pair (i, j) as seen from particle i.
 #[derive(Clone, Copy, Debug)]
@@ -23,67 +23,73 @@ pub(crate) struct Pair<const D: usize> {
     pub grad: Vector<D>,
 }
 
-/// The geometry of pair (i, j) seen from `i`, or `None` outside the kernel support of
-/// `h_ij = (h_i + h_j)/2` (minimum image on periodic axes when `E::PERIODIC`). Symmetric:
-/// (j, i) is inside exactly when (i, j) is, with the opposite `n` and `grad`.
-#[inline(always)]
-pub(crate) fn pair_geometry<const D: usize, E: Effects>(
-    x: &[Vector<D>],
-    h: &[Real],
-    params: &StepParams<'_, D>,
-    i: usize,
-    j: usize,
-) -> Option<Pair<D>> {
-    let mut rij = x[i] - x[j];
-    if E::PERIODIC {
-        rij = params.periodic.min_image(rij);
-    }
-    let r2 = rij.norm_squared();
-    let hij = 0.5 * (h[i] + h[j]);
-    let rmax = params.kernel.support() * hij;
-    if r2 >= rmax * rmax || r2 <= 0.0 {
-        return None;
-    }
-    let r = real::sqrt(r2);
-    let dw = params.kernel.dw::<D>(r, hij);
-    let e = rij / r;
-    Some(Pair {
-        j,
-        r,
-        n: -e,
-        dw,
-        grad: e * dw,
-    })
-}
-
 /// The geometry of every pair at the start of a pass sequence, computed once, on the side
 /// of its owner: `n` from the owner to the other particle; `r = 0` outside the kernel
-/// support. Positions and smoothing lengths must not change while it is in use.
+/// support. With the effect `artificial_stress`, also each pair's factor `f_ij^n` into
+/// `fac` (see [`super::artificial_stress`]; empty otherwise). Positions and smoothing
+/// lengths must not change while they are in use.
 pub(crate) fn geometry_pass<const D: usize, E: Effects, X: Executor>(
     x: &[Vector<D>],
     h: &[Real],
     params: &StepParams<'_, D>,
     geom: &mut [PairGeom<D>],
+    fac: &mut [Real],
     exec: &X,
 ) {
     let nb = params.nbrs;
+    let kernel = params.kernel;
+    let support = kernel.support();
+    let asp = params.options.artificial_stress;
+    let inv_wref = if E::ARTIFICIAL_STRESS {
+        super::artificial_stress::inverse_reference::<D>(kernel, params.h_factor)
+    } else {
+        0.0
+    };
     exec.run(
-        Rows {
-            start: nb.pair_start,
-            data: geom,
-        },
-        |off, mut chunk: Rows<'_, PairGeom<D>>| {
-            for k in 0..chunk.len() {
+        (
+            Rows {
+                start: nb.pair_start,
+                data: geom,
+            },
+            Rows {
+                start: nb.pair_start,
+                data: fac,
+            },
+        ),
+        |off, (mut gs, mut fs): (Rows<'_, PairGeom<D>>, Rows<'_, Real>)| {
+            for k in 0..gs.len() {
                 let i = off + k;
-                for (g, &j) in chunk.of(k).iter_mut().zip(nb.owned(i)) {
-                    *g = match pair_geometry::<D, E>(x, h, params, i, j as usize) {
-                        Some(pr) => PairGeom {
-                            n: pr.n,
-                            r: pr.r,
-                            dw: pr.dw,
-                        },
-                        None => PairGeom::default(),
+                let (xi, hi) = (x[i], h[i]);
+                let fk: &mut [Real] = if E::ARTIFICIAL_STRESS {
+                    fs.of(k)
+                } else {
+                    &mut []
+                };
+                for (q, (g, &j)) in gs.of(k).iter_mut().zip(nb.owned(i)).enumerate() {
+                    let j = j as usize;
+                    let mut rij = xi - x[j];
+                    if E::PERIODIC {
+                        rij = params.periodic.min_image(rij);
+                    }
+                    let r2 = rij.norm_squared();
+                    let hij = 0.5 * (hi + h[j]);
+                    let rmax = support * hij;
+                    let (geo, f) = if r2 < rmax * rmax && r2 > 0.0 {
+                        let r = real::sqrt(r2);
+                        let (shape, dw) = kernel.shape_dw::<D>(r, hij);
+                        let geo = PairGeom {
+                            n: rij * (-1.0 / r),
+                            r,
+                            dw,
+                        };
+                        (geo, real::powi(shape * inv_wref, asp.exponent))
+                    } else {
+                        (PairGeom::default(), 0.0)
                     };
+                    *g = geo;
+                    if E::ARTIFICIAL_STRESS {
+                        fk[q] = f;
+                    }
                 }
             }
         },
@@ -160,6 +166,31 @@ pub(crate) fn solve_pairs<const D: usize, X: Executor, R: Send + Default>(
             }
         },
     );
+}
+
+/// Fills the per-particle quantities the pair loops read ([`Aux`]) from the current
+/// density: `1/rho`, `m/rho`, and with `CT` the transverse sound speed `sqrt(G/rho)`.
+pub(crate) fn refresh_aux<const D: usize, const CT: bool, X: Executor>(
+    sys: &System<'_, D>,
+    aux: &mut [Aux],
+    params: &StepParams<'_, D>,
+    exec: &X,
+) {
+    exec.run(aux, |off, chunk: &mut [Aux]| {
+        for (k, a) in chunk.iter_mut().enumerate() {
+            let i = off + k;
+            let inv_rho = 1.0 / sys.rho[i];
+            *a = Aux {
+                inv_rho,
+                vol: sys.m[i] * inv_rho,
+                ct: if CT {
+                    real::sqrt(params.materials[sys.mat[i] as usize].shear_modulus * inv_rho)
+                } else {
+                    0.0
+                },
+            };
+        }
+    });
 }
 
 /// The artificial stress tensor `R_i` of every particle from its current stress and

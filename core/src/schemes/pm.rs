@@ -24,10 +24,10 @@
 //! contact with `Phi_l = Phi_i + minmod(Phi_j - Phi_i, grad Phi_i . r_ji)/2` and
 //! `Phi_r = Phi_j - minmod(grad Phi_j . r_ji, Phi_j - Phi_i)/2` (004 eqs 13–15).
 
-use super::artificial_stress::{inverse_reference, pair_acceleration, pair_factor};
+use super::artificial_stress::pair_acceleration;
 use super::common::{
     advance_deviator, artificial_stress_tensors, cauchy, failed, for_each_pair, geometry_pass,
-    min_sym_eigenvalue, outer, refresh_eos, refresh_pressure, solve_pairs, Pair,
+    min_sym_eigenvalue, outer, refresh_aux, refresh_eos, refresh_pressure, solve_pairs, Pair,
 };
 use super::SchemeFamily;
 use crate::effects::{EffectSet, Effects};
@@ -36,7 +36,7 @@ use crate::limiter::{bounded_extrapolation, Limiter};
 use crate::math::{det, inverse, Matrix, Real, Sym3, Vector};
 use crate::riemann::{acoustic_star_vector, elastic_star_vector, two_shock_star, ShockSide};
 use crate::state::{
-    Correction, Family, Gradients, PairGeom, PairSums, PmStar, RiemannSolver, StepError,
+    Aux, Correction, Family, Gradients, PairGeom, PairSums, PmStar, RiemannSolver, StepError,
     StepParams, System, Workspace,
 };
 
@@ -86,6 +86,7 @@ pub const NEAR_SURFACE_TOLERANCE: Real = 1e-9;
 pub(crate) fn correction_pass<const D: usize, X: Executor>(
     sys: &System<'_, D>,
     geom: &[PairGeom<D>],
+    aux: &[Aux],
     corr: &mut [Correction<D>],
     sums: &mut [PairSums<D>],
     params: &StepParams<'_, D>,
@@ -98,7 +99,7 @@ pub(crate) fn correction_pass<const D: usize, X: Executor>(
             let i = off + k;
             let mut l = Matrix::<D>::zeros();
             for_each_pair(params, geom, i, |pr, _| {
-                let vol = sys.m[pr.j] / sys.rho[pr.j];
+                let vol = aux[pr.j].vol;
                 // L = sum V_j grad_i W_ij ⊗ (x_j - x_i), with x_j - x_i = r n
                 l += outer(&pr.grad, &(pr.n * pr.r)) * vol;
             });
@@ -142,9 +143,11 @@ pub(crate) fn correction_pass<const D: usize, X: Executor>(
 }
 
 /// Gradients of the reconstructed quantities (corrected when `E::CORRECTION`).
+#[allow(clippy::too_many_arguments)]
 fn gradient_pass<const D: usize, E: Effects, X: Executor>(
     sys: &System<'_, D>,
     geom: &[PairGeom<D>],
+    aux: &[Aux],
     corr: &[Correction<D>],
     grad: &mut [Gradients<D>],
     grad_stress: &mut [[Vector<D>; 6]],
@@ -159,12 +162,10 @@ fn gradient_pass<const D: usize, E: Effects, X: Executor>(
                 let mut acc = Gradients::<D>::default();
                 let mut acc_s = [Vector::<D>::zeros(); 6];
                 let si = cauchy::<D, E>(sys, i).to_array();
-                let cti = crate::math::real::sqrt(
-                    params.materials[sys.mat[i] as usize].shear_modulus / sys.rho[i],
-                );
+                let cti = aux[i].ct;
                 for_each_pair(params, geom, i, |pr, _| {
                     let j = pr.j;
-                    let vol = sys.m[j] / sys.rho[j];
+                    let vol = aux[j].vol;
                     let gw = if E::CORRECTION {
                         corr[i].l_inv * pr.grad
                     } else {
@@ -173,10 +174,7 @@ fn gradient_pass<const D: usize, E: Effects, X: Executor>(
                     acc.rho += gw * (sys.rho[j] - sys.rho[i]);
                     acc.p += gw * (sys.p[j] - sys.p[i]);
                     acc.cl += gw * (sys.cl[j] - sys.cl[i]);
-                    let ctj = crate::math::real::sqrt(
-                        params.materials[sys.mat[j] as usize].shear_modulus / sys.rho[j],
-                    );
-                    acc.ct += gw * (ctj - cti);
+                    acc.ct += gw * (aux[j].ct - cti);
                     acc.v += outer(&(sys.v[j] - sys.v[i]), &gw);
                     if E::STRENGTH {
                         let sj = cauchy::<D, E>(sys, j).to_array();
@@ -216,24 +214,28 @@ impl SchemeFamily for Pm {
             || (E::CORRECTION && ws.corr.len() != n)
             || (E::MUSCL && ws.grad.len() != n)
             || (E::MUSCL && E::STRENGTH && ws.grad_stress.len() != n)
+            || ws.aux.len() != n
             || ws.pm_star.len() != params.nbrs.unordered_pairs()
             || ws.geom.len() != params.nbrs.unordered_pairs()
-            || (E::ARTIFICIAL_STRESS && ws.art.len() != n)
+            || (E::ARTIFICIAL_STRESS
+                && (ws.art.len() != n || ws.fac.len() != params.nbrs.unordered_pairs()))
         {
             return Err(StepError::Storage { field: "workspace" });
         }
         let dt = params.dt;
-        geometry_pass::<D, E, X>(sys.x, sys.h, params, ws.geom, exec);
+        geometry_pass::<D, E, X>(sys.x, sys.h, params, ws.geom, ws.fac, exec);
+        refresh_aux::<D, true, X>(sys, ws.aux, params, exec);
         {
             let sysr: &System<'_, D> = sys;
             let geom: &[PairGeom<D>] = ws.geom;
             if E::CORRECTION {
-                correction_pass::<D, X>(sysr, geom, ws.corr, ws.sums, params, exec);
+                correction_pass::<D, X>(sysr, geom, ws.aux, ws.corr, ws.sums, params, exec);
             }
             if E::MUSCL {
                 gradient_pass::<D, E, X>(
                     sysr,
                     geom,
+                    ws.aux,
                     ws.corr,
                     ws.grad,
                     ws.grad_stress,
@@ -260,6 +262,7 @@ impl SchemeFamily for Pm {
                     }
                 },
             );
+            refresh_aux::<D, true, X>(sys, ws.aux, params, exec);
             if E::ARTIFICIAL_STRESS {
                 artificial_stress_tensors::<D, E, X>(sys, ws.art, params, exec);
             }
@@ -310,14 +313,23 @@ fn pair_pass<const D: usize, E: Effects, X: Executor, const KIN: bool, const DYN
     let grad_s: &[[Vector<D>; 6]] = ws.grad_stress;
     let geom: &[PairGeom<D>] = ws.geom;
     let art: &[Matrix<D>] = ws.art;
+    let (fac, aux): (&[Real], &[Aux]) = (ws.fac, ws.aux);
     solve_pairs::<D, X, PmStar<D>>(params, geom, ws.pm_star, exec, |i, pr| {
-        pair_star::<D, E>(sys, corr, grad, grad_s, params, i, pr)
+        pair_star::<D, E>(sys, aux, corr, grad, grad_s, params, i, pr)
     });
     let stars: &[PmStar<D>] = ws.pm_star;
+    let ctx = GatherCtx {
+        geom,
+        aux,
+        corr,
+        art,
+        fac,
+        stars,
+    };
     exec.run(&mut *ws.sums, |off, chunk: &mut [PairSums<D>]| {
         for (k, out) in chunk.iter_mut().enumerate() {
             let i = off + k;
-            let new = gather::<D, E, KIN, DYN>(sys, geom, corr, art, stars, params, i);
+            let new = gather::<D, E, KIN, DYN>(sys, &ctx, params, i);
             if KIN {
                 out.div = new.div;
                 out.grad_v = new.grad_v;
@@ -370,12 +382,25 @@ fn dynamic_update<const D: usize, E: Effects>(
     }
 }
 
+/// What the gather of the pair sums reads besides the particles.
+#[derive(Clone, Copy)]
+struct GatherCtx<'a, const D: usize> {
+    geom: &'a [PairGeom<D>],
+    aux: &'a [Aux],
+    corr: &'a [Correction<D>],
+    art: &'a [Matrix<D>],
+    fac: &'a [Real],
+    stars: &'a [PmStar<D>],
+}
+
 /// The star state of pair (i, j) with `i` on the left (`pr` seen from `i`): MUSCL states
 /// (with `E::MUSCL`), tractions on the (corrected, with `E::CORRECTION`) axis, the elastic
 /// Riemann problem, and no tension across the contact of a failed particle.
 #[inline(always)]
+#[allow(clippy::too_many_arguments)]
 fn pair_star<const D: usize, E: Effects>(
     sys: &System<'_, D>,
+    aux: &[Aux],
     corr: &[Correction<D>],
     grad: &[Gradients<D>],
     grad_s: &[[Vector<D>; 6]],
@@ -386,8 +411,7 @@ fn pair_star<const D: usize, E: Effects>(
     let mats = params.materials;
     let j = pr.j;
     let (vi, rhoi, rhoj) = (sys.v[i], sys.rho[i], sys.rho[j]);
-    let ct_i = crate::math::real::sqrt(mats[sys.mat[i] as usize].shear_modulus / rhoi);
-    let ct_j = crate::math::real::sqrt(mats[sys.mat[j] as usize].shear_modulus / rhoj);
+    let (ct_i, ct_j) = (aux[i].ct, aux[j].ct);
     let sig_i = cauchy::<D, E>(sys, i);
     let sig_j = cauchy::<D, E>(sys, j);
     let (mut rho_l, mut rho_r) = (rhoi, rhoj);
@@ -488,39 +512,36 @@ fn pair_star<const D: usize, E: Effects>(
 #[inline(always)]
 fn gather<const D: usize, E: Effects, const KIN: bool, const DYN: bool>(
     sys: &System<'_, D>,
-    geom: &[PairGeom<D>],
-    corr: &[Correction<D>],
-    art: &[Matrix<D>],
-    stars: &[PmStar<D>],
+    ctx: &GatherCtx<'_, D>,
     params: &StepParams<'_, D>,
     i: usize,
 ) -> PairSums<D> {
+    let GatherCtx {
+        geom,
+        aux,
+        corr,
+        art,
+        fac,
+        stars,
+    } = *ctx;
     let vi = sys.v[i];
-    let rhoi = sys.rho[i];
-    let asp = params.options.artificial_stress;
-    let inv_wref = if E::ARTIFICIAL_STRESS {
-        inverse_reference::<D>(params.kernel, params.h_factor)
-    } else {
-        0.0
-    };
+    let inv_i = aux[i].inv_rho;
     let mut out = PairSums::<D>::default();
     for_each_pair(params, geom, i, |pr, e| {
         let j = pr.j;
         let st = &stars[e.pair];
         // the owner's traction acts on the face whose normal points away from it
         let (vs, ts) = (st.v, if e.owner { st.t } else { -st.t });
-        let (mj, rhoj) = (sys.m[j], sys.rho[j]);
+        let (mj, inv_j) = (sys.m[j], aux[j].inv_rho);
         let dv = vs - vi;
         if DYN {
-            let f = -2.0 * mj * pr.dw / (rhoi * rhoj);
+            let f = -2.0 * mj * pr.dw * (inv_i * inv_j);
             out.acc += ts * f;
             out.power += f * ts.dot(if E::CORRECTION { &vs } else { &dv });
             if E::ARTIFICIAL_STRESS {
                 // a pair force outside the Riemann problem: its work at the pair's mean
                 // velocity (total energy form with correction, internal otherwise)
-                let hij = 0.5 * (sys.h[i] + sys.h[j]);
-                let fa = pair_factor::<D>(params.kernel, pr.r, hij, inv_wref, asp.exponent);
-                let a = pair_acceleration(mj, fa, &art[i], &art[j], &pr.grad);
+                let a = pair_acceleration(mj, fac[e.pair], &art[i], &art[j], &pr.grad);
                 let vbar = (vi + sys.v[j]) * 0.5;
                 out.acc += a;
                 out.power += a.dot(&if E::CORRECTION { vbar } else { vbar - vi });
@@ -532,7 +553,7 @@ fn gather<const D: usize, E: Effects, const KIN: bool, const DYN: bool>(
             } else {
                 pr.grad
             };
-            let w = 2.0 * mj / rhoj;
+            let w = 2.0 * mj * inv_j;
             out.div += w * dv.dot(&gw);
             if E::STRENGTH {
                 out.grad_v += outer(&dv, &gw) * w;

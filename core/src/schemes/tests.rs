@@ -57,6 +57,7 @@ struct Flyer {
     geom: [PairGeom<1>; N * CAP],
     ts_star: [TsStar; N * CAP],
     pm_star: [PmStar<1>; N * CAP],
+    aux: [Aux; N],
 }
 
 fn material() -> Material {
@@ -101,6 +102,7 @@ fn flyer() -> Flyer {
         geom: [PairGeom::default(); N * CAP],
         ts_star: [TsStar::default(); N * CAP],
         pm_star: [PmStar::default(); N * CAP],
+        aux: [Aux::default(); N],
     };
     for i in 0..N {
         f.x[i] = Vector::<1>::new((i as Real + 0.5) * dx);
@@ -146,6 +148,7 @@ fn run<F: SchemeFamily, E: Effects>(t_end: Real) -> (Real, Real, Real, Real, Fly
             geom,
             ts_star,
             pm_star,
+            aux,
         } = &mut f;
         let mut list = NeighborList::new(CAP, N, nb).unwrap();
         let hh: &[Real] = h;
@@ -195,6 +198,8 @@ fn run<F: SchemeFamily, E: Effects>(t_end: Real) -> (Real, Real, Real, Real, Fly
             corr,
             av,
             art: &mut [],
+            fac: &mut [],
+            aux,
             geom: &mut geom[..pairs],
             ts_star: &mut ts_star[..pairs],
             pm_star: &mut pm_star[..pairs],
@@ -339,8 +344,19 @@ fn tkc_free_surface_detection_uses_the_eigenvalues_of_l() {
     let mut sums = [PairSums::<2>::default(); M];
     let mut geom = [PairGeom::<2>::default(); M * 32];
     let geom = &mut geom[..params.nbrs.unordered_pairs()];
-    super::common::geometry_pass::<2, PlasticTkc2, Serial>(sys.x, sys.h, &params, geom, &Serial);
-    super::pm::correction_pass::<2, Serial>(&sys, geom, &mut corr, &mut sums, &params, &Serial);
+    super::common::geometry_pass::<2, PlasticTkc2, Serial>(
+        sys.x,
+        sys.h,
+        &params,
+        geom,
+        &mut [],
+        &Serial,
+    );
+    let mut aux = [Aux::default(); M];
+    super::common::refresh_aux::<2, false, Serial>(&sys, &mut aux, &params, &Serial);
+    super::pm::correction_pass::<2, Serial>(
+        &sys, geom, &aux, &mut corr, &mut sums, &params, &Serial,
+    );
     let at = |i: usize, j: usize| i + 10 * j;
     // an edge particle, its inner neighbour, and a centre particle
     let (edge, second, centre) = (at(0, 5), at(1, 5), at(5, 5));

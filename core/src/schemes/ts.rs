@@ -51,10 +51,11 @@
 //! Failed particles (damage = 1; seed 000 Algorithm 1) are handled in
 //! `riemann_states`: the place where first order is forced and tension is cut.
 
-use super::artificial_stress::{inverse_reference, pair_acceleration, pair_factor};
+use super::artificial_stress::pair_acceleration;
 use super::common::{
     advance_deviator, artificial_stress_tensors, failed, for_each_pair, geometry_pass,
-    min_sym_eigenvalue, outer, pair_pressure, refresh_eos, refresh_pressure, solve_pairs,
+    min_sym_eigenvalue, outer, pair_pressure, refresh_aux, refresh_eos, refresh_pressure,
+    solve_pairs,
 };
 use super::SchemeFamily;
 use crate::effects::{EffectSet, Effects};
@@ -63,8 +64,8 @@ use crate::limiter::bounded_extrapolation;
 use crate::math::{det, inverse, real, Matrix, Real, Sym3, Vector};
 use crate::riemann::{pressure_star, two_shock_star, PressureSide, ShockSide};
 use crate::state::{
-    Family, Gradients, MusclTime, PairGeom, PairSums, RiemannSolver, StepError, StepParams, System,
-    TsStar, Workspace,
+    Aux, Family, Gradients, MusclTime, PairGeom, PairSums, RiemannSolver, StepError, StepParams,
+    System, TsStar, Workspace,
 };
 
 /// The time-split family (`ts1`, `ts2`).
@@ -77,6 +78,7 @@ pub struct Ts;
 fn front_gradient_pass<const D: usize, E: Effects, X: Executor>(
     sys: &System<'_, D>,
     geom: &[PairGeom<D>],
+    aux: &[Aux],
     sums: &mut [PairSums<D>],
     grad: &mut [Gradients<D>],
     params: &StepParams<'_, D>,
@@ -96,7 +98,7 @@ fn front_gradient_pass<const D: usize, E: Effects, X: Executor>(
                 let pi = pair_pressure::<D, E>(sys, i);
                 for_each_pair(params, geom, i, |pr, _| {
                     let j = pr.j;
-                    let gw = pr.grad * (sys.m[j] / sys.rho[j]);
+                    let gw = pr.grad * aux[j].vol;
                     gr.v += outer(&(sys.v[j] - vi), &gw);
                     if E::MUSCL {
                         gr.rho += gw * (sys.rho[j] - sys.rho[i]);
@@ -142,6 +144,7 @@ fn continuity_pass<const D: usize, E: Effects, X: Executor>(
     sys: &System<'_, D>,
     grad: &[Gradients<D>],
     geom: &[PairGeom<D>],
+    aux: &[Aux],
     stars: &mut [TsStar],
     sums: &mut [PairSums<D>],
     params: &StepParams<'_, D>,
@@ -165,7 +168,7 @@ fn continuity_pass<const D: usize, E: Effects, X: Executor>(
                 // the owner solved along its own axis: seen from i the component flips
                 let u = stars[e.pair].u;
                 let us = if e.owner { u } else { -u };
-                let gw = pr.grad * (sys.m[j] / sys.rho[j]);
+                let gw = pr.grad * aux[j].vol;
                 let mean = (vi + sys.v[j]) * 0.5;
                 let vstar = mean + pr.n * (us - mean.dot(&pr.n));
                 m += outer(&gw, &(pr.n * pr.r));
@@ -242,39 +245,35 @@ fn star<const D: usize, E: Effects>(
 /// Deviatoric pass: `acc = sum F_ij/m_i`, `power = sum F_ij.vbar_ij/m_i`. With the effect
 /// `artificial_stress`, `F_ij` gains `m_i m_j f_ij^n (R_i + R_j) . grad_i W_ij` (also for a
 /// material without strength, whose deviatoric step then carries only that force).
+#[allow(clippy::too_many_arguments)]
 fn deviatoric_pass<const D: usize, E: Effects, X: Executor>(
     sys: &System<'_, D>,
     geom: &[PairGeom<D>],
+    aux: &[Aux],
     art: &[Matrix<D>],
+    fac: &[Real],
     sums: &mut [PairSums<D>],
     params: &StepParams<'_, D>,
     exec: &X,
 ) {
-    let asp = params.options.artificial_stress;
-    let inv_wref = if E::ARTIFICIAL_STRESS {
-        inverse_reference::<D>(params.kernel, params.h_factor)
-    } else {
-        0.0
-    };
     exec.run(sums, |off, chunk: &mut [PairSums<D>]| {
         for (k, out) in chunk.iter_mut().enumerate() {
             let i = off + k;
-            let (vi, rhoi) = (sys.v[i], sys.rho[i]);
+            let vi = sys.v[i];
+            let inv_i = aux[i].inv_rho;
             let si = if E::STRENGTH { sys.s[i] } else { Sym3::ZERO };
             let mut acc = Vector::<D>::zeros();
             let mut power = 0.0;
-            for_each_pair(params, geom, i, |pr, _| {
+            for_each_pair(params, geom, i, |pr, e| {
                 let j = pr.j;
-                let (mj, rhoj, vj) = (sys.m[j], sys.rho[j], sys.v[j]);
+                let (mj, vj) = (sys.m[j], sys.v[j]);
                 let mut f = if E::STRENGTH {
-                    (si + sys.s[j]).dot_vec(&pr.grad) * (mj / (rhoi * rhoj))
+                    (si + sys.s[j]).dot_vec(&pr.grad) * (mj * inv_i * aux[j].inv_rho)
                 } else {
                     Vector::<D>::zeros()
                 };
                 if E::ARTIFICIAL_STRESS {
-                    let hij = 0.5 * (sys.h[i] + sys.h[j]);
-                    let fa = pair_factor::<D>(params.kernel, pr.r, hij, inv_wref, asp.exponent);
-                    f += pair_acceleration(mj, fa, &art[i], &art[j], &pr.grad);
+                    f += pair_acceleration(mj, fac[e.pair], &art[i], &art[j], &pr.grad);
                 }
                 acc += f;
                 power += f.dot(&((vi + vj) * 0.5));
@@ -399,10 +398,12 @@ fn riemann_states<const D: usize, E: Effects>(
 
 /// Hydrodynamic pass: `acc = sum G_ij/m_i`, `power = sum G_ij.(u* n)/m_i`, each pair's
 /// star state solved once on its owner's side.
+#[allow(clippy::too_many_arguments)]
 fn hydro_pass<const D: usize, E: Effects, X: Executor>(
     sys: &System<'_, D>,
     grad: &[Gradients<D>],
     geom: &[PairGeom<D>],
+    aux: &[Aux],
     stars: &mut [TsStar],
     sums: &mut [PairSums<D>],
     params: &StepParams<'_, D>,
@@ -416,7 +417,7 @@ fn hydro_pass<const D: usize, E: Effects, X: Executor>(
     exec.run(sums, |off, chunk: &mut [PairSums<D>]| {
         for (k, out) in chunk.iter_mut().enumerate() {
             let i = off + k;
-            let rhoi = sys.rho[i];
+            let inv_i = aux[i].inv_rho;
             let mut acc = Vector::<D>::zeros();
             let mut power = 0.0;
             for_each_pair(params, geom, i, |pr, e| {
@@ -424,7 +425,7 @@ fn hydro_pass<const D: usize, E: Effects, X: Executor>(
                 let st = stars[e.pair];
                 let us = if e.owner { st.u } else { -st.u };
                 // G_ij/m_i = -2 m_j P* grad_i W /(rho_i rho_j), grad_i W = -n W'
-                let g = 2.0 * sys.m[j] * st.p * pr.dw / (rhoi * sys.rho[j]);
+                let g = 2.0 * sys.m[j] * st.p * pr.dw * (inv_i * aux[j].inv_rho);
                 acc += pr.n * g;
                 power += g * us;
             });
@@ -453,9 +454,11 @@ impl SchemeFamily for Ts {
         let n = sys.len();
         if ws.sums.len() != n
             || (E::MUSCL && ws.grad.len() != n)
+            || ws.aux.len() != n
             || ws.ts_star.len() != params.nbrs.unordered_pairs()
             || ws.geom.len() != params.nbrs.unordered_pairs()
-            || (E::ARTIFICIAL_STRESS && ws.art.len() != n)
+            || (E::ARTIFICIAL_STRESS
+                && (ws.art.len() != n || ws.fac.len() != params.nbrs.unordered_pairs()))
         {
             return Err(StepError::Storage { field: "workspace" });
         }
@@ -467,10 +470,13 @@ impl SchemeFamily for Ts {
         //    then density and deviator) is forward Euler, whose amplification factor
         //    |1 + i w dt| > 1 lets waves grow wherever the Riemann dissipation vanishes:
         //    always in the deviatoric step, and in smooth flow with MUSCL.
-        geometry_pass::<D, E, X>(sys.x, sys.h, params, ws.geom, exec);
-        let geom: &[PairGeom<D>] = ws.geom;
-        front_gradient_pass::<D, E, X>(sys, geom, ws.sums, ws.grad, params, exec);
-        continuity_pass::<D, E, X>(sys, ws.grad, geom, ws.ts_star, ws.sums, params, exec);
+        geometry_pass::<D, E, X>(sys.x, sys.h, params, ws.geom, ws.fac, exec);
+        let (geom, fac): (&[PairGeom<D>], &[Real]) = (ws.geom, ws.fac);
+        refresh_aux::<D, false, X>(sys, ws.aux, params, exec);
+        front_gradient_pass::<D, E, X>(sys, geom, ws.aux, ws.sums, ws.grad, params, exec);
+        continuity_pass::<D, E, X>(
+            sys, ws.grad, geom, ws.aux, ws.ts_star, ws.sums, params, exec,
+        );
         exec.run(
             (sys.reborrow(), &ws.sums[..]),
             |_, (mut s, sums): (System<'_, D>, &[PairSums<D>])| {
@@ -485,11 +491,12 @@ impl SchemeFamily for Ts {
             },
         );
         // 2. Deviatoric step (with strength or artificial stress): no dissipation.
+        refresh_aux::<D, false, X>(sys, ws.aux, params, exec);
         if E::ARTIFICIAL_STRESS {
             artificial_stress_tensors::<D, E, X>(sys, ws.art, params, exec);
         }
         if E::STRENGTH || E::ARTIFICIAL_STRESS {
-            deviatoric_pass::<D, E, X>(sys, geom, ws.art, ws.sums, params, exec);
+            deviatoric_pass::<D, E, X>(sys, geom, ws.aux, ws.art, fac, ws.sums, params, exec);
             exec.run(
                 (sys.reborrow(), &ws.sums[..]),
                 |_, (mut s, sums): (System<'_, D>, &[PairSums<D>])| {
@@ -506,7 +513,9 @@ impl SchemeFamily for Ts {
             );
         }
         // 3. Hydrodynamic step with the new pressure (reconstruction slopes from step 1).
-        hydro_pass::<D, E, X>(sys, ws.grad, geom, ws.ts_star, ws.sums, params, exec);
+        hydro_pass::<D, E, X>(
+            sys, ws.grad, geom, ws.aux, ws.ts_star, ws.sums, params, exec,
+        );
         exec.run(
             (sys.reborrow(), &ws.sums[..]),
             |_, (mut s, sums): (System<'_, D>, &[PairSums<D>])| {

@@ -104,8 +104,12 @@ fn with_failed_particle(
     let mut grad = [Gradients::<1>::default(); N];
     let mut geom = [PairGeom::<1>::default(); N * CAP];
     let geom = &mut geom[..params.nbrs.unordered_pairs()];
-    geometry_pass::<1, Failing, Serial>(sys.x, sys.h, &params, geom, &Serial);
-    front_gradient_pass::<1, Failing, Serial>(&sys, geom, &mut sums, &mut grad, &params, &Serial);
+    geometry_pass::<1, Failing, Serial>(sys.x, sys.h, &params, geom, &mut [], &Serial);
+    let mut aux = [Aux::default(); N];
+    refresh_aux::<1, false, Serial>(&sys, &mut aux, &params, &Serial);
+    front_gradient_pass::<1, Failing, Serial>(
+        &sys, geom, &aux, &mut sums, &mut grad, &params, &Serial,
+    );
     f(&sys, &grad, geom, &params);
 }
 
@@ -185,7 +189,11 @@ fn end_divergence(failed: usize) -> (Real, Real) {
         let mut sums = [PairSums::<1>::default(); N];
         let mut stars = [TsStar::default(); N * CAP];
         let stars = &mut stars[..params.nbrs.unordered_pairs()];
-        continuity_pass::<1, Failing, Serial>(sys, grad, geom, stars, &mut sums, params, &Serial);
+        let mut aux = [Aux::default(); N];
+        refresh_aux::<1, false, Serial>(sys, &mut aux, params, &Serial);
+        continuity_pass::<1, Failing, Serial>(
+            sys, grad, geom, &aux, stars, &mut sums, params, &Serial,
+        );
         let mut plain = 0.0;
         for_each_pair(params, geom, 0, |pr, _| {
             let (us, _) = star::<1, Failing>(sys, grad, params, 0, pr.j, &pr.n, pr.r);

@@ -62,6 +62,7 @@ impl<const D: usize> Sim<D> {
         filter(&mut self.corr, keep);
         filter(&mut self.av, keep);
         filter(&mut self.art, keep);
+        filter(&mut self.aux, keep);
         self.resize_lists();
     }
 
@@ -124,6 +125,7 @@ impl<const D: usize> Sim<D> {
             if layout.art {
                 self.art.push(gsph_core::math::Matrix::<D>::zeros());
             }
+            self.aux.push(gsph_core::state::Aux::default());
         }
         self.resize_lists();
         first
@@ -133,6 +135,7 @@ impl<const D: usize> Sim<D> {
     fn resize_lists(&mut self) {
         self.lists = crate::neighbors::Lists::empty(self.len());
         self.geom.clear();
+        self.fac.clear();
         self.ts_star.clear();
         self.pm_star.clear();
         self.build_x.clear();

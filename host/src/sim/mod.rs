@@ -13,6 +13,7 @@ use gsph_core::math::{Matrix, Real, Sym3, Vector};
 use gsph_core::neighbors::{NeighborError, Periodic};
 use gsph_core::schemes::{Scheme, StepFn};
 use gsph_core::state::*;
+use rayon::prelude::*;
 use std::any::Any;
 
 pub use crate::sim_error::SimError;
@@ -180,7 +181,9 @@ pub struct Sim<const D: usize> {
     corr: Vec<Correction<D>>,
     av: Vec<AvRates<D>>,
     art: Vec<Matrix<D>>,
+    aux: Vec<Aux>,
     geom: Vec<PairGeom<D>>,
+    fac: Vec<Real>,
     ts_star: Vec<TsStar>,
     pm_star: Vec<PmStar<D>>,
     primed: bool,
@@ -342,7 +345,9 @@ impl<const D: usize> Sim<D> {
             corr: Vec::new(),
             av: Vec::new(),
             art: Vec::new(),
+            aux: Vec::new(),
             geom: Vec::new(),
+            fac: Vec::new(),
             ts_star: Vec::new(),
             pm_star: Vec::new(),
             primed: false,
@@ -407,6 +412,8 @@ impl<const D: usize> Sim<D> {
             + self.corr.len() * size_of::<Correction<D>>()
             + self.av.len() * size_of::<AvRates<D>>()
             + self.art.len() * size_of::<Matrix<D>>()
+            + self.aux.len() * size_of::<Aux>()
+            + self.fac.len() * size_of::<Real>()
             + self.geom.len() * size_of::<PairGeom<D>>()
             + self.ts_star.len() * size_of::<TsStar>()
             + self.pm_star.len() * size_of::<PmStar<D>>();
@@ -446,6 +453,9 @@ impl<const D: usize> Sim<D> {
         let pairs = self.lists.unordered_pairs();
         let layout = Layout::of(self.scheme.family(), self.effects);
         self.geom.resize(pairs, PairGeom::default());
+        if layout.art {
+            self.fac.resize(pairs, 0.0);
+        }
         if layout.ts_star {
             self.ts_star.resize(pairs, TsStar::default());
         }
@@ -490,6 +500,7 @@ impl<const D: usize> Sim<D> {
         apply(&mut self.corr, order);
         apply(&mut self.av, order);
         apply(&mut self.art, order);
+        apply(&mut self.aux, order);
         apply(&mut self.build_x, order);
         apply(&mut self.build_h, order);
     }
@@ -514,15 +525,22 @@ impl<const D: usize> Sim<D> {
         if self.build_x.len() != self.x.len() {
             return true;
         }
-        let mut dmax2: f64 = 0.0;
-        let mut growth: f64 = 0.0;
-        let mut hmin = f64::INFINITY;
-        for i in 0..self.x.len() {
-            let d = self.periodic.min_image(self.x[i] - self.build_x[i]);
-            dmax2 = dmax2.max(d.norm_squared());
-            growth = growth.max(self.h[i] / self.build_h[i] - 1.0);
-            hmin = hmin.min(self.build_h[i]);
-        }
+        // max and min are exact, so the parallel reduction is the serial one
+        let (dmax2, growth, hmin) = (0..self.x.len())
+            .into_par_iter()
+            .with_min_len(1024)
+            .map(|i| {
+                let d = self.periodic.min_image(self.x[i] - self.build_x[i]);
+                (
+                    d.norm_squared(),
+                    self.h[i] / self.build_h[i] - 1.0,
+                    self.build_h[i],
+                )
+            })
+            .reduce(
+                || (0.0f64, 0.0f64, f64::INFINITY),
+                |a, b| (a.0.max(b.0), a.1.max(b.1), a.2.min(b.2)),
+            );
         2.0 * dmax2.sqrt() >= self.kernel.support() * hmin * (self.skin - growth)
     }
 
@@ -551,13 +569,18 @@ impl<const D: usize> Sim<D> {
 
     /// Largest stable time step for the CFL number.
     pub fn stable_dt(&mut self, cfl: Real) -> Real {
-        let mut dt = f64::INFINITY;
-        for i in 0..self.len() {
-            let speed = self.cl[i] + self.v[i].norm();
-            if speed > 0.0 {
-                dt = dt.min(self.h[i] / speed);
-            }
-        }
+        let dt = (0..self.len())
+            .into_par_iter()
+            .with_min_len(1024)
+            .map(|i| {
+                let speed = self.cl[i] + self.v[i].norm();
+                if speed > 0.0 {
+                    self.h[i] / speed
+                } else {
+                    f64::INFINITY
+                }
+            })
+            .reduce(|| f64::INFINITY, f64::min);
         cfl * dt
     }
 
@@ -650,6 +673,8 @@ impl<const D: usize> Sim<D> {
             av: &mut self.av,
             art: &mut self.art,
             geom: &mut self.geom,
+            fac: &mut self.fac,
+            aux: &mut self.aux,
             ts_star: &mut self.ts_star,
             pm_star: &mut self.pm_star,
             primed: self.primed,
