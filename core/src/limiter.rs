@@ -65,19 +65,24 @@ impl Limiter {
     /// `minmod(a, b)`, `maxmod(minmod(beta b, a), minmod(b, beta a))` (Sweby, superbee),
     /// `minmod(2a, (a+b)/2, 2b)` (MC) and `2ab/(a+b)` (van Leer), so the result is
     /// symmetric, `limit(a, b) == limit(b, a)`, exactly.
+    #[inline(always)]
     pub fn limit(self, d_own: Real, d_other: Real) -> Real {
         let (a, b) = (d_own, d_other);
         let same_sign = a * b > 0.0; // false for opposite signs, a zero or NaN
         if !same_sign {
             return 0.0;
         }
-        match self {
-            Limiter::Minmod => minmod(a, b),
-            Limiter::Superbee => sweby_slope(2.0, a, b),
-            Limiter::Sweby(beta) => sweby_slope(beta, a, b),
-            Limiter::MonotonizedCentral => minmod(minmod(2.0 * a, 2.0 * b), 0.5 * (a + b)),
-            Limiter::VanLeer => 2.0 * a * b / (a + b),
-        }
+        // same signs: each form is sign(a) times its value on |a|, |b| (no branch on
+        // which one is smaller: these branches are a coin toss in a pair loop)
+        let (p, q) = (abs(a), abs(b));
+        let m = match self {
+            Limiter::Minmod => min(p, q),
+            Limiter::Superbee => max(min(2.0 * q, p), min(q, 2.0 * p)),
+            Limiter::Sweby(beta) => max(min(beta * q, p), min(q, beta * p)),
+            Limiter::MonotonizedCentral => min(min(2.0 * p, 2.0 * q), 0.5 * (p + q)),
+            Limiter::VanLeer => 2.0 * p * q / (p + q),
+        };
+        m.copysign(a)
     }
 
     /// Parses a limiter name (ASCII case-insensitive): `minmod`, `superbee`, `mc` (also
@@ -128,16 +133,6 @@ fn sweby(beta: Real, r: Real) -> Real {
 
 /// Sweby's limited slope for `a b > 0`: the larger in magnitude of `minmod(beta b, a)`
 /// and `minmod(b, beta a)` (both have the sign of `a`).
-#[inline]
-fn sweby_slope(beta: Real, a: Real, b: Real) -> Real {
-    let (x, y) = (minmod(beta * b, a), minmod(b, beta * a));
-    if abs(x) >= abs(y) {
-        x
-    } else {
-        y
-    }
-}
-
 /// The extrapolation `ext` of one side of a pair towards its partner, bounded by half the
 /// pair difference `half_jump = (Q_partner - Q_own)/2`: `minmod(ext, half_jump)`. An
 /// extrapolation that points away from the partner gives 0, one that reaches past the
@@ -151,7 +146,7 @@ pub fn bounded_extrapolation(ext: Real, half_jump: Real) -> Real {
 
 /// minmod(a, b): 0 if `a` and `b` differ in sign (or either is zero or NaN), otherwise the
 /// one of smaller magnitude (TKC eqs 14–15, seed 004).
-#[inline]
+#[inline(always)]
 pub fn minmod(a: Real, b: Real) -> Real {
     if a > 0.0 && b > 0.0 {
         min(a, b)

@@ -54,12 +54,13 @@ pub struct AcousticSide {
 /// `Z_l + Z_r` is not positive and finite (both sides without impedance, or invalid input)
 /// the answer is the arithmetic mean of the two sides, which is finite and keeps the i/j
 /// swap symmetry.
-#[inline]
+#[inline(always)]
 pub fn acoustic_star(l: AcousticSide, r: AcousticSide) -> (Real, Real) {
     let zs = l.z + r.z;
     if zs > 0.0 && zs.is_finite() {
-        let u = (l.z * l.u + r.z * r.u + r.s - l.s) / zs;
-        let s = (r.z * l.s + l.z * r.s + l.z * r.z * (r.u - l.u)) / zs;
+        let inv = 1.0 / zs;
+        let u = (l.z * l.u + r.z * r.u + r.s - l.s) * inv;
+        let s = (r.z * l.s + l.z * r.s + l.z * r.z * (r.u - l.u)) * inv;
         (u, s)
     } else {
         (0.5 * (l.u + r.u), 0.5 * (l.s + r.s))
@@ -83,7 +84,7 @@ pub struct PressureSide {
 /// `u* = (Z_l u_l + Z_r u_r + p_l - p_r)/(Z_l + Z_r)`,
 /// `p* = (Z_r p_l + Z_l p_r + Z_l Z_r (u_l - u_r))/(Z_l + Z_r)`.
 /// Axis from l (particle i) to r (particle j); `p*` is positive in compression.
-#[inline]
+#[inline(always)]
 pub fn pressure_star(l: PressureSide, r: PressureSide) -> (Real, Real) {
     let (u, s) = acoustic_star(
         AcousticSide {
@@ -120,6 +121,7 @@ pub fn pressure_star(l: PressureSide, r: PressureSide) -> (Real, Real) {
 /// No rotation matrices are needed and the result is frame invariant; it works for `D` = 1,
 /// 2 and 3 (in 1D the tangential part is empty). Under the swap of i and j (`n -> -n`) the
 /// result transforms as `V*' = V*`, `T*' = -T*` (the traction on the opposite face).
+#[inline(always)]
 #[allow(clippy::too_many_arguments)] // API fixed: two sides of four quantities plus the axis
 pub fn acoustic_star_vector<const D: usize>(
     n: &Vector<D>,
@@ -178,9 +180,10 @@ pub fn elastic_star_vector<const D: usize>(
     let (vrt, trt) = (v_r - n * vrn, t_r - n * trn);
     let zs = zl_trans + zr_trans;
     let (v_t, t_t) = if zs > 0.0 && zs.is_finite() {
+        let inv = 1.0 / zs;
         (
-            (vlt * zl_trans + vrt * zr_trans + trt - tlt) / zs,
-            (tlt * zr_trans + trt * zl_trans + (vrt - vlt) * (zl_trans * zr_trans)) / zs,
+            (vlt * zl_trans + vrt * zr_trans + trt - tlt) * inv,
+            (tlt * zr_trans + trt * zl_trans + (vrt - vlt) * (zl_trans * zr_trans)) * inv,
         )
     } else {
         ((vlt + vrt) * 0.5, Vector::<D>::zeros())

@@ -74,7 +74,9 @@ pub struct Ts;
 
 /// Gradients at the start of the step: the velocity gradient
 /// `dv_a/dx_b = sum_j V_j (v_j - v_i)_a (grad_i W_ij)_b` (for the deviator) and, with MUSCL,
-/// grad rho and grad P for the reconstruction; also records the start-of-step velocity.
+/// grad rho and grad P for the reconstruction; also records the start-of-step velocity,
+/// and whether the particle is a free-surface particle of the continuity equation (see
+/// [`continuity_pass`]; staged in `sums.div`, which that pass overwrites).
 fn front_gradient_pass<const D: usize, E: Effects, X: Executor>(
     sys: &System<'_, D>,
     geom: &[PairGeom<D>],
@@ -84,6 +86,7 @@ fn front_gradient_pass<const D: usize, E: Effects, X: Executor>(
     params: &StepParams<'_, D>,
     exec: &X,
 ) {
+    let (lam, eps) = (params.options.surface_lambda, params.options.det_epsilon);
     exec.run(
         (&mut *sums, Optional(grad)),
         |off, (chunk, g): (&mut [PairSums<D>], Optional<'_, Gradients<D>>)| {
@@ -91,20 +94,26 @@ fn front_gradient_pass<const D: usize, E: Effects, X: Executor>(
                 let i = off + k;
                 let vi = sys.v[i];
                 out.v0 = vi;
-                if !(E::STRENGTH || E::MUSCL) {
-                    continue;
-                }
                 let mut gr = Gradients::<D>::default();
+                let mut m = Matrix::<D>::zeros();
                 let pi = pair_pressure::<D, E>(sys, i);
                 for_each_pair(params, geom, i, |pr, _| {
                     let j = pr.j;
                     let gw = pr.grad * aux[j].vol;
-                    gr.v += outer(&(sys.v[j] - vi), &gw);
+                    m += outer(&gw, &(pr.n * pr.r));
+                    if E::STRENGTH || E::MUSCL {
+                        gr.v += outer(&(sys.v[j] - vi), &gw);
+                    }
                     if E::MUSCL {
                         gr.rho += gw * (sys.rho[j] - sys.rho[i]);
                         gr.p += gw * (pair_pressure::<D, E>(sys, j) - pi);
                     }
                 });
+                out.div = if surface_divergence(&m, lam, eps) && !failed::<D, E>(sys, i) {
+                    1.0
+                } else {
+                    0.0
+                };
                 out.grad_v = gr.v;
                 if E::MUSCL {
                     g.0[k] = gr;
@@ -112,6 +121,13 @@ fn front_gradient_pass<const D: usize, E: Effects, X: Executor>(
             }
         },
     );
+}
+
+/// True when a particle with `M = sum_j V_j grad_i W_ij ⊗ (x_j - x_i)` takes the consistent
+/// divergence (seed 004's free-surface criterion; see [`continuity_pass`]).
+#[inline(always)]
+fn surface_divergence<const D: usize>(m: &Matrix<D>, lam: Real, eps: Real) -> bool {
+    min_sym_eigenvalue(m) < lam && det(m) >= eps && inverse(m).is_some()
 }
 
 /// Continuity: `div_i = 2 sum_j m_j/rho_j (v*_ij - v_i) . grad_i W_ij` with the contact
@@ -150,7 +166,6 @@ fn continuity_pass<const D: usize, E: Effects, X: Executor>(
     params: &StepParams<'_, D>,
     exec: &X,
 ) {
-    let (lam, eps) = (params.options.surface_lambda, params.options.det_epsilon);
     // each pair's contact velocity once, on the owner's side
     solve_pairs::<D, X, TsStar>(params, geom, stars, exec, |i, pr| {
         let (u, _) = star::<D, E>(sys, grad, params, i, pr.j, &pr.n, pr.r);
@@ -161,13 +176,23 @@ fn continuity_pass<const D: usize, E: Effects, X: Executor>(
         for (k, out) in chunk.iter_mut().enumerate() {
             let i = off + k;
             let vi = sys.v[i];
+            // the owner solved along its own axis: seen from i the component flips
+            let seen = |u: Real, owner: bool| if owner { u } else { -u };
+            if out.div == 0.0 {
+                // interior: the plain sum, (v*_ij - v_i) . grad_i W = (u* - v_i . n) |W'|
+                let mut div = 0.0;
+                for_each_pair(params, geom, i, |pr, e| {
+                    let us = seen(stars[e.pair].u, e.owner);
+                    div -= 2.0 * aux[pr.j].vol * pr.dw * (us - vi.dot(&pr.n));
+                });
+                out.div = div;
+                continue;
+            }
             let mut m = Matrix::<D>::zeros();
             let mut kk = Matrix::<D>::zeros();
             for_each_pair(params, geom, i, |pr, e| {
                 let j = pr.j;
-                // the owner solved along its own axis: seen from i the component flips
-                let u = stars[e.pair].u;
-                let us = if e.owner { u } else { -u };
+                let us = seen(stars[e.pair].u, e.owner);
                 let gw = pr.grad * aux[j].vol;
                 let mean = (vi + sys.v[j]) * 0.5;
                 let vstar = mean + pr.n * (us - mean.dot(&pr.n));
@@ -175,14 +200,8 @@ fn continuity_pass<const D: usize, E: Effects, X: Executor>(
                 kk += outer(&gw, &((vstar - vi) * 2.0));
             });
             out.div = match inverse(&m) {
-                Some(inv)
-                    if min_sym_eigenvalue(&m) < lam
-                        && det(&m) >= eps
-                        && !failed::<D, E>(sys, i) =>
-                {
-                    (inv * kk).trace()
-                }
-                _ => kk.trace(),
+                Some(inv) => (inv * kk).trace(),
+                None => kk.trace(),
             };
         }
     });

@@ -48,7 +48,7 @@ fn material() -> Material {
 /// the system after the start-of-step gradient pass, and the step parameters.
 fn with_failed_particle(
     failed: usize,
-    f: impl FnOnce(&System<'_, 1>, &[Gradients<1>], &[PairGeom<1>], &StepParams<'_, 1>),
+    f: impl FnOnce(&System<'_, 1>, &Front<'_>, &StepParams<'_, 1>),
 ) {
     let mats = [material()];
     let mut x = [Vector::<1>::zeros(); N];
@@ -110,13 +110,26 @@ fn with_failed_particle(
     front_gradient_pass::<1, Failing, Serial>(
         &sys, geom, &aux, &mut sums, &mut grad, &params, &Serial,
     );
-    f(&sys, &grad, geom, &params);
+    f(
+        &sys,
+        &Front {
+            grad: &grad,
+            geom,
+            sums: &sums,
+        },
+        &params,
+    );
+}
+
+/// What the start-of-step pass leaves for the tests.
+struct Front<'a> {
+    grad: &'a [Gradients<1>],
+    geom: &'a [PairGeom<1>],
+    sums: &'a [PairSums<1>],
 }
 
 /// [`with_failed_particle`] with the failed particle in the middle of the line.
-fn with_failed_line(
-    f: impl FnOnce(&System<'_, 1>, &[Gradients<1>], &[PairGeom<1>], &StepParams<'_, 1>),
-) {
+fn with_failed_line(f: impl FnOnce(&System<'_, 1>, &Front<'_>, &StepParams<'_, 1>)) {
     with_failed_particle(4, f)
 }
 
@@ -125,7 +138,8 @@ fn with_failed_line(
 /// so it stays of the order of the intact pressure differences (1 GPa per spacing).
 #[test]
 fn pressure_gradients_use_the_clamped_pressure_of_failed_neighbours() {
-    with_failed_line(|_, grad, _, _| {
+    with_failed_line(|_, front, _| {
+        let grad = front.grad;
         for i in [2usize, 3, 5, 6] {
             let g = grad[i].p[0];
             assert!(
@@ -141,7 +155,8 @@ fn pressure_gradients_use_the_clamped_pressure_of_failed_neighbours() {
 /// leaves, and the pairs with the failed particle are first order.
 #[test]
 fn intact_pairs_reconstruct_within_their_own_range() {
-    with_failed_line(|sys, grad, _, params| {
+    with_failed_line(|sys, front, params| {
+        let grad = front.grad;
         for i in 0..N {
             for &j in params.nbrs.of(i) {
                 let j = j as usize;
@@ -185,8 +200,11 @@ fn intact_pairs_reconstruct_within_their_own_range() {
 /// SPH sum `2 sum_j V_j (v*_ij - v_0) . grad W`.
 fn end_divergence(failed: usize) -> (Real, Real) {
     let mut out = (0.0, 0.0);
-    with_failed_particle(failed, |sys, grad, geom, params| {
+    with_failed_particle(failed, |sys, front, params| {
+        let (grad, geom) = (front.grad, front.geom);
+        // the surface flags of the start-of-step pass
         let mut sums = [PairSums::<1>::default(); N];
+        sums.copy_from_slice(front.sums);
         let mut stars = [TsStar::default(); N * CAP];
         let stars = &mut stars[..params.nbrs.unordered_pairs()];
         let mut aux = [Aux::default(); N];
