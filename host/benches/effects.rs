@@ -20,9 +20,9 @@
 //! and printed on stderr). Only `sim.step` is timed. Bytes per particle are
 //! `Sim::bytes_per_particle` (state, workspace and neighbour lists allocated for the set).
 //!
-//! At the end a Markdown table is printed on stdout: effect set, time per step, ratio to
-//! hydro-only, bytes per particle, ratio, pairs per step. Time per step is the mean over all
-//! timed steps of the row (warm-up included).
+//! At the end a Markdown table is printed on stdout: effect set, time per step, microseconds
+//! per particle-step, ratio to hydro-only, bytes per particle, ratio, pairs per step. Time
+//! per step is the mean over all timed steps of the row (warm-up included).
 //!
 //! Run: `cargo bench -p gsph --bench effects` (under a minute on 2 cores, after the build).
 
@@ -92,6 +92,12 @@ const ROWS: &[Row] = &[
             // N * SPACING: the block height.
             "periodic.hi=[8.0e-3, 8.0e-3]",
         ],
+    },
+    // Monaghan's artificial stress (cases/rings.toml's eps = 0.3, n = 4) on the elastic block.
+    Row {
+        label: "+ artificial stress",
+        extends: Some("+ strength"),
+        set: &["options.artificial_stress=0.3"],
     },
     // Heat and damage replace the von Mises model of "+ plasticity" (they come with their
     // strength models): Johnson–Cook (seed 000 table 4 steel, yield lowered so that the
@@ -230,14 +236,15 @@ fn main() {
         "\nEffect costs, 2D pm family, {} particles, one rayon thread:\n",
         N * N
     );
-    println!("| effect set | time/step (ms) | / hydro | bytes/particle | / hydro | pairs/step |");
-    println!("| --- | ---: | ---: | ---: | ---: | ---: |");
+    println!("| effect set | time/step (ms) | us/particle-step | / hydro | bytes/particle | / hydro | pairs/step |");
+    println!("| --- | ---: | ---: | ---: | ---: | ---: | ---: |");
     for (row, m) in ROWS.iter().zip(&measured) {
         println!(
-            "| {} (`{}`) | {:.2} | {:.2} | {} | {:.2} | {} |",
+            "| {} (`{}`) | {:.2} | {:.3} | {:.2} | {} | {:.2} | {} |",
             row.label,
             m.effects,
             m.ms_per_step,
+            m.ms_per_step * 1e3 / (N * N) as f64,
             m.ms_per_step / base.ms_per_step,
             m.bytes,
             m.bytes as f64 / base.bytes as f64,

@@ -16,6 +16,9 @@
 //! just outside the kernel support). Ids are `SCHEME/1t` (a rayon pool of one thread) and
 //! `SCHEME/all` (a pool of all threads).
 //!
+//! At the end of each dimension it prints, per pool, the pair rate and the microseconds per
+//! particle-step of every scheme with the ratio to av.
+//!
 //! Run: `cargo bench -p gsph --bench pair_loop` (under 2 minutes on 2 cores).
 
 use criterion::{BenchmarkId, Criterion, SamplingMode, Throughput};
@@ -119,6 +122,8 @@ fn bench_dim<const D: usize>(c: &mut Criterion) {
     // Mean pair interactions per second over all timed steps (warm-up included), per
     // (scheme, pool), for the ratios printed at the end of the group.
     let mut rates = [[0.0f64; 2]; SCHEMES.len()];
+    // and microseconds per particle-step (the unit of docs/performance.md)
+    let mut us_ps = [[0.0f64; 2]; SCHEMES.len()];
     for (s, scheme) in SCHEMES.into_iter().enumerate() {
         let (mut sim, dt) = block::<D>(scheme);
         let pairs = sim.pair_interactions; // one step so far
@@ -147,6 +152,7 @@ fn bench_dim<const D: usize>(c: &mut Criterion) {
             });
             steps += n;
             rates[s][p] = (pairs * n) as f64 / timed.as_secs_f64();
+            us_ps[s][p] = timed.as_secs_f64() * 1e6 / (n as f64 * sim.len() as f64);
         }
         eprintln!(
             "{D}D {scheme}: {} particles, {pairs} pairs/step, dt {dt:.3e} s, {steps} timed steps, {rebuilds} list rebuilds in them",
@@ -162,6 +168,12 @@ fn bench_dim<const D: usize>(c: &mut Criterion) {
             .map(|(name, r)| format!("{name} {:.1} ({:.2})", r[p] * 1e-6, r[p] / av))
             .collect();
         eprintln!("{D}D {label}: Mpairs/s (/av): {}", line.join(", "));
+        let line: Vec<String> = SCHEMES
+            .iter()
+            .zip(&us_ps)
+            .map(|(name, u)| format!("{name} {:.3} ({:.2})", u[p], u[p] / us_ps[0][p]))
+            .collect();
+        eprintln!("{D}D {label}: us/particle-step (/av): {}", line.join(", "));
     }
 }
 
