@@ -12,6 +12,10 @@
 # dx, and the left ring's centre-of-mass vx/u0 at t_end (negative: it rebounded).
 #
 #   scripts/rings.sh [--resolution 1e-3|5e-4] [--threads N] [--schemes "av ts2"] [--no-plain]
+#                    [--tag NAME --set KEY=VALUE ...]
+#
+# --set passes scene overrides to every run (e.g. --set kernel=wendland_c2); --tag names
+# the variant: its runs go to out/rings/dx_DX/NAME/ instead.
 #
 # Time on 2 cores (dx = 1e-3, 2 threads, 25,000 steps per run): about 1 min (av) to 4 min
 # (tkc) per run. GSPH overrides the binary (default target/release/gsph, built if missing).
@@ -23,12 +27,16 @@ THREADS=2
 SCHEMES="av pm ts1 ts2 tkc"
 VARIANTS="as noas"
 T_END=2.5e-4
+TAG=""
+EXTRA=()
 while [[ $# -gt 0 ]]; do
   case $1 in
     --resolution) DX=${2:?--resolution needs 1e-3 or 5e-4}; shift ;;
     --threads) THREADS=${2:?--threads needs a count}; shift ;;
     --schemes) SCHEMES=${2:?--schemes needs a list}; shift ;;
     --no-plain) VARIANTS="as" ;;
+    --tag) TAG=${2:?--tag needs a name}; shift ;;
+    --set) EXTRA+=(--set "${2:?--set needs KEY=VALUE}"); shift ;;
     -h|--help) sed -n '2,/^set -euo/{/^#/s/^# \{0,1\}//p}' "$0"; exit 0 ;;
     *) echo "rings: unknown option $1 (see --help)" >&2; exit 2 ;;
   esac
@@ -40,7 +48,7 @@ if [[ ! -x $GSPH ]]; then
   echo "rings: building gsph (cargo build --release -p gsph)" >&2
   cargo build --release -q -p gsph
 fi
-OUT=$ROOT/out/rings/dx_$DX
+OUT=$ROOT/out/rings/dx_$DX${TAG:+/$TAG}
 mkdir -p "$OUT"
 scale=$(awk -v d="$DX" 'BEGIN { printf "%.6g", 5e-4 / d }')
 # series and snapshots: every 5e-6 s (50 intervals) so that 5e-5 s is a snapshot
@@ -49,7 +57,7 @@ for s in $SCHEMES; do
   for v in $VARIANTS; do
     name=${s}_$v
     set=(--set "scheme=$s" --set "resolution_scale=$scale" --set "t_end=$T_END"
-      --set output.snapshots=50 --threads "$THREADS" --quiet)
+      --set output.snapshots=50 --threads "$THREADS" --quiet "${EXTRA[@]}")
     [[ $v == noas ]] && set+=(--unset options.artificial_stress)
     echo "rings: $name (dx $DX, to $T_END s)" >&2
     rm -rf "${OUT:?}/$name"
@@ -86,7 +94,7 @@ EOF
   done
 done
 {
-  echo "# Colliding rings to $T_END s, dx = $DX m ($(date -u +%F), gsph $(git rev-parse --short HEAD))"
+  echo "# Colliding rings to $T_END s, dx = $DX m${TAG:+, $TAG (${EXTRA[*]})} ($(date -u +%F), gsph $(git rev-parse --short HEAD))"
   echo
   echo "| scheme | AS | (KE+SE)/KE0 at 5e-5 s | worst | close at 5e-5 s | worst | min distance / dx | vx_L/u0 at t_end | vx_L < 0 from (s) |"
   echo "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
