@@ -32,20 +32,21 @@ use crate::state::{Aux, AvRates, Family, PairGeom, StepError, StepParams, System
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Av;
 
-/// Evaluates the rates of every particle at the current state into `rates`.
+/// Evaluates the rates of every particle at the current state into `ws.av` (the pair
+/// geometry, artificial-stress tensors and per-particle aux of `ws` are its scratch).
 fn rates<const D: usize, E: Effects, X: Executor>(
     sys: &System<'_, D>,
-    rates: &mut [AvRates<D>],
-    scratch: Scratch<'_, D>,
+    ws: &mut Workspace<'_, D>,
     params: &StepParams<'_, D>,
     exec: &X,
 ) {
-    let Scratch {
-        geom,
-        fac,
-        art,
-        aux,
-    } = scratch;
+    let (rates, geom, fac, art, aux) = (
+        &mut *ws.av,
+        &mut *ws.geom,
+        &mut *ws.fac,
+        &mut *ws.art,
+        &mut *ws.aux,
+    );
     geometry_pass::<D, E, X>(sys.x, sys.h, params, geom, fac, exec);
     refresh_aux::<D, false, X>(sys, aux, params, exec);
     if E::ARTIFICIAL_STRESS {
@@ -108,14 +109,6 @@ fn rates<const D: usize, E: Effects, X: Executor>(
     });
 }
 
-/// The workspace arrays the rates are evaluated with.
-struct Scratch<'a, const D: usize> {
-    geom: &'a mut [PairGeom<D>],
-    fac: &'a mut [Real],
-    art: &'a mut [Matrix<D>],
-    aux: &'a mut [Aux],
-}
-
 impl SchemeFamily for Av {
     const FAMILY: Family = Family::Av;
     const SUPPORTED: EffectSet = EffectSet::STRENGTH
@@ -142,18 +135,7 @@ impl SchemeFamily for Av {
             return Err(StepError::Storage { field: "av" });
         }
         if !ws.primed {
-            rates::<D, E, X>(
-                sys,
-                ws.av,
-                Scratch {
-                    geom: ws.geom,
-                    fac: ws.fac,
-                    art: ws.art,
-                    aux: ws.aux,
-                },
-                params,
-                exec,
-            );
+            rates::<D, E, X>(sys, ws, params, exec);
             ws.primed = true;
         }
         // Kick, drift, and predict the state at the end of the step.
@@ -182,18 +164,7 @@ impl SchemeFamily for Av {
                 }
             },
         );
-        rates::<D, E, X>(
-            sys,
-            ws.av,
-            Scratch {
-                geom: ws.geom,
-                fac: ws.fac,
-                art: ws.art,
-                aux: ws.aux,
-            },
-            params,
-            exec,
-        );
+        rates::<D, E, X>(sys, ws, params, exec);
         // Second kick with the rates of the predicted state.
         exec.run(
             (sys.reborrow(), &ws.av[..]),
