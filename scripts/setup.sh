@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # One-time set-up of a fresh Debian/Ubuntu machine for gsph: the HDF5 C library (for the
-# hdf5-metno crate), pkg-config, and the bare-metal Rust target used to prove the core is
-# no_std. Idempotent: does nothing when everything is present.
+# hdf5-metno crate), pkg-config, Open MPI and libclang (for the `mpi` feature: the mpi-sys
+# crate generates its bindings with bindgen), and the bare-metal Rust target used to prove
+# the core is no_std. Idempotent: does nothing when everything is present.
 set -euo pipefail
 
 need_apt=()
@@ -9,6 +10,11 @@ if ! pkg-config --exists hdf5 2>/dev/null; then
   need_apt+=(libhdf5-dev)
 fi
 command -v pkg-config >/dev/null 2>&1 || need_apt+=(pkg-config)
+command -v mpirun >/dev/null 2>&1 || need_apt+=(openmpi-bin)
+command -v mpicc >/dev/null 2>&1 || need_apt+=(libopenmpi-dev)
+if ! ls /usr/lib/llvm-*/lib/libclang*.so* >/dev/null 2>&1 && ! ldconfig -p 2>/dev/null | grep -q 'libclang.*\.so'; then
+  need_apt+=(libclang-dev)
+fi
 if [ ${#need_apt[@]} -gt 0 ]; then
   echo "setup: installing ${need_apt[*]} (apt)" >&2
   sudo_cmd=""

@@ -8,10 +8,12 @@ scripts/setup.sh
 echo "== cargo fmt --check"
 cargo fmt --all -- --check
 echo "== cargo clippy"
-cargo clippy --workspace --all-targets -- -D warnings
+# with the MPI domain decomposition (feature `mpi`; the narrow build below checks the
+# code without it)
+cargo clippy --workspace --all-targets --features gsph/mpi -- -D warnings
 cargo clippy -p gsph --all-targets --no-default-features --features dim1,scheme-ts,effects-strength -- -D warnings
-echo "== cargo test (release: the validation tests run simulations)"
-cargo test --workspace --release
+echo "== cargo test (release: the validation tests run simulations; with MPI, host/tests/mpi.rs)"
+cargo test --workspace --release --features gsph/mpi
 echo "== no_std: gsph-core for thumbv7em-none-eabihf"
 cargo build -p gsph-core --release --target thumbv7em-none-eabihf
 cargo build -p gsph-core --release --target thumbv7em-none-eabihf --no-default-features --features f32,dim1,scheme-ts,effects-strength

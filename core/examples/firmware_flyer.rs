@@ -214,7 +214,13 @@ mod runner {
                 pm_star: &mut [],
                 primed: false,
             };
-            step(&mut sys, &mut ws, &params, &Serial)?;
+            step(
+                &mut sys,
+                &mut ws,
+                &params,
+                &Serial,
+                &mut gsph_core::halo::NoHalo,
+            )?;
             check_finite(&sys)?;
             t += dt;
             steps += 1;

@@ -20,6 +20,7 @@ pub mod dispatch;
 pub mod effects;
 pub mod exact;
 pub mod exec;
+pub mod halo;
 pub mod kernel;
 pub mod limiter;
 pub mod material;

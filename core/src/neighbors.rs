@@ -64,7 +64,8 @@ impl<const D: usize> Periodic<D> {
     #[inline]
     pub fn wrap(&self, mut x: Vector<D>) -> Vector<D> {
         for a in 0..D {
-            if self.axes[a] {
+            // a non-finite coordinate is left as it is (the step's check reports it)
+            if self.axes[a] && x[a].is_finite() {
                 let l = self.len[a];
                 let lo = self.lo[a];
                 while x[a] < lo {

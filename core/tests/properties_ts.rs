@@ -206,7 +206,13 @@ fn run<const D: usize, E: Effects>(c: &Case) -> Result<Totals, StepError> {
             pm_star: &mut [],
             primed: false,
         };
-        Ts::step::<D, E, Serial>(&mut sys, &mut ws, &params, &Serial)?;
+        Ts::step::<D, E, Serial>(
+            &mut sys,
+            &mut ws,
+            &params,
+            &Serial,
+            &mut gsph_core::halo::NoHalo,
+        )?;
         check_finite(&sys)?;
     }
     Ok(out)

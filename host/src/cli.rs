@@ -4,7 +4,10 @@
 macro_rules! out {
     ($($arg:tt)*) => {{
         use std::io::Write as _;
-        let _ = writeln!(std::io::stdout(), $($arg)*);
+        // under MPI only rank 0 reports
+        if crate::dist_rank() == 0 {
+            let _ = writeln!(std::io::stdout(), $($arg)*);
+        }
     }};
 }
 
@@ -267,10 +270,23 @@ pub fn main_with_args(args: impl IntoIterator<Item = std::ffi::OsString>) -> i32
             return 0;
         }
     };
+    let ranks = crate::dist_size();
+    if ranks > 1 && !matches!(cli.command, Command::Run { .. }) {
+        if crate::dist_rank() == 0 {
+            eprintln!(
+                "error: only `gsph run` runs on several MPI ranks (this is rank 0 of {ranks}); run the others in one process"
+            );
+        }
+        return 2;
+    }
     match execute(cli.command) {
         Ok(()) => 0,
         Err(msg) => {
-            eprintln!("error: {}", msg.replace('\n', " "));
+            let who = match crate::dist_rank() {
+                0 => String::new(),
+                r => format!("rank {r}: "),
+            };
+            eprintln!("{who}error: {}", msg.replace('\n', " "));
             1
         }
     }
@@ -424,10 +440,25 @@ fn execute(cmd: Command) -> Result<(), String> {
             let scheme = gsph_core::schemes::Scheme::from_name(&sc.scheme).expect("validated");
             let (n, all) = crate::specs::compiled();
             match crate::specs::find(dim, scheme.family(), effects) {
-                Some(s) if s.compiled => out!(
-                    "kernel    {} (compiled; this build contains {n} of {all} specialisations)",
-                    s.name
-                ),
+                Some(s) if s.compiled => {
+                    out!(
+                        "kernel    {} (compiled; this build contains {n} of {all} specialisations)",
+                        s.name
+                    );
+                    // what crosses rank boundaries under MPI (docs/mpi.md)
+                    let halo: Vec<String> = gsph_core::halo::exchanges_of(scheme.family())
+                        .iter()
+                        .filter(|x| x.applies(effects))
+                        .map(|x| {
+                            let f: Vec<&str> = x.fields.names().collect();
+                            format!("{} ({})", x.before, f.join(" "))
+                        })
+                        .collect();
+                    out!(
+                        "halo      under MPI, ghosts refreshed before: {}",
+                        halo.join(", ")
+                    );
+                }
                 Some(_) => {
                     return Err(at(&SimError::NotCompiled {
                         dim,
@@ -521,12 +552,23 @@ fn execute(cmd: Command) -> Result<(), String> {
             let (sc, out, ckpt) = match (restart, scene) {
                 (Some(dir), _) => setup::restart(&dir, flags)?,
                 (None, Some(path)) => {
-                    if let Some(dir) = &out {
+                    // under MPI rank 0 alone touches the output folder
+                    let root = crate::dist_rank() == 0;
+                    if let (Some(dir), true) = (&out, root) {
                         clear_results(dir)?;
                     }
                     let (sc, source) = setup::load(&path, &set)?;
+                    let ranks = crate::dist_size();
+                    if ranks > 1 && sc.window.is_some() {
+                        return Err(format!(
+                            "{}: the moving window (`window`) runs on one rank; this run has {ranks} MPI ranks",
+                            path.display()
+                        ));
+                    }
                     let out = out.unwrap_or_else(|| PathBuf::from("out").join(&source.name));
-                    clear_results(&out)?;
+                    if root {
+                        clear_results(&out)?;
+                    }
                     let policy = setup::merge(flags, &sc);
                     (
                         sc,

@@ -23,6 +23,8 @@ pub enum RunError {
     Output(String),
     /// A checkpoint cannot be used.
     Checkpoint(String),
+    /// The scene needs something this run cannot do (a moving window on several ranks).
+    Refused(String),
 }
 
 impl std::fmt::Display for RunError {
@@ -32,6 +34,7 @@ impl std::fmt::Display for RunError {
             RunError::Sim(e) => write!(f, "{e}"),
             RunError::Output(e) => write!(f, "output: {e}"),
             RunError::Checkpoint(e) => write!(f, "checkpoint: {e}"),
+            RunError::Refused(e) => write!(f, "{e}"),
         }
     }
 }
@@ -277,6 +280,12 @@ fn run_dim<const D: usize>(
     let t_total = Instant::now();
     let reference = Reference::from_scene(scene, &parts.x, &parts.spacing)?;
     let mut sim = Sim::<D>::new(scene, parts)?;
+    let ranks = crate::dist_size();
+    if ranks > 1 && scene.window.is_some() {
+        return Err(RunError::Refused(format!(
+            "the moving window (`window`) runs on one rank; this run has {ranks} MPI ranks"
+        )));
+    }
     let mut monitor = Monitor::new(scene, parts, &sim.materials)?;
     let mut window = match &scene.window {
         Some(w) => Some(Window::new(scene, w.geometry(scene)?, parts, &mut sim)),
@@ -293,10 +302,16 @@ fn run_dim<const D: usize>(
         frames = ck.frames().map_err(ckpt_err)?;
         resumed = ck.driver.clone();
     }
-    if let Some(dir) = &opts.out {
+    // MPI: split the particles over the ranks; rank 0 alone writes files, every rank
+    // takes part in the gathers behind them
+    #[cfg(feature = "mpi")]
+    sim.distribute()?;
+    let root = crate::dist_rank() == 0;
+    let files = if root { opts.out.clone() } else { None };
+    if let Some(dir) = &files {
         clear_outputs(dir)?;
     }
-    let mut writer = match &opts.out {
+    let mut writer = match &files {
         Some(dir) => Some(SnapshotWriter::create(dir, D)?),
         None => None,
     };
@@ -349,7 +364,7 @@ fn run_dim<const D: usize>(
         next_series = resumed.next_series as usize;
     } else {
         rec.push(&sim, &window, 0.0);
-        if writer.is_some() {
+        if opts.out.is_some() {
             frames.push(Frame {
                 time: 0.0,
                 step: 0,
@@ -365,7 +380,7 @@ fn run_dim<const D: usize>(
         }
     }
     drop(frames);
-    let bar = (opts.progress && std::io::stderr().is_terminal()).then(|| {
+    let bar = (root && opts.progress && std::io::stderr().is_terminal()).then(|| {
         let b = indicatif::ProgressBar::new(1000);
         b.set_style(
             indicatif::ProgressStyle::with_template(
@@ -398,13 +413,16 @@ fn run_dim<const D: usize>(
             }
         }
         if sim.t >= t_out * (1.0 - 1e-12) {
-            if let Some(w) = writer.as_mut() {
-                w.append(&Frame {
-                    time: sim.t,
-                    step: sim.step,
-                    dim: D,
-                    table: sim.table(),
-                })?;
+            if opts.out.is_some() {
+                let table = sim.table();
+                if let Some(w) = writer.as_mut() {
+                    w.append(&Frame {
+                        time: sim.t,
+                        step: sim.step,
+                        dim: D,
+                        table,
+                    })?;
+                }
                 n_frames += 1;
             }
             next_out += 1;
@@ -415,6 +433,14 @@ fn run_dim<const D: usize>(
         }
         if let Some(c) = control.as_mut() {
             let (write, stop) = c.due(sim.step);
+            // a wall-clock schedule differs between ranks: rank 0's decision holds
+            #[cfg(feature = "mpi")]
+            let (write, stop) = if sim.dist.is_some() {
+                let pick = |b: bool| crate::dist::any(root && b);
+                (pick(write), pick(stop))
+            } else {
+                (write, stop)
+            };
             if write {
                 let state = DriverState {
                     next_out: next_out as u64,
@@ -426,8 +452,16 @@ fn run_dim<const D: usize>(
                     series: rec.series.clone(),
                     monitor: rec.monitor.accumulated(),
                 };
-                c.write(&sim, &state, writer.as_ref())
-                    .map_err(|e| RunError::Output(format!("checkpoint: {e}")))?;
+                #[cfg(feature = "mpi")]
+                let all = sim.gathered();
+                #[cfg(feature = "mpi")]
+                let whole = all.as_ref().unwrap_or(&sim);
+                #[cfg(not(feature = "mpi"))]
+                let whole = &sim;
+                if root {
+                    c.write(whole, &state, writer.as_ref())
+                        .map_err(|e| RunError::Output(format!("checkpoint: {e}")))?;
+                }
             }
             if stop {
                 if let Some(b) = bar {
@@ -453,7 +487,7 @@ fn run_dim<const D: usize>(
         "effects".into(),
         json!(sim.effects.names().collect::<Vec<_>>()),
     );
-    s.insert("particles".into(), json!(sim.len()));
+    s.insert("particles".into(), json!(sim.global_len()));
     s.insert("steps".into(), json!(sim.step));
     s.insert("t_end".into(), json!(sim.t));
     s.insert("wall_s".into(), json!(wall));
@@ -462,7 +496,18 @@ fn run_dim<const D: usize>(
         json!(t_total.elapsed().as_secs_f64()),
     );
     s.insert("threads".into(), json!(rayon::current_num_threads()));
-    s.insert("pair_interactions".into(), json!(sim.pair_interactions));
+    s.insert("ranks".into(), json!(ranks));
+    #[cfg(feature = "mpi")]
+    let pairs = match &sim.dist {
+        Some(d) => {
+            s.insert("mpi".into(), crate::dist::report::summary(d, sim.step));
+            crate::dist::all_sum_u64(sim.pair_interactions)
+        }
+        None => sim.pair_interactions,
+    };
+    #[cfg(not(feature = "mpi"))]
+    let pairs = sim.pair_interactions;
+    s.insert("pair_interactions".into(), json!(pairs));
     s.insert("neighbor_rebuilds".into(), json!(sim.rebuilds));
     s.insert("bytes_per_particle".into(), json!(sim.bytes_per_particle()));
     s.insert("energy_initial".into(), json!(energy0));
@@ -497,7 +542,7 @@ fn run_dim<const D: usize>(
         s.insert("window_u_in".into(), json!(w.u_in));
         s.insert("window_u_out".into(), json!(w.u_out()));
     }
-    if let Some(dir) = &opts.out {
+    if let Some(dir) = &files {
         write_csv(dir.join("final.csv"), &table)?;
         write_atomic(dir.join("series.csv"), rec.series.as_bytes())?;
         if let Some(p) = reference

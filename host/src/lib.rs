@@ -6,6 +6,8 @@
 pub mod checkpoint;
 pub mod cli;
 pub mod commands;
+#[cfg(feature = "mpi")]
+pub mod dist;
 pub mod driver;
 pub mod exec;
 pub mod materials;
@@ -22,3 +24,19 @@ pub mod specs;
 pub mod stability;
 pub mod study;
 pub mod window;
+
+/// The number of MPI ranks of this run (1 without the feature `mpi` or outside `mpirun`).
+pub fn dist_size() -> usize {
+    #[cfg(feature = "mpi")]
+    return dist::size();
+    #[cfg(not(feature = "mpi"))]
+    1
+}
+
+/// This process's MPI rank (0 without the feature `mpi` or outside `mpirun`).
+pub fn dist_rank() -> usize {
+    #[cfg(feature = "mpi")]
+    return dist::rank();
+    #[cfg(not(feature = "mpi"))]
+    0
+}

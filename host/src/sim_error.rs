@@ -61,6 +61,9 @@ pub enum SimError {
         /// Effects.
         effects: EffectSet,
     },
+    /// Another MPI rank failed (its message), or a collective step of the decomposition
+    /// failed here.
+    Distributed(String),
     /// The scheme family cannot run an effect the scene needs.
     Unsupported {
         /// Scheme.
@@ -98,6 +101,7 @@ impl std::fmt::Display for SimError {
                     scheme.name()
                 )
             }
+            SimError::Distributed(m) => write!(f, "{m}"),
             SimError::Unsupported { scheme, effects } => write!(
                 f,
                 "scheme {} cannot run the effects {effects} (no build has that specialisation; the {} family supports {})",

@@ -177,8 +177,9 @@ fn step_fn(m: &Model, s: &Specialisation) -> TokenStream {
             ws: &mut crate::state::Workspace<'_, #d>,
             params: &crate::state::StepParams<'_, #d>,
             exec: &X,
+            halo: &mut dyn crate::halo::Halo<#d>,
         ) -> ::core::result::Result<(), crate::state::StepError> {
-            <#path as crate::schemes::SchemeFamily>::step::<#d, #marker, X>(sys, ws, params, exec)
+            <#path as crate::schemes::SchemeFamily>::step::<#d, #marker, X>(sys, ws, params, exec, halo)
         }
     }
 }

@@ -40,6 +40,14 @@ mod effects {
     }
 }
 
+mod halo {
+    pub trait Halo<const D: usize> {}
+
+    pub struct NoHalo;
+
+    impl<const D: usize> Halo<D> for NoHalo {}
+}
+
 mod exec {
     pub trait Executor {}
 
@@ -87,6 +95,7 @@ mod schemes {
             ws: &mut Workspace<'_, D>,
             params: &StepParams<'_, D>,
             exec: &X,
+            halo: &mut dyn crate::halo::Halo<D>,
         ) -> Result<(), StepError>;
     }
 
@@ -95,6 +104,7 @@ mod schemes {
         &mut Workspace<'_, D>,
         &StepParams<'_, D>,
         &X,
+        &mut dyn crate::halo::Halo<D>,
     ) -> Result<(), StepError>;
 
     /// Records `(D, family, E::SET, E's constants)` instead of stepping.
@@ -119,6 +129,7 @@ mod schemes {
                         _: &mut super::Workspace<'_, D>,
                         _: &super::StepParams<'_, D>,
                         _: &X,
+                        _: &mut dyn crate::halo::Halo<D>,
                     ) -> Result<(), super::StepError> {
                         super::record::<D, E>(sys, super::Family::$ty)
                     }
@@ -162,6 +173,7 @@ fn run_2d(step: schemes::StepFn<2, Serial>) -> Vec<Call> {
         &mut Workspace(PhantomData),
         &StepParams(PhantomData),
         &Serial,
+        &mut halo::NoHalo,
     )
     .unwrap();
     calls

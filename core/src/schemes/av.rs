@@ -19,14 +19,34 @@
 
 use super::artificial_stress::pair_acceleration;
 use super::common::{
-    artificial_stress_tensors, cauchy, deviator_rate, equivalent_strain_rate, for_each_pair,
-    geometry_pass, outer, refresh_aux, refresh_eos, return_deviator,
+    artificial_stress_tensors, cauchy, deviator_rate, equivalent_strain_rate, exchange,
+    for_each_pair, geometry_pass, outer, refresh_aux, refresh_eos, return_deviator,
 };
 use super::SchemeFamily;
 use crate::effects::{EffectSet, Effects};
 use crate::exec::Executor;
+use crate::halo::{Exchange, Fields, Halo};
 use crate::math::{Matrix, Real, Sym3, Vector};
 use crate::state::{Aux, AvRates, Family, PairGeom, StepError, StepParams, System, Workspace};
+
+/// The halo exchanges of an `av` step (see [`crate::halo`]). The step is: kick and drift
+/// (local), then the rate evaluation — the pair geometry (x, h), the per-particle aux
+/// (local, from rho), the artificial stress tensors (local), the pair forces (v, rho, h,
+/// c_l, the Cauchy stress: S, p and damage) — then the second kick (local). So the one
+/// exchange comes before each rate evaluation.
+pub const EXCHANGES: [Exchange; 1] = [Exchange {
+    before: "rates",
+    fields: Fields::X
+        .with(Fields::H)
+        .with(Fields::V)
+        .with(Fields::RHO)
+        .with(Fields::P)
+        .with(Fields::CL)
+        .with(Fields::S)
+        .with(Fields::DAMAGE),
+    needs: EffectSet::HYDRO,
+    needs_any: EffectSet::HYDRO,
+}];
 
 /// The artificial-viscosity family.
 #[derive(Clone, Copy, Debug, Default)]
@@ -123,6 +143,7 @@ impl SchemeFamily for Av {
         ws: &mut Workspace<'_, D>,
         params: &StepParams<'_, D>,
         exec: &X,
+        halo: &mut dyn Halo<D>,
     ) -> Result<(), StepError> {
         let dt = params.dt;
         let hdt = 0.5 * dt;
@@ -135,6 +156,7 @@ impl SchemeFamily for Av {
             return Err(StepError::Storage { field: "av" });
         }
         if !ws.primed {
+            exchange::<D, E>(halo, &EXCHANGES[0], sys, ws.grad, ws.grad_stress, ws.corr);
             rates::<D, E, X>(sys, ws, params, exec);
             ws.primed = true;
         }
@@ -164,6 +186,7 @@ impl SchemeFamily for Av {
                 }
             },
         );
+        exchange::<D, E>(halo, &EXCHANGES[0], sys, ws.grad, ws.grad_stress, ws.corr);
         rates::<D, E, X>(sys, ws, params, exec);
         // Second kick with the rates of the predicted state.
         exec.run(

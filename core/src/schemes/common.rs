@@ -3,10 +3,33 @@
 
 use crate::effects::Effects;
 use crate::exec::{Executor, Rows, Split};
+use crate::halo::{Exchange, GhostWorkspace, Halo};
 use crate::material::{strength, Material, Strength};
 use crate::math::{real, Matrix, Real, Sym3, Vector};
 use crate::neighbors::Entry;
-use crate::state::{smoothing_length, Aux, PairGeom, StepParams, System};
+use crate::state::{smoothing_length, Aux, Correction, Gradients, PairGeom, StepParams, System};
+
+/// Calls the caller's halo hook with `x` when the step with effects `E` makes it (see
+/// [`crate::halo`]). Takes the three workspace arrays neighbours read, not the workspace,
+/// so that a step can hold the pair geometry borrowed across the call.
+#[inline(always)]
+pub(crate) fn exchange<const D: usize, E: Effects>(
+    halo: &mut dyn Halo<D>,
+    x: &Exchange,
+    sys: &mut System<'_, D>,
+    grad: &mut [Gradients<D>],
+    grad_stress: &mut [[Vector<D>; 6]],
+    corr: &mut [Correction<D>],
+) {
+    if x.applies(E::SET) {
+        let ws = GhostWorkspace {
+            grad,
+            grad_stress,
+            corr,
+        };
+        halo.refresh(x, sys, ws);
+    }
+}
 
 /// One interacting pair (i, j) as seen from particle i.
 #[derive(Clone, Copy, Debug)]

@@ -21,6 +21,7 @@ pub mod ts;
 
 use crate::effects::{EffectSet, Effects};
 use crate::exec::Executor;
+use crate::halo::Halo;
 use crate::state::{Family, StepError, StepParams, System, Workspace};
 
 /// One scheme family: advances the particles by one step of `params.dt`.
@@ -29,18 +30,27 @@ pub trait SchemeFamily {
     const FAMILY: Family;
     /// The effects this family can run with (others are rejected before stepping).
     const SUPPORTED: EffectSet;
-    /// Advances `sys` by one time step.
+    /// Advances `sys` by one time step, calling `halo` before each pass that reads a
+    /// neighbour field an earlier pass changed (see [`crate::halo`]; serial: [`NoHalo`]).
+    ///
+    /// [`NoHalo`]: crate::halo::NoHalo
     fn step<const D: usize, E: Effects, X: Executor>(
         sys: &mut System<'_, D>,
         ws: &mut Workspace<'_, D>,
         params: &StepParams<'_, D>,
         exec: &X,
+        halo: &mut dyn Halo<D>,
     ) -> Result<(), StepError>;
 }
 
 /// A compiled step function (one specialisation).
-pub type StepFn<const D: usize, X> =
-    fn(&mut System<'_, D>, &mut Workspace<'_, D>, &StepParams<'_, D>, &X) -> Result<(), StepError>;
+pub type StepFn<const D: usize, X> = fn(
+    &mut System<'_, D>,
+    &mut Workspace<'_, D>,
+    &StepParams<'_, D>,
+    &X,
+    &mut dyn Halo<D>,
+) -> Result<(), StepError>;
 
 /// The scheme names of the CLI and scenes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]

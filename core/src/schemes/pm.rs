@@ -26,12 +26,14 @@
 
 use super::artificial_stress::pair_acceleration;
 use super::common::{
-    advance_deviator, artificial_stress_tensors, cauchy, failed, for_each_pair, geometry_pass,
-    min_sym_eigenvalue, outer, refresh_aux, refresh_eos, refresh_pressure, solve_pairs, Pair,
+    advance_deviator, artificial_stress_tensors, cauchy, exchange, failed, for_each_pair,
+    geometry_pass, min_sym_eigenvalue, outer, refresh_aux, refresh_eos, refresh_pressure,
+    solve_pairs, Pair,
 };
 use super::SchemeFamily;
 use crate::effects::{EffectSet, Effects};
 use crate::exec::Executor;
+use crate::halo::{Exchange, Fields, Halo};
 use crate::limiter::{bounded_extrapolation, Limiter};
 use crate::math::{det, inverse, Matrix, Real, Sym3, Vector};
 use crate::riemann::{acoustic_star_vector, elastic_star_vector, two_shock_star, ShockSide};
@@ -39,6 +41,47 @@ use crate::state::{
     Aux, Correction, Family, Gradients, PairGeom, PairSums, PmStar, RiemannSolver, StepError,
     StepParams, System, Workspace,
 };
+
+/// The halo exchanges of a `pm`/`tkc` step, in order (see [`crate::halo`]).
+///
+/// 1. At the start: x, h (pair geometry); v, rho, p, c_l, S, damage (the kernel
+///    correction, the gradients, the Riemann problems; aux and c_t are recomputed locally
+///    from rho).
+/// 2. Before the pair pass, with correction or MUSCL: the corrections and gradients of
+///    both sides of every pair.
+/// 3. With MUSCL, after the kinematic update (rho, S, p, c_l, damage changed) and before
+///    the dynamic pair pass.
+pub const EXCHANGES: [Exchange; 3] = [
+    Exchange {
+        before: "correction+gradients",
+        fields: Fields::X
+            .with(Fields::H)
+            .with(Fields::V)
+            .with(Fields::RHO)
+            .with(Fields::P)
+            .with(Fields::CL)
+            .with(Fields::S)
+            .with(Fields::DAMAGE),
+        needs: EffectSet::HYDRO,
+        needs_any: EffectSet::HYDRO,
+    },
+    Exchange {
+        before: "pair",
+        fields: Fields::CORR.with(Fields::GRAD).with(Fields::GRAD_STRESS),
+        needs: EffectSet::HYDRO,
+        needs_any: EffectSet::CORRECTION.union(EffectSet::MUSCL),
+    },
+    Exchange {
+        before: "dynamic pair",
+        fields: Fields::RHO
+            .with(Fields::S)
+            .with(Fields::P)
+            .with(Fields::CL)
+            .with(Fields::DAMAGE),
+        needs: EffectSet::MUSCL,
+        needs_any: EffectSet::HYDRO,
+    },
+];
 
 /// The contact family (`pm`, `tkc`).
 #[derive(Clone, Copy, Debug, Default)]
@@ -208,6 +251,7 @@ impl SchemeFamily for Pm {
         ws: &mut Workspace<'_, D>,
         params: &StepParams<'_, D>,
         exec: &X,
+        halo: &mut dyn Halo<D>,
     ) -> Result<(), StepError> {
         let n = sys.len();
         if ws.sums.len() != n
@@ -223,6 +267,8 @@ impl SchemeFamily for Pm {
             return Err(StepError::Storage { field: "workspace" });
         }
         let dt = params.dt;
+        let [start, pair, dynamic] = &EXCHANGES;
+        exchange::<D, E>(halo, start, sys, ws.grad, ws.grad_stress, ws.corr);
         geometry_pass::<D, E, X>(sys.x, sys.h, params, ws.geom, ws.fac, exec);
         refresh_aux::<D, true, X>(sys, ws.aux, params, exec);
         {
@@ -244,6 +290,7 @@ impl SchemeFamily for Pm {
                 );
             }
         }
+        exchange::<D, E>(halo, pair, sys, ws.grad, ws.grad_stress, ws.corr);
         if E::MUSCL {
             // With MUSCL the Riemann dissipation nearly vanishes in smooth flow, and the
             // explicit Euler of the seed (forces and strain rates from the same old state)
@@ -262,6 +309,7 @@ impl SchemeFamily for Pm {
                     }
                 },
             );
+            exchange::<D, E>(halo, dynamic, sys, ws.grad, ws.grad_stress, ws.corr);
             refresh_aux::<D, true, X>(sys, ws.aux, params, exec);
             if E::ARTIFICIAL_STRESS {
                 artificial_stress_tensors::<D, E, X>(sys, ws.art, params, exec);

@@ -205,7 +205,14 @@ fn run<F: SchemeFamily, E: Effects>(t_end: Real) -> (Real, Real, Real, Real, Fly
             pm_star: &mut pm_star[..pairs],
             primed,
         };
-        F::step::<1, E, Serial>(&mut sys, &mut ws, &params, &Serial).unwrap();
+        F::step::<1, E, Serial>(
+            &mut sys,
+            &mut ws,
+            &params,
+            &Serial,
+            &mut crate::halo::NoHalo,
+        )
+        .unwrap();
         primed = ws.primed;
         check_finite(&sys).unwrap();
         t += dt;

@@ -53,13 +53,14 @@
 
 use super::artificial_stress::pair_acceleration;
 use super::common::{
-    advance_deviator, artificial_stress_tensors, failed, for_each_pair, geometry_pass,
+    advance_deviator, artificial_stress_tensors, exchange, failed, for_each_pair, geometry_pass,
     min_sym_eigenvalue, outer, pair_pressure, refresh_aux, refresh_eos, refresh_pressure,
     solve_pairs,
 };
 use super::SchemeFamily;
 use crate::effects::{EffectSet, Effects};
 use crate::exec::{Executor, Optional};
+use crate::halo::{Exchange, Fields, Halo};
 use crate::limiter::bounded_extrapolation;
 use crate::math::{det, inverse, real, Matrix, Real, Sym3, Vector};
 use crate::riemann::{pressure_star, two_shock_star, PressureSide, ShockSide};
@@ -67,6 +68,54 @@ use crate::state::{
     Aux, Family, Gradients, MusclTime, PairGeom, PairSums, RiemannSolver, StepError, StepParams,
     System, TsStar, Workspace,
 };
+
+/// The halo exchanges of a `ts` step, in order (see [`crate::halo`]).
+///
+/// 1. Before the front gradients (and the pair geometry): x, h; v, rho, p, damage (the
+///    gradients and the free-surface test; aux is recomputed locally from rho) and c (the
+///    continuity pass's Riemann problems).
+/// 2. Before the continuity pass, with MUSCL: the gradients (its reconstruction reads the
+///    slopes of both sides of every pair).
+/// 3. After the continuity update (rho, S, p, c, damage changed): the deviatoric pass reads
+///    S, p, damage and aux (from rho); without it the hydro pass is next and reads rho, p,
+///    c, damage.
+/// 4. Before the hydro pass, after the deviatoric update (v, e and so p, c changed).
+pub const EXCHANGES: [Exchange; 4] = [
+    Exchange {
+        before: "front gradients",
+        fields: Fields::X
+            .with(Fields::H)
+            .with(Fields::V)
+            .with(Fields::RHO)
+            .with(Fields::P)
+            .with(Fields::C)
+            .with(Fields::DAMAGE),
+        needs: EffectSet::HYDRO,
+        needs_any: EffectSet::HYDRO,
+    },
+    Exchange {
+        before: "continuity",
+        fields: Fields::GRAD,
+        needs: EffectSet::MUSCL,
+        needs_any: EffectSet::HYDRO,
+    },
+    Exchange {
+        before: "deviatoric",
+        fields: Fields::RHO
+            .with(Fields::S)
+            .with(Fields::P)
+            .with(Fields::C)
+            .with(Fields::DAMAGE),
+        needs: EffectSet::HYDRO,
+        needs_any: EffectSet::HYDRO,
+    },
+    Exchange {
+        before: "hydro",
+        fields: Fields::V.with(Fields::P).with(Fields::C),
+        needs: EffectSet::HYDRO,
+        needs_any: EffectSet::STRENGTH.union(EffectSet::ARTIFICIAL_STRESS),
+    },
+];
 
 /// The time-split family (`ts1`, `ts2`).
 #[derive(Clone, Copy, Debug, Default)]
@@ -470,6 +519,7 @@ impl SchemeFamily for Ts {
         ws: &mut Workspace<'_, D>,
         params: &StepParams<'_, D>,
         exec: &X,
+        halo: &mut dyn Halo<D>,
     ) -> Result<(), StepError> {
         let n = sys.len();
         if ws.sums.len() != n
@@ -490,10 +540,13 @@ impl SchemeFamily for Ts {
         //    then density and deviator) is forward Euler, whose amplification factor
         //    |1 + i w dt| > 1 lets waves grow wherever the Riemann dissipation vanishes:
         //    always in the deviatoric step, and in smooth flow with MUSCL.
+        let [front, continuity, deviatoric, hydro] = &EXCHANGES;
+        exchange::<D, E>(halo, front, sys, ws.grad, ws.grad_stress, ws.corr);
         geometry_pass::<D, E, X>(sys.x, sys.h, params, ws.geom, ws.fac, exec);
         let (geom, fac): (&[PairGeom<D>], &[Real]) = (ws.geom, ws.fac);
         refresh_aux::<D, false, X>(sys, ws.aux, params, exec);
         front_gradient_pass::<D, E, X>(sys, geom, ws.aux, ws.sums, ws.grad, params, exec);
+        exchange::<D, E>(halo, continuity, sys, ws.grad, ws.grad_stress, ws.corr);
         continuity_pass::<D, E, X>(
             sys, ws.grad, geom, ws.aux, ws.ts_star, ws.sums, params, exec,
         );
@@ -510,6 +563,7 @@ impl SchemeFamily for Ts {
                 }
             },
         );
+        exchange::<D, E>(halo, deviatoric, sys, ws.grad, ws.grad_stress, ws.corr);
         // 2. Deviatoric step (with strength or artificial stress): no dissipation.
         refresh_aux::<D, false, X>(sys, ws.aux, params, exec);
         if E::ARTIFICIAL_STRESS {
@@ -533,6 +587,7 @@ impl SchemeFamily for Ts {
             );
         }
         // 3. Hydrodynamic step with the new pressure (reconstruction slopes from step 1).
+        exchange::<D, E>(halo, hydro, sys, ws.grad, ws.grad_stress, ws.corr);
         hydro_pass::<D, E, X>(
             sys, ws.grad, geom, ws.aux, ws.ts_star, ws.sums, params, exec,
         );

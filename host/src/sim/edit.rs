@@ -133,6 +133,7 @@ impl<const D: usize> Sim<D> {
 
     /// Empties the neighbour lists (for the current particle count) and marks them stale.
     fn resize_lists(&mut self) {
+        self.owned = self.len();
         self.lists = crate::neighbors::Lists::empty(self.len());
         self.geom.clear();
         self.fac.clear();

@@ -18,6 +18,8 @@ use std::any::Any;
 
 pub use crate::sim_error::SimError;
 
+#[cfg(feature = "mpi")]
+mod dist;
 mod edit;
 mod state_io;
 pub use edit::HeldState;
@@ -219,6 +221,12 @@ pub struct Sim<const D: usize> {
     pub pair_interactions: u64,
     /// Neighbour-list rebuilds so far.
     pub rebuilds: u64,
+    /// The particles this process owns: the first `owned` of the arrays. The rest are
+    /// ghost copies of other ranks' particles (feature `mpi`; none in one process).
+    pub owned: usize,
+    /// The domain decomposition ([`Sim::distribute`]); `None` in one process.
+    #[cfg(feature = "mpi")]
+    pub dist: Option<Box<crate::dist::Dist<D>>>,
 }
 
 fn vec_of<const D: usize>(a: &[f64; 3]) -> Vector<D> {
@@ -370,6 +378,9 @@ impl<const D: usize> Sim<D> {
             step: 0,
             pair_interactions: 0,
             rebuilds: 0,
+            owned: 0,
+            #[cfg(feature = "mpi")]
+            dist: None,
         };
         // the per-particle state, effect storage and workspace: one code path with the
         // particles a moving window feeds in later
@@ -424,6 +435,12 @@ impl<const D: usize> Sim<D> {
     /// Renumbers the particles in Morton order (see [`morton_order`]), then builds the
     /// neighbour lists at the current positions.
     fn rebuild(&mut self) -> Result<(), SimError> {
+        #[cfg(feature = "mpi")]
+        if self.dist.is_some() {
+            self.rebuild_distributed()?;
+            self.rebuilds += 1;
+            return Ok(());
+        }
         if self.reorder {
             let hmax = self.h.iter().cloned().fold(0.0, f64::max);
             let order = morton_order(&self.x, &self.ids, hmax, &self.periodic);
@@ -523,10 +540,15 @@ impl<const D: usize> Sim<D> {
     /// True when some pair may have entered the kernel support since the last build.
     fn lists_stale(&self) -> bool {
         if self.build_x.len() != self.x.len() {
+            #[cfg(feature = "mpi")]
+            if self.dist.is_some() {
+                return crate::dist::any(true);
+            }
             return true;
         }
-        // max and min are exact, so the parallel reduction is the serial one
-        let (dmax2, growth, hmin) = (0..self.x.len())
+        // max and min are exact, so the parallel (and the distributed) reduction is the
+        // serial one
+        let (dmax2, growth, hmin) = (0..self.owned)
             .into_par_iter()
             .with_min_len(1024)
             .map(|i| {
@@ -541,6 +563,19 @@ impl<const D: usize> Sim<D> {
                 || (0.0f64, 0.0f64, f64::INFINITY),
                 |a, b| (a.0.max(b.0), a.1.max(b.1), a.2.min(b.2)),
             );
+        #[cfg(feature = "mpi")]
+        let (dmax2, growth, hmin) = if self.dist.is_some() {
+            if crate::dist::any(false) {
+                return true;
+            }
+            (
+                crate::dist::all_max(dmax2),
+                crate::dist::all_max(growth),
+                crate::dist::all_min(hmin),
+            )
+        } else {
+            (dmax2, growth, hmin)
+        };
         2.0 * dmax2.sqrt() >= self.kernel.support() * hmin * (self.skin - growth)
     }
 
@@ -569,7 +604,7 @@ impl<const D: usize> Sim<D> {
 
     /// Largest stable time step for the CFL number.
     pub fn stable_dt(&mut self, cfl: Real) -> Real {
-        let dt = (0..self.len())
+        let dt = (0..self.owned)
             .into_par_iter()
             .with_min_len(1024)
             .map(|i| {
@@ -581,6 +616,12 @@ impl<const D: usize> Sim<D> {
                 }
             })
             .reduce(|| f64::INFINITY, f64::min);
+        #[cfg(feature = "mpi")]
+        let dt = if self.dist.is_some() {
+            crate::dist::all_min(dt)
+        } else {
+            dt
+        };
         cfl * dt
     }
 
@@ -592,7 +633,7 @@ impl<const D: usize> Sim<D> {
         if dt.is_finite() && dt > 0.0 {
             return Ok(dt);
         }
-        let particle = (0..self.len())
+        let particle = (0..self.owned)
             .find(|&i| {
                 let ok = (self.cl[i] + self.v[i].norm()).is_finite()
                     && self.h[i] > 0.0
@@ -618,7 +659,7 @@ impl<const D: usize> Sim<D> {
         };
         let limit = self.checked_dt(1.0)?;
         if dt > limit {
-            let particle = (0..self.len())
+            let particle = (0..self.owned)
                 .filter(|&i| self.h[i] / (self.cl[i] + self.v[i].norm()) <= limit)
                 .map(|i| self.ids[i])
                 .min()
@@ -639,7 +680,8 @@ impl<const D: usize> Sim<D> {
         let t0 = self.t;
         self.maintain()?;
         let nbrs = self.lists.view();
-        let pairs = nbrs.pairs() as u64;
+        // the pairs of the owned particles' rows (all rows in one process)
+        let pairs = nbrs.start.get(self.owned).map_or(0, |&s| s as u64);
         let params = StepParams {
             dt,
             materials: &self.materials,
@@ -684,8 +726,25 @@ impl<const D: usize> Sim<D> {
         // driven particles move at exactly their prescribed velocity: x0 + v0 dt from
         // where the step started, whatever the step computed for them
         let x_start: Vec<Vector<D>> = self.driven.iter().map(|&(i, _)| sys.x[i]).collect();
-        let r =
-            (self.step_fn)(&mut sys, &mut ws, &params, &self.exec).and_then(|_| check_finite(&sys));
+        #[cfg(feature = "mpi")]
+        let halo: &mut dyn gsph_core::halo::Halo<D> = match self.dist.as_deref_mut() {
+            Some(d) => d,
+            None => &mut gsph_core::halo::NoHalo,
+        };
+        #[cfg(not(feature = "mpi"))]
+        let halo = &mut gsph_core::halo::NoHalo;
+        // ghosts (after the owned particles) hold values no one reads until the next
+        // exchange refreshes them: only owned particles are checked
+        let owned = self.owned;
+        let r = (self.step_fn)(&mut sys, &mut ws, &params, &self.exec, halo)
+            .and_then(|_| (0..owned).try_for_each(|i| check_finite_one(&sys, i)));
+        #[cfg(feature = "mpi")]
+        if self.dist.is_some() {
+            let msg = r
+                .err()
+                .map(|c| fail(cause_by_id(c, &self.ids, &sys)).to_string());
+            crate::dist::agree(msg.map_or(Ok(()), Err)).map_err(SimError::Distributed)?;
+        }
         if let Err(cause) = r {
             return Err(fail(cause_by_id(cause, &self.ids, &sys)));
         }
@@ -710,30 +769,55 @@ impl<const D: usize> Sim<D> {
         self.by_id().map(|i| self.corr[i].boundary).collect()
     }
 
-    /// Particle indices in id order.
+    /// Owned particle indices in id order.
     pub fn by_id(&self) -> impl Iterator<Item = usize> {
-        let mut order: Vec<usize> = (0..self.len()).collect();
+        let mut order: Vec<usize> = (0..self.owned).collect();
         order.sort_unstable_by_key(|&i| self.ids[i]);
         order.into_iter()
     }
 
-    /// Total energy (kinetic + internal), J.
+    /// The number of particles of the run (on all ranks).
+    pub fn global_len(&self) -> usize {
+        #[cfg(feature = "mpi")]
+        if self.dist.is_some() {
+            return crate::dist::all_sum_u64(self.owned as u64) as usize;
+        }
+        self.owned
+    }
+
+    /// `(id, m, e, v)` of every particle of the run in id order: the order of every
+    /// diagnostic sum, so that they depend neither on memory order nor on the rank count.
+    fn motion_by_id(&self) -> Vec<f64> {
+        #[cfg(feature = "mpi")]
+        if self.dist.is_some() {
+            return self.gathered_motion();
+        }
+        let mut out = Vec::with_capacity(self.owned * (3 + D));
+        for i in self.by_id() {
+            out.extend_from_slice(&[self.ids[i] as f64, self.m[i], self.e[i]]);
+            out.extend_from_slice(self.v[i].as_slice());
+        }
+        out
+    }
+
+    /// Total energy (kinetic, internal), J, summed in id order.
     pub fn energy(&self) -> (f64, f64) {
         let mut kin = 0.0;
         let mut int = 0.0;
-        for i in 0..self.len() {
-            kin += 0.5 * self.m[i] * self.v[i].norm_squared();
-            int += self.m[i] * self.e[i];
+        for r in self.motion_by_id().chunks_exact(3 + D) {
+            let v = Vector::<D>::from_column_slice(&r[3..]);
+            kin += 0.5 * r[1] * v.norm_squared();
+            int += r[1] * r[2];
         }
         (kin, int)
     }
 
-    /// Total momentum, padded to 3 components.
+    /// Total momentum, padded to 3 components, summed in id order.
     pub fn momentum(&self) -> [f64; 3] {
         let mut p = [0.0; 3];
-        for i in 0..self.len() {
+        for r in self.motion_by_id().chunks_exact(3 + D) {
             for (a, pa) in p.iter_mut().enumerate().take(D) {
-                *pa += self.m[i] * self.v[i][a];
+                *pa += r[1] * r[3 + a];
             }
         }
         p
@@ -742,7 +826,11 @@ impl<const D: usize> Sim<D> {
     /// The particle table (final.csv columns).
     /// Rows in id order, whatever the order of the particles in memory.
     pub fn table(&self) -> ParticleTable {
-        let mut t = ParticleTable::with_capacity(self.len());
+        #[cfg(feature = "mpi")]
+        if let Some(all) = self.gathered() {
+            return all.table();
+        }
+        let mut t = ParticleTable::with_capacity(self.owned);
         for i in self.by_id() {
             let g = |v: &Vector<D>, a: usize| if a < D { v[a] } else { 0.0 };
             let s = if self.s.is_empty() {

@@ -1767,12 +1767,13 @@ pub fn step_1d_av_hydro<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         1,
         FxHydro,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`av`](crate::schemes::av::Av) family with effects `strength` ([`FxStrength`]).
 ///
@@ -1784,12 +1785,13 @@ pub fn step_1d_av_strength<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrength,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity` ([`FxStrengthPlasticity`]).
 ///
@@ -1801,12 +1803,13 @@ pub fn step_1d_av_strength_plasticity<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticity,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + damage` ([`FxStrengthPlasticityDamage`]).
 ///
@@ -1825,12 +1828,13 @@ pub fn step_1d_av_strength_plasticity_damage<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamage,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + heat` ([`FxStrengthPlasticityHeat`]).
 ///
@@ -1849,12 +1853,13 @@ pub fn step_1d_av_strength_plasticity_heat<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityHeat,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + damage + heat` ([`FxStrengthPlasticityDamageHeat`]).
 ///
@@ -1874,12 +1879,13 @@ pub fn step_1d_av_strength_plasticity_damage_heat<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageHeat,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`av`](crate::schemes::av::Av) family with effects `periodic` ([`FxPeriodic`]).
 ///
@@ -1891,12 +1897,13 @@ pub fn step_1d_av_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         1,
         FxPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`av`](crate::schemes::av::Av) family with effects `strength + periodic` ([`FxStrengthPeriodic`]).
 ///
@@ -1915,12 +1922,13 @@ pub fn step_1d_av_strength_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + periodic` ([`FxStrengthPlasticityPeriodic`]).
 ///
@@ -1939,12 +1947,13 @@ pub fn step_1d_av_strength_plasticity_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + damage + periodic` ([`FxStrengthPlasticityDamagePeriodic`]).
 ///
@@ -1964,12 +1973,13 @@ pub fn step_1d_av_strength_plasticity_damage_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamagePeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + heat + periodic` ([`FxStrengthPlasticityHeatPeriodic`]).
 ///
@@ -1989,12 +1999,13 @@ pub fn step_1d_av_strength_plasticity_heat_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityHeatPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + damage + heat + periodic` ([`FxStrengthPlasticityDamageHeatPeriodic`]).
 ///
@@ -2015,12 +2026,13 @@ pub fn step_1d_av_strength_plasticity_damage_heat_periodic<X: crate::exec::Execu
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageHeatPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`av`](crate::schemes::av::Av) family with effects `artificial_stress` ([`FxArtificialStress`]).
 ///
@@ -2034,12 +2046,13 @@ pub fn step_1d_av_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         1,
         FxArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`av`](crate::schemes::av::Av) family with effects `strength + artificial_stress` ([`FxStrengthArtificialStress`]).
 ///
@@ -2058,12 +2071,13 @@ pub fn step_1d_av_strength_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + artificial_stress` ([`FxStrengthPlasticityArtificialStress`]).
 ///
@@ -2082,12 +2096,13 @@ pub fn step_1d_av_strength_plasticity_artificial_stress<X: crate::exec::Executor
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + damage + artificial_stress` ([`FxStrengthPlasticityDamageArtificialStress`]).
 ///
@@ -2107,12 +2122,13 @@ pub fn step_1d_av_strength_plasticity_damage_artificial_stress<X: crate::exec::E
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + heat + artificial_stress` ([`FxStrengthPlasticityHeatArtificialStress`]).
 ///
@@ -2132,12 +2148,13 @@ pub fn step_1d_av_strength_plasticity_heat_artificial_stress<X: crate::exec::Exe
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityHeatArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + damage + heat + artificial_stress` ([`FxStrengthPlasticityDamageHeatArtificialStress`]).
 ///
@@ -2160,12 +2177,13 @@ pub fn step_1d_av_strength_plasticity_damage_heat_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageHeatArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`av`](crate::schemes::av::Av) family with effects `periodic + artificial_stress` ([`FxPeriodicArtificialStress`]).
 ///
@@ -2184,12 +2202,13 @@ pub fn step_1d_av_periodic_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         1,
         FxPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`av`](crate::schemes::av::Av) family with effects `strength + periodic + artificial_stress` ([`FxStrengthPeriodicArtificialStress`]).
 ///
@@ -2209,12 +2228,13 @@ pub fn step_1d_av_strength_periodic_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + periodic + artificial_stress` ([`FxStrengthPlasticityPeriodicArtificialStress`]).
 ///
@@ -2236,12 +2256,13 @@ pub fn step_1d_av_strength_plasticity_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + damage + periodic + artificial_stress` ([`FxStrengthPlasticityDamagePeriodicArtificialStress`]).
 ///
@@ -2264,12 +2285,13 @@ pub fn step_1d_av_strength_plasticity_damage_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamagePeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + heat + periodic + artificial_stress` ([`FxStrengthPlasticityHeatPeriodicArtificialStress`]).
 ///
@@ -2292,12 +2314,13 @@ pub fn step_1d_av_strength_plasticity_heat_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityHeatPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + damage + heat + periodic + artificial_stress` ([`FxStrengthPlasticityDamageHeatPeriodicArtificialStress`]).
 ///
@@ -2321,12 +2344,13 @@ pub fn step_1d_av_strength_plasticity_damage_heat_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageHeatPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `hydro` ([`FxHydro`]).
 ///
@@ -2338,12 +2362,13 @@ pub fn step_1d_pm_hydro<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxHydro,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength` ([`FxStrength`]).
 ///
@@ -2355,12 +2380,13 @@ pub fn step_1d_pm_strength<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrength,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity` ([`FxStrengthPlasticity`]).
 ///
@@ -2372,12 +2398,13 @@ pub fn step_1d_pm_strength_plasticity<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticity,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage` ([`FxStrengthPlasticityDamage`]).
 ///
@@ -2396,12 +2423,13 @@ pub fn step_1d_pm_strength_plasticity_damage<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamage,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat` ([`FxStrengthPlasticityHeat`]).
 ///
@@ -2420,12 +2448,13 @@ pub fn step_1d_pm_strength_plasticity_heat<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityHeat,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat` ([`FxStrengthPlasticityDamageHeat`]).
 ///
@@ -2445,12 +2474,13 @@ pub fn step_1d_pm_strength_plasticity_damage_heat<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageHeat,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `correction` ([`FxCorrection`]).
 ///
@@ -2462,12 +2492,13 @@ pub fn step_1d_pm_correction<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxCorrection,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + correction` ([`FxStrengthCorrection`]).
 ///
@@ -2486,12 +2517,13 @@ pub fn step_1d_pm_strength_correction<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthCorrection,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + correction` ([`FxStrengthPlasticityCorrection`]).
 ///
@@ -2510,12 +2542,13 @@ pub fn step_1d_pm_strength_plasticity_correction<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityCorrection,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + correction` ([`FxStrengthPlasticityDamageCorrection`]).
 ///
@@ -2535,12 +2568,13 @@ pub fn step_1d_pm_strength_plasticity_damage_correction<X: crate::exec::Executor
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageCorrection,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + correction` ([`FxStrengthPlasticityHeatCorrection`]).
 ///
@@ -2560,12 +2594,13 @@ pub fn step_1d_pm_strength_plasticity_heat_correction<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityHeatCorrection,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + correction` ([`FxStrengthPlasticityDamageHeatCorrection`]).
 ///
@@ -2586,12 +2621,13 @@ pub fn step_1d_pm_strength_plasticity_damage_heat_correction<X: crate::exec::Exe
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageHeatCorrection,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `muscl` ([`FxMuscl`]).
 ///
@@ -2603,12 +2639,13 @@ pub fn step_1d_pm_muscl<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + muscl` ([`FxStrengthMuscl`]).
 ///
@@ -2627,12 +2664,13 @@ pub fn step_1d_pm_strength_muscl<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + muscl` ([`FxStrengthPlasticityMuscl`]).
 ///
@@ -2651,12 +2689,13 @@ pub fn step_1d_pm_strength_plasticity_muscl<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + muscl` ([`FxStrengthPlasticityDamageMuscl`]).
 ///
@@ -2676,12 +2715,13 @@ pub fn step_1d_pm_strength_plasticity_damage_muscl<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + muscl` ([`FxStrengthPlasticityHeatMuscl`]).
 ///
@@ -2701,12 +2741,13 @@ pub fn step_1d_pm_strength_plasticity_heat_muscl<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityHeatMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + muscl` ([`FxStrengthPlasticityDamageHeatMuscl`]).
 ///
@@ -2727,12 +2768,13 @@ pub fn step_1d_pm_strength_plasticity_damage_heat_muscl<X: crate::exec::Executor
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageHeatMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `correction + muscl` ([`FxCorrectionMuscl`]).
 ///
@@ -2751,12 +2793,13 @@ pub fn step_1d_pm_correction_muscl<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxCorrectionMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + correction + muscl` ([`FxStrengthCorrectionMuscl`]).
 ///
@@ -2776,12 +2819,13 @@ pub fn step_1d_pm_strength_correction_muscl<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthCorrectionMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + correction + muscl` ([`FxStrengthPlasticityCorrectionMuscl`]).
 ///
@@ -2801,12 +2845,13 @@ pub fn step_1d_pm_strength_plasticity_correction_muscl<X: crate::exec::Executor>
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityCorrectionMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + correction + muscl` ([`FxStrengthPlasticityDamageCorrectionMuscl`]).
 ///
@@ -2827,12 +2872,13 @@ pub fn step_1d_pm_strength_plasticity_damage_correction_muscl<X: crate::exec::Ex
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageCorrectionMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + correction + muscl` ([`FxStrengthPlasticityHeatCorrectionMuscl`]).
 ///
@@ -2853,12 +2899,13 @@ pub fn step_1d_pm_strength_plasticity_heat_correction_muscl<X: crate::exec::Exec
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityHeatCorrectionMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + correction + muscl` ([`FxStrengthPlasticityDamageHeatCorrectionMuscl`]).
 ///
@@ -2882,12 +2929,13 @@ pub fn step_1d_pm_strength_plasticity_damage_heat_correction_muscl<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageHeatCorrectionMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `periodic` ([`FxPeriodic`]).
 ///
@@ -2899,12 +2947,13 @@ pub fn step_1d_pm_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + periodic` ([`FxStrengthPeriodic`]).
 ///
@@ -2923,12 +2972,13 @@ pub fn step_1d_pm_strength_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + periodic` ([`FxStrengthPlasticityPeriodic`]).
 ///
@@ -2947,12 +2997,13 @@ pub fn step_1d_pm_strength_plasticity_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + periodic` ([`FxStrengthPlasticityDamagePeriodic`]).
 ///
@@ -2972,12 +3023,13 @@ pub fn step_1d_pm_strength_plasticity_damage_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamagePeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + periodic` ([`FxStrengthPlasticityHeatPeriodic`]).
 ///
@@ -2997,12 +3049,13 @@ pub fn step_1d_pm_strength_plasticity_heat_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityHeatPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + periodic` ([`FxStrengthPlasticityDamageHeatPeriodic`]).
 ///
@@ -3023,12 +3076,13 @@ pub fn step_1d_pm_strength_plasticity_damage_heat_periodic<X: crate::exec::Execu
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageHeatPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `correction + periodic` ([`FxCorrectionPeriodic`]).
 ///
@@ -3047,12 +3101,13 @@ pub fn step_1d_pm_correction_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxCorrectionPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + correction + periodic` ([`FxStrengthCorrectionPeriodic`]).
 ///
@@ -3072,12 +3127,13 @@ pub fn step_1d_pm_strength_correction_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthCorrectionPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + correction + periodic` ([`FxStrengthPlasticityCorrectionPeriodic`]).
 ///
@@ -3097,12 +3153,13 @@ pub fn step_1d_pm_strength_plasticity_correction_periodic<X: crate::exec::Execut
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityCorrectionPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + correction + periodic` ([`FxStrengthPlasticityDamageCorrectionPeriodic`]).
 ///
@@ -3125,12 +3182,13 @@ pub fn step_1d_pm_strength_plasticity_damage_correction_periodic<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageCorrectionPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + correction + periodic` ([`FxStrengthPlasticityHeatCorrectionPeriodic`]).
 ///
@@ -3151,12 +3209,13 @@ pub fn step_1d_pm_strength_plasticity_heat_correction_periodic<X: crate::exec::E
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityHeatCorrectionPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + correction + periodic` ([`FxStrengthPlasticityDamageHeatCorrectionPeriodic`]).
 ///
@@ -3180,12 +3239,13 @@ pub fn step_1d_pm_strength_plasticity_damage_heat_correction_periodic<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageHeatCorrectionPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `muscl + periodic` ([`FxMusclPeriodic`]).
 ///
@@ -3204,12 +3264,13 @@ pub fn step_1d_pm_muscl_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + muscl + periodic` ([`FxStrengthMusclPeriodic`]).
 ///
@@ -3229,12 +3290,13 @@ pub fn step_1d_pm_strength_muscl_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + muscl + periodic` ([`FxStrengthPlasticityMusclPeriodic`]).
 ///
@@ -3254,12 +3316,13 @@ pub fn step_1d_pm_strength_plasticity_muscl_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + muscl + periodic` ([`FxStrengthPlasticityDamageMusclPeriodic`]).
 ///
@@ -3280,12 +3343,13 @@ pub fn step_1d_pm_strength_plasticity_damage_muscl_periodic<X: crate::exec::Exec
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + muscl + periodic` ([`FxStrengthPlasticityHeatMusclPeriodic`]).
 ///
@@ -3306,12 +3370,13 @@ pub fn step_1d_pm_strength_plasticity_heat_muscl_periodic<X: crate::exec::Execut
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityHeatMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + muscl + periodic` ([`FxStrengthPlasticityDamageHeatMusclPeriodic`]).
 ///
@@ -3335,12 +3400,13 @@ pub fn step_1d_pm_strength_plasticity_damage_heat_muscl_periodic<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageHeatMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `correction + muscl + periodic` ([`FxCorrectionMusclPeriodic`]).
 ///
@@ -3360,12 +3426,13 @@ pub fn step_1d_pm_correction_muscl_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxCorrectionMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + correction + muscl + periodic` ([`FxStrengthCorrectionMusclPeriodic`]).
 ///
@@ -3386,12 +3453,13 @@ pub fn step_1d_pm_strength_correction_muscl_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthCorrectionMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + correction + muscl + periodic` ([`FxStrengthPlasticityCorrectionMusclPeriodic`]).
 ///
@@ -3414,12 +3482,13 @@ pub fn step_1d_pm_strength_plasticity_correction_muscl_periodic<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityCorrectionMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + correction + muscl + periodic` ([`FxStrengthPlasticityDamageCorrectionMusclPeriodic`]).
 ///
@@ -3443,12 +3512,13 @@ pub fn step_1d_pm_strength_plasticity_damage_correction_muscl_periodic<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageCorrectionMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + correction + muscl + periodic` ([`FxStrengthPlasticityHeatCorrectionMusclPeriodic`]).
 ///
@@ -3472,12 +3542,13 @@ pub fn step_1d_pm_strength_plasticity_heat_correction_muscl_periodic<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityHeatCorrectionMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + correction + muscl + periodic` ([`FxStrengthPlasticityDamageHeatCorrectionMusclPeriodic`]).
 ///
@@ -3502,12 +3573,13 @@ pub fn step_1d_pm_strength_plasticity_damage_heat_correction_muscl_periodic<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageHeatCorrectionMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `artificial_stress` ([`FxArtificialStress`]).
 ///
@@ -3521,12 +3593,13 @@ pub fn step_1d_pm_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + artificial_stress` ([`FxStrengthArtificialStress`]).
 ///
@@ -3545,12 +3618,13 @@ pub fn step_1d_pm_strength_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + artificial_stress` ([`FxStrengthPlasticityArtificialStress`]).
 ///
@@ -3569,12 +3643,13 @@ pub fn step_1d_pm_strength_plasticity_artificial_stress<X: crate::exec::Executor
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + artificial_stress` ([`FxStrengthPlasticityDamageArtificialStress`]).
 ///
@@ -3594,12 +3669,13 @@ pub fn step_1d_pm_strength_plasticity_damage_artificial_stress<X: crate::exec::E
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + artificial_stress` ([`FxStrengthPlasticityHeatArtificialStress`]).
 ///
@@ -3619,12 +3695,13 @@ pub fn step_1d_pm_strength_plasticity_heat_artificial_stress<X: crate::exec::Exe
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityHeatArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + artificial_stress` ([`FxStrengthPlasticityDamageHeatArtificialStress`]).
 ///
@@ -3647,12 +3724,13 @@ pub fn step_1d_pm_strength_plasticity_damage_heat_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageHeatArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `correction + artificial_stress` ([`FxCorrectionArtificialStress`]).
 ///
@@ -3671,12 +3749,13 @@ pub fn step_1d_pm_correction_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxCorrectionArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + correction + artificial_stress` ([`FxStrengthCorrectionArtificialStress`]).
 ///
@@ -3696,12 +3775,13 @@ pub fn step_1d_pm_strength_correction_artificial_stress<X: crate::exec::Executor
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthCorrectionArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + correction + artificial_stress` ([`FxStrengthPlasticityCorrectionArtificialStress`]).
 ///
@@ -3723,12 +3803,13 @@ pub fn step_1d_pm_strength_plasticity_correction_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityCorrectionArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + correction + artificial_stress` ([`FxStrengthPlasticityDamageCorrectionArtificialStress`]).
 ///
@@ -3751,12 +3832,13 @@ pub fn step_1d_pm_strength_plasticity_damage_correction_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageCorrectionArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + correction + artificial_stress` ([`FxStrengthPlasticityHeatCorrectionArtificialStress`]).
 ///
@@ -3779,12 +3861,13 @@ pub fn step_1d_pm_strength_plasticity_heat_correction_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityHeatCorrectionArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + correction + artificial_stress` ([`FxStrengthPlasticityDamageHeatCorrectionArtificialStress`]).
 ///
@@ -3808,12 +3891,13 @@ pub fn step_1d_pm_strength_plasticity_damage_heat_correction_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageHeatCorrectionArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `muscl + artificial_stress` ([`FxMusclArtificialStress`]).
 ///
@@ -3832,12 +3916,13 @@ pub fn step_1d_pm_muscl_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + muscl + artificial_stress` ([`FxStrengthMusclArtificialStress`]).
 ///
@@ -3857,12 +3942,13 @@ pub fn step_1d_pm_strength_muscl_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + muscl + artificial_stress` ([`FxStrengthPlasticityMusclArtificialStress`]).
 ///
@@ -3882,12 +3968,13 @@ pub fn step_1d_pm_strength_plasticity_muscl_artificial_stress<X: crate::exec::Ex
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + muscl + artificial_stress` ([`FxStrengthPlasticityDamageMusclArtificialStress`]).
 ///
@@ -3910,12 +3997,13 @@ pub fn step_1d_pm_strength_plasticity_damage_muscl_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + muscl + artificial_stress` ([`FxStrengthPlasticityHeatMusclArtificialStress`]).
 ///
@@ -3938,12 +4026,13 @@ pub fn step_1d_pm_strength_plasticity_heat_muscl_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityHeatMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + muscl + artificial_stress` ([`FxStrengthPlasticityDamageHeatMusclArtificialStress`]).
 ///
@@ -3967,12 +4056,13 @@ pub fn step_1d_pm_strength_plasticity_damage_heat_muscl_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageHeatMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `correction + muscl + artificial_stress` ([`FxCorrectionMusclArtificialStress`]).
 ///
@@ -3992,12 +4082,13 @@ pub fn step_1d_pm_correction_muscl_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxCorrectionMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + correction + muscl + artificial_stress` ([`FxStrengthCorrectionMusclArtificialStress`]).
 ///
@@ -4018,12 +4109,13 @@ pub fn step_1d_pm_strength_correction_muscl_artificial_stress<X: crate::exec::Ex
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthCorrectionMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + correction + muscl + artificial_stress` ([`FxStrengthPlasticityCorrectionMusclArtificialStress`]).
 ///
@@ -4046,12 +4138,13 @@ pub fn step_1d_pm_strength_plasticity_correction_muscl_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityCorrectionMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + correction + muscl + artificial_stress` ([`FxStrengthPlasticityDamageCorrectionMusclArtificialStress`]).
 ///
@@ -4075,12 +4168,13 @@ pub fn step_1d_pm_strength_plasticity_damage_correction_muscl_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageCorrectionMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + correction + muscl + artificial_stress` ([`FxStrengthPlasticityHeatCorrectionMusclArtificialStress`]).
 ///
@@ -4104,12 +4198,13 @@ pub fn step_1d_pm_strength_plasticity_heat_correction_muscl_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityHeatCorrectionMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + correction + muscl + artificial_stress` ([`FxStrengthPlasticityDamageHeatCorrectionMusclArtificialStress`]).
 ///
@@ -4134,12 +4229,13 @@ pub fn step_1d_pm_strength_plasticity_damage_heat_correction_muscl_artificial_st
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageHeatCorrectionMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `periodic + artificial_stress` ([`FxPeriodicArtificialStress`]).
 ///
@@ -4158,12 +4254,13 @@ pub fn step_1d_pm_periodic_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + periodic + artificial_stress` ([`FxStrengthPeriodicArtificialStress`]).
 ///
@@ -4183,12 +4280,13 @@ pub fn step_1d_pm_strength_periodic_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + periodic + artificial_stress` ([`FxStrengthPlasticityPeriodicArtificialStress`]).
 ///
@@ -4210,12 +4308,13 @@ pub fn step_1d_pm_strength_plasticity_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + periodic + artificial_stress` ([`FxStrengthPlasticityDamagePeriodicArtificialStress`]).
 ///
@@ -4238,12 +4337,13 @@ pub fn step_1d_pm_strength_plasticity_damage_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamagePeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + periodic + artificial_stress` ([`FxStrengthPlasticityHeatPeriodicArtificialStress`]).
 ///
@@ -4266,12 +4366,13 @@ pub fn step_1d_pm_strength_plasticity_heat_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityHeatPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + periodic + artificial_stress` ([`FxStrengthPlasticityDamageHeatPeriodicArtificialStress`]).
 ///
@@ -4295,12 +4396,13 @@ pub fn step_1d_pm_strength_plasticity_damage_heat_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageHeatPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `correction + periodic + artificial_stress` ([`FxCorrectionPeriodicArtificialStress`]).
 ///
@@ -4320,12 +4422,13 @@ pub fn step_1d_pm_correction_periodic_artificial_stress<X: crate::exec::Executor
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxCorrectionPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + correction + periodic + artificial_stress` ([`FxStrengthCorrectionPeriodicArtificialStress`]).
 ///
@@ -4348,12 +4451,13 @@ pub fn step_1d_pm_strength_correction_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthCorrectionPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + correction + periodic + artificial_stress` ([`FxStrengthPlasticityCorrectionPeriodicArtificialStress`]).
 ///
@@ -4376,12 +4480,13 @@ pub fn step_1d_pm_strength_plasticity_correction_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityCorrectionPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + correction + periodic + artificial_stress` ([`FxStrengthPlasticityDamageCorrectionPeriodicArtificialStress`]).
 ///
@@ -4405,12 +4510,13 @@ pub fn step_1d_pm_strength_plasticity_damage_correction_periodic_artificial_stre
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageCorrectionPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + correction + periodic + artificial_stress` ([`FxStrengthPlasticityHeatCorrectionPeriodicArtificialStress`]).
 ///
@@ -4434,12 +4540,13 @@ pub fn step_1d_pm_strength_plasticity_heat_correction_periodic_artificial_stress
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityHeatCorrectionPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + correction + periodic + artificial_stress` ([`FxStrengthPlasticityDamageHeatCorrectionPeriodicArtificialStress`]).
 ///
@@ -4464,12 +4571,13 @@ pub fn step_1d_pm_strength_plasticity_damage_heat_correction_periodic_artificial
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageHeatCorrectionPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `muscl + periodic + artificial_stress` ([`FxMusclPeriodicArtificialStress`]).
 ///
@@ -4489,12 +4597,13 @@ pub fn step_1d_pm_muscl_periodic_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + muscl + periodic + artificial_stress` ([`FxStrengthMusclPeriodicArtificialStress`]).
 ///
@@ -4515,12 +4624,13 @@ pub fn step_1d_pm_strength_muscl_periodic_artificial_stress<X: crate::exec::Exec
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + muscl + periodic + artificial_stress` ([`FxStrengthPlasticityMusclPeriodicArtificialStress`]).
 ///
@@ -4543,12 +4653,13 @@ pub fn step_1d_pm_strength_plasticity_muscl_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + muscl + periodic + artificial_stress` ([`FxStrengthPlasticityDamageMusclPeriodicArtificialStress`]).
 ///
@@ -4572,12 +4683,13 @@ pub fn step_1d_pm_strength_plasticity_damage_muscl_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + muscl + periodic + artificial_stress` ([`FxStrengthPlasticityHeatMusclPeriodicArtificialStress`]).
 ///
@@ -4601,12 +4713,13 @@ pub fn step_1d_pm_strength_plasticity_heat_muscl_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityHeatMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + muscl + periodic + artificial_stress` ([`FxStrengthPlasticityDamageHeatMusclPeriodicArtificialStress`]).
 ///
@@ -4631,12 +4744,13 @@ pub fn step_1d_pm_strength_plasticity_damage_heat_muscl_periodic_artificial_stre
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageHeatMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `correction + muscl + periodic + artificial_stress` ([`FxCorrectionMusclPeriodicArtificialStress`]).
 ///
@@ -4657,12 +4771,13 @@ pub fn step_1d_pm_correction_muscl_periodic_artificial_stress<X: crate::exec::Ex
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxCorrectionMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + correction + muscl + periodic + artificial_stress` ([`FxStrengthCorrectionMusclPeriodicArtificialStress`]).
 ///
@@ -4686,12 +4801,13 @@ pub fn step_1d_pm_strength_correction_muscl_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthCorrectionMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + correction + muscl + periodic + artificial_stress` ([`FxStrengthPlasticityCorrectionMusclPeriodicArtificialStress`]).
 ///
@@ -4715,12 +4831,13 @@ pub fn step_1d_pm_strength_plasticity_correction_muscl_periodic_artificial_stres
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityCorrectionMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + correction + muscl + periodic + artificial_stress` ([`FxStrengthPlasticityDamageCorrectionMusclPeriodicArtificialStress`]).
 ///
@@ -4745,12 +4862,13 @@ pub fn step_1d_pm_strength_plasticity_damage_correction_muscl_periodic_artificia
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageCorrectionMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + correction + muscl + periodic + artificial_stress` ([`FxStrengthPlasticityHeatCorrectionMusclPeriodicArtificialStress`]).
 ///
@@ -4775,12 +4893,13 @@ pub fn step_1d_pm_strength_plasticity_heat_correction_muscl_periodic_artificial_
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityHeatCorrectionMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + correction + muscl + periodic + artificial_stress` ([`FxStrengthPlasticityDamageHeatCorrectionMusclPeriodicArtificialStress`]).
 ///
@@ -4806,12 +4925,13 @@ pub fn step_1d_pm_strength_plasticity_damage_heat_correction_muscl_periodic_arti
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageHeatCorrectionMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `hydro` ([`FxHydro`]).
 ///
@@ -4823,12 +4943,13 @@ pub fn step_1d_ts_hydro<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxHydro,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `strength` ([`FxStrength`]).
 ///
@@ -4840,12 +4961,13 @@ pub fn step_1d_ts_strength<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrength,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity` ([`FxStrengthPlasticity`]).
 ///
@@ -4857,12 +4979,13 @@ pub fn step_1d_ts_strength_plasticity<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticity,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage` ([`FxStrengthPlasticityDamage`]).
 ///
@@ -4881,12 +5004,13 @@ pub fn step_1d_ts_strength_plasticity_damage<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamage,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + heat` ([`FxStrengthPlasticityHeat`]).
 ///
@@ -4905,12 +5029,13 @@ pub fn step_1d_ts_strength_plasticity_heat<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityHeat,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + heat` ([`FxStrengthPlasticityDamageHeat`]).
 ///
@@ -4930,12 +5055,13 @@ pub fn step_1d_ts_strength_plasticity_damage_heat<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageHeat,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `muscl` ([`FxMuscl`]).
 ///
@@ -4947,12 +5073,13 @@ pub fn step_1d_ts_muscl<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `strength + muscl` ([`FxStrengthMuscl`]).
 ///
@@ -4971,12 +5098,13 @@ pub fn step_1d_ts_strength_muscl<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + muscl` ([`FxStrengthPlasticityMuscl`]).
 ///
@@ -4995,12 +5123,13 @@ pub fn step_1d_ts_strength_plasticity_muscl<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + muscl` ([`FxStrengthPlasticityDamageMuscl`]).
 ///
@@ -5020,12 +5149,13 @@ pub fn step_1d_ts_strength_plasticity_damage_muscl<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + heat + muscl` ([`FxStrengthPlasticityHeatMuscl`]).
 ///
@@ -5045,12 +5175,13 @@ pub fn step_1d_ts_strength_plasticity_heat_muscl<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityHeatMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + heat + muscl` ([`FxStrengthPlasticityDamageHeatMuscl`]).
 ///
@@ -5071,12 +5202,13 @@ pub fn step_1d_ts_strength_plasticity_damage_heat_muscl<X: crate::exec::Executor
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageHeatMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `periodic` ([`FxPeriodic`]).
 ///
@@ -5088,12 +5220,13 @@ pub fn step_1d_ts_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `strength + periodic` ([`FxStrengthPeriodic`]).
 ///
@@ -5112,12 +5245,13 @@ pub fn step_1d_ts_strength_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + periodic` ([`FxStrengthPlasticityPeriodic`]).
 ///
@@ -5136,12 +5270,13 @@ pub fn step_1d_ts_strength_plasticity_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + periodic` ([`FxStrengthPlasticityDamagePeriodic`]).
 ///
@@ -5161,12 +5296,13 @@ pub fn step_1d_ts_strength_plasticity_damage_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamagePeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + heat + periodic` ([`FxStrengthPlasticityHeatPeriodic`]).
 ///
@@ -5186,12 +5322,13 @@ pub fn step_1d_ts_strength_plasticity_heat_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityHeatPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + heat + periodic` ([`FxStrengthPlasticityDamageHeatPeriodic`]).
 ///
@@ -5212,12 +5349,13 @@ pub fn step_1d_ts_strength_plasticity_damage_heat_periodic<X: crate::exec::Execu
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageHeatPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `muscl + periodic` ([`FxMusclPeriodic`]).
 ///
@@ -5236,12 +5374,13 @@ pub fn step_1d_ts_muscl_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `strength + muscl + periodic` ([`FxStrengthMusclPeriodic`]).
 ///
@@ -5261,12 +5400,13 @@ pub fn step_1d_ts_strength_muscl_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + muscl + periodic` ([`FxStrengthPlasticityMusclPeriodic`]).
 ///
@@ -5286,12 +5426,13 @@ pub fn step_1d_ts_strength_plasticity_muscl_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + muscl + periodic` ([`FxStrengthPlasticityDamageMusclPeriodic`]).
 ///
@@ -5312,12 +5453,13 @@ pub fn step_1d_ts_strength_plasticity_damage_muscl_periodic<X: crate::exec::Exec
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + heat + muscl + periodic` ([`FxStrengthPlasticityHeatMusclPeriodic`]).
 ///
@@ -5338,12 +5480,13 @@ pub fn step_1d_ts_strength_plasticity_heat_muscl_periodic<X: crate::exec::Execut
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityHeatMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + heat + muscl + periodic` ([`FxStrengthPlasticityDamageHeatMusclPeriodic`]).
 ///
@@ -5367,12 +5510,13 @@ pub fn step_1d_ts_strength_plasticity_damage_heat_muscl_periodic<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageHeatMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `artificial_stress` ([`FxArtificialStress`]).
 ///
@@ -5386,12 +5530,13 @@ pub fn step_1d_ts_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `strength + artificial_stress` ([`FxStrengthArtificialStress`]).
 ///
@@ -5410,12 +5555,13 @@ pub fn step_1d_ts_strength_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + artificial_stress` ([`FxStrengthPlasticityArtificialStress`]).
 ///
@@ -5434,12 +5580,13 @@ pub fn step_1d_ts_strength_plasticity_artificial_stress<X: crate::exec::Executor
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + artificial_stress` ([`FxStrengthPlasticityDamageArtificialStress`]).
 ///
@@ -5459,12 +5606,13 @@ pub fn step_1d_ts_strength_plasticity_damage_artificial_stress<X: crate::exec::E
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + heat + artificial_stress` ([`FxStrengthPlasticityHeatArtificialStress`]).
 ///
@@ -5484,12 +5632,13 @@ pub fn step_1d_ts_strength_plasticity_heat_artificial_stress<X: crate::exec::Exe
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityHeatArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + heat + artificial_stress` ([`FxStrengthPlasticityDamageHeatArtificialStress`]).
 ///
@@ -5512,12 +5661,13 @@ pub fn step_1d_ts_strength_plasticity_damage_heat_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageHeatArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `muscl + artificial_stress` ([`FxMusclArtificialStress`]).
 ///
@@ -5536,12 +5686,13 @@ pub fn step_1d_ts_muscl_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `strength + muscl + artificial_stress` ([`FxStrengthMusclArtificialStress`]).
 ///
@@ -5561,12 +5712,13 @@ pub fn step_1d_ts_strength_muscl_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + muscl + artificial_stress` ([`FxStrengthPlasticityMusclArtificialStress`]).
 ///
@@ -5586,12 +5738,13 @@ pub fn step_1d_ts_strength_plasticity_muscl_artificial_stress<X: crate::exec::Ex
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + muscl + artificial_stress` ([`FxStrengthPlasticityDamageMusclArtificialStress`]).
 ///
@@ -5614,12 +5767,13 @@ pub fn step_1d_ts_strength_plasticity_damage_muscl_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + heat + muscl + artificial_stress` ([`FxStrengthPlasticityHeatMusclArtificialStress`]).
 ///
@@ -5642,12 +5796,13 @@ pub fn step_1d_ts_strength_plasticity_heat_muscl_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityHeatMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + heat + muscl + artificial_stress` ([`FxStrengthPlasticityDamageHeatMusclArtificialStress`]).
 ///
@@ -5671,12 +5826,13 @@ pub fn step_1d_ts_strength_plasticity_damage_heat_muscl_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageHeatMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `periodic + artificial_stress` ([`FxPeriodicArtificialStress`]).
 ///
@@ -5695,12 +5851,13 @@ pub fn step_1d_ts_periodic_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `strength + periodic + artificial_stress` ([`FxStrengthPeriodicArtificialStress`]).
 ///
@@ -5720,12 +5877,13 @@ pub fn step_1d_ts_strength_periodic_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + periodic + artificial_stress` ([`FxStrengthPlasticityPeriodicArtificialStress`]).
 ///
@@ -5747,12 +5905,13 @@ pub fn step_1d_ts_strength_plasticity_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + periodic + artificial_stress` ([`FxStrengthPlasticityDamagePeriodicArtificialStress`]).
 ///
@@ -5775,12 +5934,13 @@ pub fn step_1d_ts_strength_plasticity_damage_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamagePeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + heat + periodic + artificial_stress` ([`FxStrengthPlasticityHeatPeriodicArtificialStress`]).
 ///
@@ -5803,12 +5963,13 @@ pub fn step_1d_ts_strength_plasticity_heat_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityHeatPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + heat + periodic + artificial_stress` ([`FxStrengthPlasticityDamageHeatPeriodicArtificialStress`]).
 ///
@@ -5832,12 +5993,13 @@ pub fn step_1d_ts_strength_plasticity_damage_heat_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageHeatPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `muscl + periodic + artificial_stress` ([`FxMusclPeriodicArtificialStress`]).
 ///
@@ -5857,12 +6019,13 @@ pub fn step_1d_ts_muscl_periodic_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `strength + muscl + periodic + artificial_stress` ([`FxStrengthMusclPeriodicArtificialStress`]).
 ///
@@ -5883,12 +6046,13 @@ pub fn step_1d_ts_strength_muscl_periodic_artificial_stress<X: crate::exec::Exec
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + muscl + periodic + artificial_stress` ([`FxStrengthPlasticityMusclPeriodicArtificialStress`]).
 ///
@@ -5911,12 +6075,13 @@ pub fn step_1d_ts_strength_plasticity_muscl_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + muscl + periodic + artificial_stress` ([`FxStrengthPlasticityDamageMusclPeriodicArtificialStress`]).
 ///
@@ -5940,12 +6105,13 @@ pub fn step_1d_ts_strength_plasticity_damage_muscl_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + heat + muscl + periodic + artificial_stress` ([`FxStrengthPlasticityHeatMusclPeriodicArtificialStress`]).
 ///
@@ -5969,12 +6135,13 @@ pub fn step_1d_ts_strength_plasticity_heat_muscl_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityHeatMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 1D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + heat + muscl + periodic + artificial_stress` ([`FxStrengthPlasticityDamageHeatMusclPeriodicArtificialStress`]).
 ///
@@ -5999,12 +6166,13 @@ pub fn step_1d_ts_strength_plasticity_damage_heat_muscl_periodic_artificial_stre
     ws: &mut crate::state::Workspace<'_, 1>,
     params: &crate::state::StepParams<'_, 1>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         1,
         FxStrengthPlasticityDamageHeatMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// The compiled 1D step function of `family` with exactly `effects`.
 ///
@@ -8885,12 +9053,13 @@ pub fn step_2d_av_hydro<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         2,
         FxHydro,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`av`](crate::schemes::av::Av) family with effects `strength` ([`FxStrength`]).
 ///
@@ -8902,12 +9071,13 @@ pub fn step_2d_av_strength<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrength,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity` ([`FxStrengthPlasticity`]).
 ///
@@ -8919,12 +9089,13 @@ pub fn step_2d_av_strength_plasticity<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticity,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + damage` ([`FxStrengthPlasticityDamage`]).
 ///
@@ -8943,12 +9114,13 @@ pub fn step_2d_av_strength_plasticity_damage<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamage,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + heat` ([`FxStrengthPlasticityHeat`]).
 ///
@@ -8967,12 +9139,13 @@ pub fn step_2d_av_strength_plasticity_heat<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityHeat,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + damage + heat` ([`FxStrengthPlasticityDamageHeat`]).
 ///
@@ -8992,12 +9165,13 @@ pub fn step_2d_av_strength_plasticity_damage_heat<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageHeat,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`av`](crate::schemes::av::Av) family with effects `periodic` ([`FxPeriodic`]).
 ///
@@ -9009,12 +9183,13 @@ pub fn step_2d_av_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         2,
         FxPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`av`](crate::schemes::av::Av) family with effects `strength + periodic` ([`FxStrengthPeriodic`]).
 ///
@@ -9033,12 +9208,13 @@ pub fn step_2d_av_strength_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + periodic` ([`FxStrengthPlasticityPeriodic`]).
 ///
@@ -9057,12 +9233,13 @@ pub fn step_2d_av_strength_plasticity_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + damage + periodic` ([`FxStrengthPlasticityDamagePeriodic`]).
 ///
@@ -9082,12 +9259,13 @@ pub fn step_2d_av_strength_plasticity_damage_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamagePeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + heat + periodic` ([`FxStrengthPlasticityHeatPeriodic`]).
 ///
@@ -9107,12 +9285,13 @@ pub fn step_2d_av_strength_plasticity_heat_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityHeatPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + damage + heat + periodic` ([`FxStrengthPlasticityDamageHeatPeriodic`]).
 ///
@@ -9133,12 +9312,13 @@ pub fn step_2d_av_strength_plasticity_damage_heat_periodic<X: crate::exec::Execu
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageHeatPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`av`](crate::schemes::av::Av) family with effects `artificial_stress` ([`FxArtificialStress`]).
 ///
@@ -9152,12 +9332,13 @@ pub fn step_2d_av_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         2,
         FxArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`av`](crate::schemes::av::Av) family with effects `strength + artificial_stress` ([`FxStrengthArtificialStress`]).
 ///
@@ -9176,12 +9357,13 @@ pub fn step_2d_av_strength_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + artificial_stress` ([`FxStrengthPlasticityArtificialStress`]).
 ///
@@ -9200,12 +9382,13 @@ pub fn step_2d_av_strength_plasticity_artificial_stress<X: crate::exec::Executor
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + damage + artificial_stress` ([`FxStrengthPlasticityDamageArtificialStress`]).
 ///
@@ -9225,12 +9408,13 @@ pub fn step_2d_av_strength_plasticity_damage_artificial_stress<X: crate::exec::E
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + heat + artificial_stress` ([`FxStrengthPlasticityHeatArtificialStress`]).
 ///
@@ -9250,12 +9434,13 @@ pub fn step_2d_av_strength_plasticity_heat_artificial_stress<X: crate::exec::Exe
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityHeatArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + damage + heat + artificial_stress` ([`FxStrengthPlasticityDamageHeatArtificialStress`]).
 ///
@@ -9278,12 +9463,13 @@ pub fn step_2d_av_strength_plasticity_damage_heat_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageHeatArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`av`](crate::schemes::av::Av) family with effects `periodic + artificial_stress` ([`FxPeriodicArtificialStress`]).
 ///
@@ -9302,12 +9488,13 @@ pub fn step_2d_av_periodic_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         2,
         FxPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`av`](crate::schemes::av::Av) family with effects `strength + periodic + artificial_stress` ([`FxStrengthPeriodicArtificialStress`]).
 ///
@@ -9327,12 +9514,13 @@ pub fn step_2d_av_strength_periodic_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + periodic + artificial_stress` ([`FxStrengthPlasticityPeriodicArtificialStress`]).
 ///
@@ -9354,12 +9542,13 @@ pub fn step_2d_av_strength_plasticity_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + damage + periodic + artificial_stress` ([`FxStrengthPlasticityDamagePeriodicArtificialStress`]).
 ///
@@ -9382,12 +9571,13 @@ pub fn step_2d_av_strength_plasticity_damage_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamagePeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + heat + periodic + artificial_stress` ([`FxStrengthPlasticityHeatPeriodicArtificialStress`]).
 ///
@@ -9410,12 +9600,13 @@ pub fn step_2d_av_strength_plasticity_heat_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityHeatPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + damage + heat + periodic + artificial_stress` ([`FxStrengthPlasticityDamageHeatPeriodicArtificialStress`]).
 ///
@@ -9439,12 +9630,13 @@ pub fn step_2d_av_strength_plasticity_damage_heat_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageHeatPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `hydro` ([`FxHydro`]).
 ///
@@ -9456,12 +9648,13 @@ pub fn step_2d_pm_hydro<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxHydro,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength` ([`FxStrength`]).
 ///
@@ -9473,12 +9666,13 @@ pub fn step_2d_pm_strength<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrength,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity` ([`FxStrengthPlasticity`]).
 ///
@@ -9490,12 +9684,13 @@ pub fn step_2d_pm_strength_plasticity<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticity,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage` ([`FxStrengthPlasticityDamage`]).
 ///
@@ -9514,12 +9709,13 @@ pub fn step_2d_pm_strength_plasticity_damage<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamage,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat` ([`FxStrengthPlasticityHeat`]).
 ///
@@ -9538,12 +9734,13 @@ pub fn step_2d_pm_strength_plasticity_heat<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityHeat,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat` ([`FxStrengthPlasticityDamageHeat`]).
 ///
@@ -9563,12 +9760,13 @@ pub fn step_2d_pm_strength_plasticity_damage_heat<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageHeat,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `correction` ([`FxCorrection`]).
 ///
@@ -9580,12 +9778,13 @@ pub fn step_2d_pm_correction<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxCorrection,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + correction` ([`FxStrengthCorrection`]).
 ///
@@ -9604,12 +9803,13 @@ pub fn step_2d_pm_strength_correction<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthCorrection,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + correction` ([`FxStrengthPlasticityCorrection`]).
 ///
@@ -9628,12 +9828,13 @@ pub fn step_2d_pm_strength_plasticity_correction<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityCorrection,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + correction` ([`FxStrengthPlasticityDamageCorrection`]).
 ///
@@ -9653,12 +9854,13 @@ pub fn step_2d_pm_strength_plasticity_damage_correction<X: crate::exec::Executor
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageCorrection,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + correction` ([`FxStrengthPlasticityHeatCorrection`]).
 ///
@@ -9678,12 +9880,13 @@ pub fn step_2d_pm_strength_plasticity_heat_correction<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityHeatCorrection,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + correction` ([`FxStrengthPlasticityDamageHeatCorrection`]).
 ///
@@ -9704,12 +9907,13 @@ pub fn step_2d_pm_strength_plasticity_damage_heat_correction<X: crate::exec::Exe
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageHeatCorrection,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `muscl` ([`FxMuscl`]).
 ///
@@ -9721,12 +9925,13 @@ pub fn step_2d_pm_muscl<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + muscl` ([`FxStrengthMuscl`]).
 ///
@@ -9745,12 +9950,13 @@ pub fn step_2d_pm_strength_muscl<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + muscl` ([`FxStrengthPlasticityMuscl`]).
 ///
@@ -9769,12 +9975,13 @@ pub fn step_2d_pm_strength_plasticity_muscl<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + muscl` ([`FxStrengthPlasticityDamageMuscl`]).
 ///
@@ -9794,12 +10001,13 @@ pub fn step_2d_pm_strength_plasticity_damage_muscl<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + muscl` ([`FxStrengthPlasticityHeatMuscl`]).
 ///
@@ -9819,12 +10027,13 @@ pub fn step_2d_pm_strength_plasticity_heat_muscl<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityHeatMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + muscl` ([`FxStrengthPlasticityDamageHeatMuscl`]).
 ///
@@ -9845,12 +10054,13 @@ pub fn step_2d_pm_strength_plasticity_damage_heat_muscl<X: crate::exec::Executor
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageHeatMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `correction + muscl` ([`FxCorrectionMuscl`]).
 ///
@@ -9869,12 +10079,13 @@ pub fn step_2d_pm_correction_muscl<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxCorrectionMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + correction + muscl` ([`FxStrengthCorrectionMuscl`]).
 ///
@@ -9894,12 +10105,13 @@ pub fn step_2d_pm_strength_correction_muscl<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthCorrectionMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + correction + muscl` ([`FxStrengthPlasticityCorrectionMuscl`]).
 ///
@@ -9919,12 +10131,13 @@ pub fn step_2d_pm_strength_plasticity_correction_muscl<X: crate::exec::Executor>
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityCorrectionMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + correction + muscl` ([`FxStrengthPlasticityDamageCorrectionMuscl`]).
 ///
@@ -9945,12 +10158,13 @@ pub fn step_2d_pm_strength_plasticity_damage_correction_muscl<X: crate::exec::Ex
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageCorrectionMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + correction + muscl` ([`FxStrengthPlasticityHeatCorrectionMuscl`]).
 ///
@@ -9971,12 +10185,13 @@ pub fn step_2d_pm_strength_plasticity_heat_correction_muscl<X: crate::exec::Exec
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityHeatCorrectionMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + correction + muscl` ([`FxStrengthPlasticityDamageHeatCorrectionMuscl`]).
 ///
@@ -10000,12 +10215,13 @@ pub fn step_2d_pm_strength_plasticity_damage_heat_correction_muscl<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageHeatCorrectionMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `periodic` ([`FxPeriodic`]).
 ///
@@ -10017,12 +10233,13 @@ pub fn step_2d_pm_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + periodic` ([`FxStrengthPeriodic`]).
 ///
@@ -10041,12 +10258,13 @@ pub fn step_2d_pm_strength_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + periodic` ([`FxStrengthPlasticityPeriodic`]).
 ///
@@ -10065,12 +10283,13 @@ pub fn step_2d_pm_strength_plasticity_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + periodic` ([`FxStrengthPlasticityDamagePeriodic`]).
 ///
@@ -10090,12 +10309,13 @@ pub fn step_2d_pm_strength_plasticity_damage_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamagePeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + periodic` ([`FxStrengthPlasticityHeatPeriodic`]).
 ///
@@ -10115,12 +10335,13 @@ pub fn step_2d_pm_strength_plasticity_heat_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityHeatPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + periodic` ([`FxStrengthPlasticityDamageHeatPeriodic`]).
 ///
@@ -10141,12 +10362,13 @@ pub fn step_2d_pm_strength_plasticity_damage_heat_periodic<X: crate::exec::Execu
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageHeatPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `correction + periodic` ([`FxCorrectionPeriodic`]).
 ///
@@ -10165,12 +10387,13 @@ pub fn step_2d_pm_correction_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxCorrectionPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + correction + periodic` ([`FxStrengthCorrectionPeriodic`]).
 ///
@@ -10190,12 +10413,13 @@ pub fn step_2d_pm_strength_correction_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthCorrectionPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + correction + periodic` ([`FxStrengthPlasticityCorrectionPeriodic`]).
 ///
@@ -10215,12 +10439,13 @@ pub fn step_2d_pm_strength_plasticity_correction_periodic<X: crate::exec::Execut
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityCorrectionPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + correction + periodic` ([`FxStrengthPlasticityDamageCorrectionPeriodic`]).
 ///
@@ -10243,12 +10468,13 @@ pub fn step_2d_pm_strength_plasticity_damage_correction_periodic<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageCorrectionPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + correction + periodic` ([`FxStrengthPlasticityHeatCorrectionPeriodic`]).
 ///
@@ -10269,12 +10495,13 @@ pub fn step_2d_pm_strength_plasticity_heat_correction_periodic<X: crate::exec::E
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityHeatCorrectionPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + correction + periodic` ([`FxStrengthPlasticityDamageHeatCorrectionPeriodic`]).
 ///
@@ -10298,12 +10525,13 @@ pub fn step_2d_pm_strength_plasticity_damage_heat_correction_periodic<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageHeatCorrectionPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `muscl + periodic` ([`FxMusclPeriodic`]).
 ///
@@ -10322,12 +10550,13 @@ pub fn step_2d_pm_muscl_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + muscl + periodic` ([`FxStrengthMusclPeriodic`]).
 ///
@@ -10347,12 +10576,13 @@ pub fn step_2d_pm_strength_muscl_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + muscl + periodic` ([`FxStrengthPlasticityMusclPeriodic`]).
 ///
@@ -10372,12 +10602,13 @@ pub fn step_2d_pm_strength_plasticity_muscl_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + muscl + periodic` ([`FxStrengthPlasticityDamageMusclPeriodic`]).
 ///
@@ -10398,12 +10629,13 @@ pub fn step_2d_pm_strength_plasticity_damage_muscl_periodic<X: crate::exec::Exec
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + muscl + periodic` ([`FxStrengthPlasticityHeatMusclPeriodic`]).
 ///
@@ -10424,12 +10656,13 @@ pub fn step_2d_pm_strength_plasticity_heat_muscl_periodic<X: crate::exec::Execut
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityHeatMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + muscl + periodic` ([`FxStrengthPlasticityDamageHeatMusclPeriodic`]).
 ///
@@ -10453,12 +10686,13 @@ pub fn step_2d_pm_strength_plasticity_damage_heat_muscl_periodic<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageHeatMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `correction + muscl + periodic` ([`FxCorrectionMusclPeriodic`]).
 ///
@@ -10478,12 +10712,13 @@ pub fn step_2d_pm_correction_muscl_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxCorrectionMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + correction + muscl + periodic` ([`FxStrengthCorrectionMusclPeriodic`]).
 ///
@@ -10504,12 +10739,13 @@ pub fn step_2d_pm_strength_correction_muscl_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthCorrectionMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + correction + muscl + periodic` ([`FxStrengthPlasticityCorrectionMusclPeriodic`]).
 ///
@@ -10532,12 +10768,13 @@ pub fn step_2d_pm_strength_plasticity_correction_muscl_periodic<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityCorrectionMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + correction + muscl + periodic` ([`FxStrengthPlasticityDamageCorrectionMusclPeriodic`]).
 ///
@@ -10561,12 +10798,13 @@ pub fn step_2d_pm_strength_plasticity_damage_correction_muscl_periodic<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageCorrectionMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + correction + muscl + periodic` ([`FxStrengthPlasticityHeatCorrectionMusclPeriodic`]).
 ///
@@ -10590,12 +10828,13 @@ pub fn step_2d_pm_strength_plasticity_heat_correction_muscl_periodic<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityHeatCorrectionMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + correction + muscl + periodic` ([`FxStrengthPlasticityDamageHeatCorrectionMusclPeriodic`]).
 ///
@@ -10620,12 +10859,13 @@ pub fn step_2d_pm_strength_plasticity_damage_heat_correction_muscl_periodic<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageHeatCorrectionMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `artificial_stress` ([`FxArtificialStress`]).
 ///
@@ -10639,12 +10879,13 @@ pub fn step_2d_pm_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + artificial_stress` ([`FxStrengthArtificialStress`]).
 ///
@@ -10663,12 +10904,13 @@ pub fn step_2d_pm_strength_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + artificial_stress` ([`FxStrengthPlasticityArtificialStress`]).
 ///
@@ -10687,12 +10929,13 @@ pub fn step_2d_pm_strength_plasticity_artificial_stress<X: crate::exec::Executor
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + artificial_stress` ([`FxStrengthPlasticityDamageArtificialStress`]).
 ///
@@ -10712,12 +10955,13 @@ pub fn step_2d_pm_strength_plasticity_damage_artificial_stress<X: crate::exec::E
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + artificial_stress` ([`FxStrengthPlasticityHeatArtificialStress`]).
 ///
@@ -10737,12 +10981,13 @@ pub fn step_2d_pm_strength_plasticity_heat_artificial_stress<X: crate::exec::Exe
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityHeatArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + artificial_stress` ([`FxStrengthPlasticityDamageHeatArtificialStress`]).
 ///
@@ -10765,12 +11010,13 @@ pub fn step_2d_pm_strength_plasticity_damage_heat_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageHeatArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `correction + artificial_stress` ([`FxCorrectionArtificialStress`]).
 ///
@@ -10789,12 +11035,13 @@ pub fn step_2d_pm_correction_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxCorrectionArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + correction + artificial_stress` ([`FxStrengthCorrectionArtificialStress`]).
 ///
@@ -10814,12 +11061,13 @@ pub fn step_2d_pm_strength_correction_artificial_stress<X: crate::exec::Executor
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthCorrectionArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + correction + artificial_stress` ([`FxStrengthPlasticityCorrectionArtificialStress`]).
 ///
@@ -10841,12 +11089,13 @@ pub fn step_2d_pm_strength_plasticity_correction_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityCorrectionArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + correction + artificial_stress` ([`FxStrengthPlasticityDamageCorrectionArtificialStress`]).
 ///
@@ -10869,12 +11118,13 @@ pub fn step_2d_pm_strength_plasticity_damage_correction_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageCorrectionArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + correction + artificial_stress` ([`FxStrengthPlasticityHeatCorrectionArtificialStress`]).
 ///
@@ -10897,12 +11147,13 @@ pub fn step_2d_pm_strength_plasticity_heat_correction_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityHeatCorrectionArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + correction + artificial_stress` ([`FxStrengthPlasticityDamageHeatCorrectionArtificialStress`]).
 ///
@@ -10926,12 +11177,13 @@ pub fn step_2d_pm_strength_plasticity_damage_heat_correction_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageHeatCorrectionArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `muscl + artificial_stress` ([`FxMusclArtificialStress`]).
 ///
@@ -10950,12 +11202,13 @@ pub fn step_2d_pm_muscl_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + muscl + artificial_stress` ([`FxStrengthMusclArtificialStress`]).
 ///
@@ -10975,12 +11228,13 @@ pub fn step_2d_pm_strength_muscl_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + muscl + artificial_stress` ([`FxStrengthPlasticityMusclArtificialStress`]).
 ///
@@ -11000,12 +11254,13 @@ pub fn step_2d_pm_strength_plasticity_muscl_artificial_stress<X: crate::exec::Ex
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + muscl + artificial_stress` ([`FxStrengthPlasticityDamageMusclArtificialStress`]).
 ///
@@ -11028,12 +11283,13 @@ pub fn step_2d_pm_strength_plasticity_damage_muscl_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + muscl + artificial_stress` ([`FxStrengthPlasticityHeatMusclArtificialStress`]).
 ///
@@ -11056,12 +11312,13 @@ pub fn step_2d_pm_strength_plasticity_heat_muscl_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityHeatMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + muscl + artificial_stress` ([`FxStrengthPlasticityDamageHeatMusclArtificialStress`]).
 ///
@@ -11085,12 +11342,13 @@ pub fn step_2d_pm_strength_plasticity_damage_heat_muscl_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageHeatMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `correction + muscl + artificial_stress` ([`FxCorrectionMusclArtificialStress`]).
 ///
@@ -11110,12 +11368,13 @@ pub fn step_2d_pm_correction_muscl_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxCorrectionMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + correction + muscl + artificial_stress` ([`FxStrengthCorrectionMusclArtificialStress`]).
 ///
@@ -11136,12 +11395,13 @@ pub fn step_2d_pm_strength_correction_muscl_artificial_stress<X: crate::exec::Ex
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthCorrectionMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + correction + muscl + artificial_stress` ([`FxStrengthPlasticityCorrectionMusclArtificialStress`]).
 ///
@@ -11164,12 +11424,13 @@ pub fn step_2d_pm_strength_plasticity_correction_muscl_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityCorrectionMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + correction + muscl + artificial_stress` ([`FxStrengthPlasticityDamageCorrectionMusclArtificialStress`]).
 ///
@@ -11193,12 +11454,13 @@ pub fn step_2d_pm_strength_plasticity_damage_correction_muscl_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageCorrectionMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + correction + muscl + artificial_stress` ([`FxStrengthPlasticityHeatCorrectionMusclArtificialStress`]).
 ///
@@ -11222,12 +11484,13 @@ pub fn step_2d_pm_strength_plasticity_heat_correction_muscl_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityHeatCorrectionMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + correction + muscl + artificial_stress` ([`FxStrengthPlasticityDamageHeatCorrectionMusclArtificialStress`]).
 ///
@@ -11252,12 +11515,13 @@ pub fn step_2d_pm_strength_plasticity_damage_heat_correction_muscl_artificial_st
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageHeatCorrectionMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `periodic + artificial_stress` ([`FxPeriodicArtificialStress`]).
 ///
@@ -11276,12 +11540,13 @@ pub fn step_2d_pm_periodic_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + periodic + artificial_stress` ([`FxStrengthPeriodicArtificialStress`]).
 ///
@@ -11301,12 +11566,13 @@ pub fn step_2d_pm_strength_periodic_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + periodic + artificial_stress` ([`FxStrengthPlasticityPeriodicArtificialStress`]).
 ///
@@ -11328,12 +11594,13 @@ pub fn step_2d_pm_strength_plasticity_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + periodic + artificial_stress` ([`FxStrengthPlasticityDamagePeriodicArtificialStress`]).
 ///
@@ -11356,12 +11623,13 @@ pub fn step_2d_pm_strength_plasticity_damage_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamagePeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + periodic + artificial_stress` ([`FxStrengthPlasticityHeatPeriodicArtificialStress`]).
 ///
@@ -11384,12 +11652,13 @@ pub fn step_2d_pm_strength_plasticity_heat_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityHeatPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + periodic + artificial_stress` ([`FxStrengthPlasticityDamageHeatPeriodicArtificialStress`]).
 ///
@@ -11413,12 +11682,13 @@ pub fn step_2d_pm_strength_plasticity_damage_heat_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageHeatPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `correction + periodic + artificial_stress` ([`FxCorrectionPeriodicArtificialStress`]).
 ///
@@ -11438,12 +11708,13 @@ pub fn step_2d_pm_correction_periodic_artificial_stress<X: crate::exec::Executor
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxCorrectionPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + correction + periodic + artificial_stress` ([`FxStrengthCorrectionPeriodicArtificialStress`]).
 ///
@@ -11466,12 +11737,13 @@ pub fn step_2d_pm_strength_correction_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthCorrectionPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + correction + periodic + artificial_stress` ([`FxStrengthPlasticityCorrectionPeriodicArtificialStress`]).
 ///
@@ -11494,12 +11766,13 @@ pub fn step_2d_pm_strength_plasticity_correction_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityCorrectionPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + correction + periodic + artificial_stress` ([`FxStrengthPlasticityDamageCorrectionPeriodicArtificialStress`]).
 ///
@@ -11523,12 +11796,13 @@ pub fn step_2d_pm_strength_plasticity_damage_correction_periodic_artificial_stre
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageCorrectionPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + correction + periodic + artificial_stress` ([`FxStrengthPlasticityHeatCorrectionPeriodicArtificialStress`]).
 ///
@@ -11552,12 +11826,13 @@ pub fn step_2d_pm_strength_plasticity_heat_correction_periodic_artificial_stress
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityHeatCorrectionPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + correction + periodic + artificial_stress` ([`FxStrengthPlasticityDamageHeatCorrectionPeriodicArtificialStress`]).
 ///
@@ -11582,12 +11857,13 @@ pub fn step_2d_pm_strength_plasticity_damage_heat_correction_periodic_artificial
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageHeatCorrectionPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `muscl + periodic + artificial_stress` ([`FxMusclPeriodicArtificialStress`]).
 ///
@@ -11607,12 +11883,13 @@ pub fn step_2d_pm_muscl_periodic_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + muscl + periodic + artificial_stress` ([`FxStrengthMusclPeriodicArtificialStress`]).
 ///
@@ -11633,12 +11910,13 @@ pub fn step_2d_pm_strength_muscl_periodic_artificial_stress<X: crate::exec::Exec
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + muscl + periodic + artificial_stress` ([`FxStrengthPlasticityMusclPeriodicArtificialStress`]).
 ///
@@ -11661,12 +11939,13 @@ pub fn step_2d_pm_strength_plasticity_muscl_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + muscl + periodic + artificial_stress` ([`FxStrengthPlasticityDamageMusclPeriodicArtificialStress`]).
 ///
@@ -11690,12 +11969,13 @@ pub fn step_2d_pm_strength_plasticity_damage_muscl_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + muscl + periodic + artificial_stress` ([`FxStrengthPlasticityHeatMusclPeriodicArtificialStress`]).
 ///
@@ -11719,12 +11999,13 @@ pub fn step_2d_pm_strength_plasticity_heat_muscl_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityHeatMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + muscl + periodic + artificial_stress` ([`FxStrengthPlasticityDamageHeatMusclPeriodicArtificialStress`]).
 ///
@@ -11749,12 +12030,13 @@ pub fn step_2d_pm_strength_plasticity_damage_heat_muscl_periodic_artificial_stre
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageHeatMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `correction + muscl + periodic + artificial_stress` ([`FxCorrectionMusclPeriodicArtificialStress`]).
 ///
@@ -11775,12 +12057,13 @@ pub fn step_2d_pm_correction_muscl_periodic_artificial_stress<X: crate::exec::Ex
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxCorrectionMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + correction + muscl + periodic + artificial_stress` ([`FxStrengthCorrectionMusclPeriodicArtificialStress`]).
 ///
@@ -11804,12 +12087,13 @@ pub fn step_2d_pm_strength_correction_muscl_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthCorrectionMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + correction + muscl + periodic + artificial_stress` ([`FxStrengthPlasticityCorrectionMusclPeriodicArtificialStress`]).
 ///
@@ -11833,12 +12117,13 @@ pub fn step_2d_pm_strength_plasticity_correction_muscl_periodic_artificial_stres
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityCorrectionMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + correction + muscl + periodic + artificial_stress` ([`FxStrengthPlasticityDamageCorrectionMusclPeriodicArtificialStress`]).
 ///
@@ -11863,12 +12148,13 @@ pub fn step_2d_pm_strength_plasticity_damage_correction_muscl_periodic_artificia
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageCorrectionMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + correction + muscl + periodic + artificial_stress` ([`FxStrengthPlasticityHeatCorrectionMusclPeriodicArtificialStress`]).
 ///
@@ -11893,12 +12179,13 @@ pub fn step_2d_pm_strength_plasticity_heat_correction_muscl_periodic_artificial_
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityHeatCorrectionMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + correction + muscl + periodic + artificial_stress` ([`FxStrengthPlasticityDamageHeatCorrectionMusclPeriodicArtificialStress`]).
 ///
@@ -11924,12 +12211,13 @@ pub fn step_2d_pm_strength_plasticity_damage_heat_correction_muscl_periodic_arti
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageHeatCorrectionMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `hydro` ([`FxHydro`]).
 ///
@@ -11941,12 +12229,13 @@ pub fn step_2d_ts_hydro<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxHydro,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `strength` ([`FxStrength`]).
 ///
@@ -11958,12 +12247,13 @@ pub fn step_2d_ts_strength<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrength,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity` ([`FxStrengthPlasticity`]).
 ///
@@ -11975,12 +12265,13 @@ pub fn step_2d_ts_strength_plasticity<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticity,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage` ([`FxStrengthPlasticityDamage`]).
 ///
@@ -11999,12 +12290,13 @@ pub fn step_2d_ts_strength_plasticity_damage<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamage,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + heat` ([`FxStrengthPlasticityHeat`]).
 ///
@@ -12023,12 +12315,13 @@ pub fn step_2d_ts_strength_plasticity_heat<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityHeat,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + heat` ([`FxStrengthPlasticityDamageHeat`]).
 ///
@@ -12048,12 +12341,13 @@ pub fn step_2d_ts_strength_plasticity_damage_heat<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageHeat,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `muscl` ([`FxMuscl`]).
 ///
@@ -12065,12 +12359,13 @@ pub fn step_2d_ts_muscl<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `strength + muscl` ([`FxStrengthMuscl`]).
 ///
@@ -12089,12 +12384,13 @@ pub fn step_2d_ts_strength_muscl<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + muscl` ([`FxStrengthPlasticityMuscl`]).
 ///
@@ -12113,12 +12409,13 @@ pub fn step_2d_ts_strength_plasticity_muscl<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + muscl` ([`FxStrengthPlasticityDamageMuscl`]).
 ///
@@ -12138,12 +12435,13 @@ pub fn step_2d_ts_strength_plasticity_damage_muscl<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + heat + muscl` ([`FxStrengthPlasticityHeatMuscl`]).
 ///
@@ -12163,12 +12461,13 @@ pub fn step_2d_ts_strength_plasticity_heat_muscl<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityHeatMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + heat + muscl` ([`FxStrengthPlasticityDamageHeatMuscl`]).
 ///
@@ -12189,12 +12488,13 @@ pub fn step_2d_ts_strength_plasticity_damage_heat_muscl<X: crate::exec::Executor
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageHeatMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `periodic` ([`FxPeriodic`]).
 ///
@@ -12206,12 +12506,13 @@ pub fn step_2d_ts_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `strength + periodic` ([`FxStrengthPeriodic`]).
 ///
@@ -12230,12 +12531,13 @@ pub fn step_2d_ts_strength_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + periodic` ([`FxStrengthPlasticityPeriodic`]).
 ///
@@ -12254,12 +12556,13 @@ pub fn step_2d_ts_strength_plasticity_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + periodic` ([`FxStrengthPlasticityDamagePeriodic`]).
 ///
@@ -12279,12 +12582,13 @@ pub fn step_2d_ts_strength_plasticity_damage_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamagePeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + heat + periodic` ([`FxStrengthPlasticityHeatPeriodic`]).
 ///
@@ -12304,12 +12608,13 @@ pub fn step_2d_ts_strength_plasticity_heat_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityHeatPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + heat + periodic` ([`FxStrengthPlasticityDamageHeatPeriodic`]).
 ///
@@ -12330,12 +12635,13 @@ pub fn step_2d_ts_strength_plasticity_damage_heat_periodic<X: crate::exec::Execu
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageHeatPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `muscl + periodic` ([`FxMusclPeriodic`]).
 ///
@@ -12354,12 +12660,13 @@ pub fn step_2d_ts_muscl_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `strength + muscl + periodic` ([`FxStrengthMusclPeriodic`]).
 ///
@@ -12379,12 +12686,13 @@ pub fn step_2d_ts_strength_muscl_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + muscl + periodic` ([`FxStrengthPlasticityMusclPeriodic`]).
 ///
@@ -12404,12 +12712,13 @@ pub fn step_2d_ts_strength_plasticity_muscl_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + muscl + periodic` ([`FxStrengthPlasticityDamageMusclPeriodic`]).
 ///
@@ -12430,12 +12739,13 @@ pub fn step_2d_ts_strength_plasticity_damage_muscl_periodic<X: crate::exec::Exec
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + heat + muscl + periodic` ([`FxStrengthPlasticityHeatMusclPeriodic`]).
 ///
@@ -12456,12 +12766,13 @@ pub fn step_2d_ts_strength_plasticity_heat_muscl_periodic<X: crate::exec::Execut
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityHeatMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + heat + muscl + periodic` ([`FxStrengthPlasticityDamageHeatMusclPeriodic`]).
 ///
@@ -12485,12 +12796,13 @@ pub fn step_2d_ts_strength_plasticity_damage_heat_muscl_periodic<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageHeatMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `artificial_stress` ([`FxArtificialStress`]).
 ///
@@ -12504,12 +12816,13 @@ pub fn step_2d_ts_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `strength + artificial_stress` ([`FxStrengthArtificialStress`]).
 ///
@@ -12528,12 +12841,13 @@ pub fn step_2d_ts_strength_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + artificial_stress` ([`FxStrengthPlasticityArtificialStress`]).
 ///
@@ -12552,12 +12866,13 @@ pub fn step_2d_ts_strength_plasticity_artificial_stress<X: crate::exec::Executor
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + artificial_stress` ([`FxStrengthPlasticityDamageArtificialStress`]).
 ///
@@ -12577,12 +12892,13 @@ pub fn step_2d_ts_strength_plasticity_damage_artificial_stress<X: crate::exec::E
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + heat + artificial_stress` ([`FxStrengthPlasticityHeatArtificialStress`]).
 ///
@@ -12602,12 +12918,13 @@ pub fn step_2d_ts_strength_plasticity_heat_artificial_stress<X: crate::exec::Exe
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityHeatArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + heat + artificial_stress` ([`FxStrengthPlasticityDamageHeatArtificialStress`]).
 ///
@@ -12630,12 +12947,13 @@ pub fn step_2d_ts_strength_plasticity_damage_heat_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageHeatArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `muscl + artificial_stress` ([`FxMusclArtificialStress`]).
 ///
@@ -12654,12 +12972,13 @@ pub fn step_2d_ts_muscl_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `strength + muscl + artificial_stress` ([`FxStrengthMusclArtificialStress`]).
 ///
@@ -12679,12 +12998,13 @@ pub fn step_2d_ts_strength_muscl_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + muscl + artificial_stress` ([`FxStrengthPlasticityMusclArtificialStress`]).
 ///
@@ -12704,12 +13024,13 @@ pub fn step_2d_ts_strength_plasticity_muscl_artificial_stress<X: crate::exec::Ex
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + muscl + artificial_stress` ([`FxStrengthPlasticityDamageMusclArtificialStress`]).
 ///
@@ -12732,12 +13053,13 @@ pub fn step_2d_ts_strength_plasticity_damage_muscl_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + heat + muscl + artificial_stress` ([`FxStrengthPlasticityHeatMusclArtificialStress`]).
 ///
@@ -12760,12 +13082,13 @@ pub fn step_2d_ts_strength_plasticity_heat_muscl_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityHeatMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + heat + muscl + artificial_stress` ([`FxStrengthPlasticityDamageHeatMusclArtificialStress`]).
 ///
@@ -12789,12 +13112,13 @@ pub fn step_2d_ts_strength_plasticity_damage_heat_muscl_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageHeatMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `periodic + artificial_stress` ([`FxPeriodicArtificialStress`]).
 ///
@@ -12813,12 +13137,13 @@ pub fn step_2d_ts_periodic_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `strength + periodic + artificial_stress` ([`FxStrengthPeriodicArtificialStress`]).
 ///
@@ -12838,12 +13163,13 @@ pub fn step_2d_ts_strength_periodic_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + periodic + artificial_stress` ([`FxStrengthPlasticityPeriodicArtificialStress`]).
 ///
@@ -12865,12 +13191,13 @@ pub fn step_2d_ts_strength_plasticity_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + periodic + artificial_stress` ([`FxStrengthPlasticityDamagePeriodicArtificialStress`]).
 ///
@@ -12893,12 +13220,13 @@ pub fn step_2d_ts_strength_plasticity_damage_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamagePeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + heat + periodic + artificial_stress` ([`FxStrengthPlasticityHeatPeriodicArtificialStress`]).
 ///
@@ -12921,12 +13249,13 @@ pub fn step_2d_ts_strength_plasticity_heat_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityHeatPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + heat + periodic + artificial_stress` ([`FxStrengthPlasticityDamageHeatPeriodicArtificialStress`]).
 ///
@@ -12950,12 +13279,13 @@ pub fn step_2d_ts_strength_plasticity_damage_heat_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageHeatPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `muscl + periodic + artificial_stress` ([`FxMusclPeriodicArtificialStress`]).
 ///
@@ -12975,12 +13305,13 @@ pub fn step_2d_ts_muscl_periodic_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `strength + muscl + periodic + artificial_stress` ([`FxStrengthMusclPeriodicArtificialStress`]).
 ///
@@ -13001,12 +13332,13 @@ pub fn step_2d_ts_strength_muscl_periodic_artificial_stress<X: crate::exec::Exec
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + muscl + periodic + artificial_stress` ([`FxStrengthPlasticityMusclPeriodicArtificialStress`]).
 ///
@@ -13029,12 +13361,13 @@ pub fn step_2d_ts_strength_plasticity_muscl_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + muscl + periodic + artificial_stress` ([`FxStrengthPlasticityDamageMusclPeriodicArtificialStress`]).
 ///
@@ -13058,12 +13391,13 @@ pub fn step_2d_ts_strength_plasticity_damage_muscl_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + heat + muscl + periodic + artificial_stress` ([`FxStrengthPlasticityHeatMusclPeriodicArtificialStress`]).
 ///
@@ -13087,12 +13421,13 @@ pub fn step_2d_ts_strength_plasticity_heat_muscl_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityHeatMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + heat + muscl + periodic + artificial_stress` ([`FxStrengthPlasticityDamageHeatMusclPeriodicArtificialStress`]).
 ///
@@ -13117,12 +13452,13 @@ pub fn step_2d_ts_strength_plasticity_damage_heat_muscl_periodic_artificial_stre
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityDamageHeatMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// The compiled 2D step function of `family` with exactly `effects`.
 ///
@@ -16003,12 +16339,13 @@ pub fn step_3d_av_hydro<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         3,
         FxHydro,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`av`](crate::schemes::av::Av) family with effects `strength` ([`FxStrength`]).
 ///
@@ -16020,12 +16357,13 @@ pub fn step_3d_av_strength<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrength,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity` ([`FxStrengthPlasticity`]).
 ///
@@ -16037,12 +16375,13 @@ pub fn step_3d_av_strength_plasticity<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticity,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + damage` ([`FxStrengthPlasticityDamage`]).
 ///
@@ -16061,12 +16400,13 @@ pub fn step_3d_av_strength_plasticity_damage<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamage,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + heat` ([`FxStrengthPlasticityHeat`]).
 ///
@@ -16085,12 +16425,13 @@ pub fn step_3d_av_strength_plasticity_heat<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityHeat,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + damage + heat` ([`FxStrengthPlasticityDamageHeat`]).
 ///
@@ -16110,12 +16451,13 @@ pub fn step_3d_av_strength_plasticity_damage_heat<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageHeat,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`av`](crate::schemes::av::Av) family with effects `periodic` ([`FxPeriodic`]).
 ///
@@ -16127,12 +16469,13 @@ pub fn step_3d_av_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         3,
         FxPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`av`](crate::schemes::av::Av) family with effects `strength + periodic` ([`FxStrengthPeriodic`]).
 ///
@@ -16151,12 +16494,13 @@ pub fn step_3d_av_strength_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + periodic` ([`FxStrengthPlasticityPeriodic`]).
 ///
@@ -16175,12 +16519,13 @@ pub fn step_3d_av_strength_plasticity_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + damage + periodic` ([`FxStrengthPlasticityDamagePeriodic`]).
 ///
@@ -16200,12 +16545,13 @@ pub fn step_3d_av_strength_plasticity_damage_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamagePeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + heat + periodic` ([`FxStrengthPlasticityHeatPeriodic`]).
 ///
@@ -16225,12 +16571,13 @@ pub fn step_3d_av_strength_plasticity_heat_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityHeatPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + damage + heat + periodic` ([`FxStrengthPlasticityDamageHeatPeriodic`]).
 ///
@@ -16251,12 +16598,13 @@ pub fn step_3d_av_strength_plasticity_damage_heat_periodic<X: crate::exec::Execu
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageHeatPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`av`](crate::schemes::av::Av) family with effects `artificial_stress` ([`FxArtificialStress`]).
 ///
@@ -16270,12 +16618,13 @@ pub fn step_3d_av_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         3,
         FxArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`av`](crate::schemes::av::Av) family with effects `strength + artificial_stress` ([`FxStrengthArtificialStress`]).
 ///
@@ -16294,12 +16643,13 @@ pub fn step_3d_av_strength_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + artificial_stress` ([`FxStrengthPlasticityArtificialStress`]).
 ///
@@ -16318,12 +16668,13 @@ pub fn step_3d_av_strength_plasticity_artificial_stress<X: crate::exec::Executor
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + damage + artificial_stress` ([`FxStrengthPlasticityDamageArtificialStress`]).
 ///
@@ -16343,12 +16694,13 @@ pub fn step_3d_av_strength_plasticity_damage_artificial_stress<X: crate::exec::E
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + heat + artificial_stress` ([`FxStrengthPlasticityHeatArtificialStress`]).
 ///
@@ -16368,12 +16720,13 @@ pub fn step_3d_av_strength_plasticity_heat_artificial_stress<X: crate::exec::Exe
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityHeatArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + damage + heat + artificial_stress` ([`FxStrengthPlasticityDamageHeatArtificialStress`]).
 ///
@@ -16396,12 +16749,13 @@ pub fn step_3d_av_strength_plasticity_damage_heat_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageHeatArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`av`](crate::schemes::av::Av) family with effects `periodic + artificial_stress` ([`FxPeriodicArtificialStress`]).
 ///
@@ -16420,12 +16774,13 @@ pub fn step_3d_av_periodic_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         3,
         FxPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`av`](crate::schemes::av::Av) family with effects `strength + periodic + artificial_stress` ([`FxStrengthPeriodicArtificialStress`]).
 ///
@@ -16445,12 +16800,13 @@ pub fn step_3d_av_strength_periodic_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + periodic + artificial_stress` ([`FxStrengthPlasticityPeriodicArtificialStress`]).
 ///
@@ -16472,12 +16828,13 @@ pub fn step_3d_av_strength_plasticity_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + damage + periodic + artificial_stress` ([`FxStrengthPlasticityDamagePeriodicArtificialStress`]).
 ///
@@ -16500,12 +16857,13 @@ pub fn step_3d_av_strength_plasticity_damage_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamagePeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + heat + periodic + artificial_stress` ([`FxStrengthPlasticityHeatPeriodicArtificialStress`]).
 ///
@@ -16528,12 +16886,13 @@ pub fn step_3d_av_strength_plasticity_heat_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityHeatPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`av`](crate::schemes::av::Av) family with effects `strength + plasticity + damage + heat + periodic + artificial_stress` ([`FxStrengthPlasticityDamageHeatPeriodicArtificialStress`]).
 ///
@@ -16557,12 +16916,13 @@ pub fn step_3d_av_strength_plasticity_damage_heat_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageHeatPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `hydro` ([`FxHydro`]).
 ///
@@ -16574,12 +16934,13 @@ pub fn step_3d_pm_hydro<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxHydro,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength` ([`FxStrength`]).
 ///
@@ -16591,12 +16952,13 @@ pub fn step_3d_pm_strength<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrength,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity` ([`FxStrengthPlasticity`]).
 ///
@@ -16608,12 +16970,13 @@ pub fn step_3d_pm_strength_plasticity<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticity,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage` ([`FxStrengthPlasticityDamage`]).
 ///
@@ -16632,12 +16995,13 @@ pub fn step_3d_pm_strength_plasticity_damage<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamage,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat` ([`FxStrengthPlasticityHeat`]).
 ///
@@ -16656,12 +17020,13 @@ pub fn step_3d_pm_strength_plasticity_heat<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityHeat,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat` ([`FxStrengthPlasticityDamageHeat`]).
 ///
@@ -16681,12 +17046,13 @@ pub fn step_3d_pm_strength_plasticity_damage_heat<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageHeat,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `correction` ([`FxCorrection`]).
 ///
@@ -16698,12 +17064,13 @@ pub fn step_3d_pm_correction<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxCorrection,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + correction` ([`FxStrengthCorrection`]).
 ///
@@ -16722,12 +17089,13 @@ pub fn step_3d_pm_strength_correction<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthCorrection,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + correction` ([`FxStrengthPlasticityCorrection`]).
 ///
@@ -16746,12 +17114,13 @@ pub fn step_3d_pm_strength_plasticity_correction<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityCorrection,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + correction` ([`FxStrengthPlasticityDamageCorrection`]).
 ///
@@ -16771,12 +17140,13 @@ pub fn step_3d_pm_strength_plasticity_damage_correction<X: crate::exec::Executor
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageCorrection,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + correction` ([`FxStrengthPlasticityHeatCorrection`]).
 ///
@@ -16796,12 +17166,13 @@ pub fn step_3d_pm_strength_plasticity_heat_correction<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityHeatCorrection,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + correction` ([`FxStrengthPlasticityDamageHeatCorrection`]).
 ///
@@ -16822,12 +17193,13 @@ pub fn step_3d_pm_strength_plasticity_damage_heat_correction<X: crate::exec::Exe
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageHeatCorrection,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `muscl` ([`FxMuscl`]).
 ///
@@ -16839,12 +17211,13 @@ pub fn step_3d_pm_muscl<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + muscl` ([`FxStrengthMuscl`]).
 ///
@@ -16863,12 +17236,13 @@ pub fn step_3d_pm_strength_muscl<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + muscl` ([`FxStrengthPlasticityMuscl`]).
 ///
@@ -16887,12 +17261,13 @@ pub fn step_3d_pm_strength_plasticity_muscl<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + muscl` ([`FxStrengthPlasticityDamageMuscl`]).
 ///
@@ -16912,12 +17287,13 @@ pub fn step_3d_pm_strength_plasticity_damage_muscl<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + muscl` ([`FxStrengthPlasticityHeatMuscl`]).
 ///
@@ -16937,12 +17313,13 @@ pub fn step_3d_pm_strength_plasticity_heat_muscl<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityHeatMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + muscl` ([`FxStrengthPlasticityDamageHeatMuscl`]).
 ///
@@ -16963,12 +17340,13 @@ pub fn step_3d_pm_strength_plasticity_damage_heat_muscl<X: crate::exec::Executor
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageHeatMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `correction + muscl` ([`FxCorrectionMuscl`]).
 ///
@@ -16987,12 +17365,13 @@ pub fn step_3d_pm_correction_muscl<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxCorrectionMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + correction + muscl` ([`FxStrengthCorrectionMuscl`]).
 ///
@@ -17012,12 +17391,13 @@ pub fn step_3d_pm_strength_correction_muscl<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthCorrectionMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + correction + muscl` ([`FxStrengthPlasticityCorrectionMuscl`]).
 ///
@@ -17037,12 +17417,13 @@ pub fn step_3d_pm_strength_plasticity_correction_muscl<X: crate::exec::Executor>
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityCorrectionMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + correction + muscl` ([`FxStrengthPlasticityDamageCorrectionMuscl`]).
 ///
@@ -17063,12 +17444,13 @@ pub fn step_3d_pm_strength_plasticity_damage_correction_muscl<X: crate::exec::Ex
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageCorrectionMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + correction + muscl` ([`FxStrengthPlasticityHeatCorrectionMuscl`]).
 ///
@@ -17089,12 +17471,13 @@ pub fn step_3d_pm_strength_plasticity_heat_correction_muscl<X: crate::exec::Exec
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityHeatCorrectionMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + correction + muscl` ([`FxStrengthPlasticityDamageHeatCorrectionMuscl`]).
 ///
@@ -17118,12 +17501,13 @@ pub fn step_3d_pm_strength_plasticity_damage_heat_correction_muscl<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageHeatCorrectionMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `periodic` ([`FxPeriodic`]).
 ///
@@ -17135,12 +17519,13 @@ pub fn step_3d_pm_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + periodic` ([`FxStrengthPeriodic`]).
 ///
@@ -17159,12 +17544,13 @@ pub fn step_3d_pm_strength_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + periodic` ([`FxStrengthPlasticityPeriodic`]).
 ///
@@ -17183,12 +17569,13 @@ pub fn step_3d_pm_strength_plasticity_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + periodic` ([`FxStrengthPlasticityDamagePeriodic`]).
 ///
@@ -17208,12 +17595,13 @@ pub fn step_3d_pm_strength_plasticity_damage_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamagePeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + periodic` ([`FxStrengthPlasticityHeatPeriodic`]).
 ///
@@ -17233,12 +17621,13 @@ pub fn step_3d_pm_strength_plasticity_heat_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityHeatPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + periodic` ([`FxStrengthPlasticityDamageHeatPeriodic`]).
 ///
@@ -17259,12 +17648,13 @@ pub fn step_3d_pm_strength_plasticity_damage_heat_periodic<X: crate::exec::Execu
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageHeatPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `correction + periodic` ([`FxCorrectionPeriodic`]).
 ///
@@ -17283,12 +17673,13 @@ pub fn step_3d_pm_correction_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxCorrectionPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + correction + periodic` ([`FxStrengthCorrectionPeriodic`]).
 ///
@@ -17308,12 +17699,13 @@ pub fn step_3d_pm_strength_correction_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthCorrectionPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + correction + periodic` ([`FxStrengthPlasticityCorrectionPeriodic`]).
 ///
@@ -17333,12 +17725,13 @@ pub fn step_3d_pm_strength_plasticity_correction_periodic<X: crate::exec::Execut
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityCorrectionPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + correction + periodic` ([`FxStrengthPlasticityDamageCorrectionPeriodic`]).
 ///
@@ -17361,12 +17754,13 @@ pub fn step_3d_pm_strength_plasticity_damage_correction_periodic<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageCorrectionPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + correction + periodic` ([`FxStrengthPlasticityHeatCorrectionPeriodic`]).
 ///
@@ -17387,12 +17781,13 @@ pub fn step_3d_pm_strength_plasticity_heat_correction_periodic<X: crate::exec::E
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityHeatCorrectionPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + correction + periodic` ([`FxStrengthPlasticityDamageHeatCorrectionPeriodic`]).
 ///
@@ -17416,12 +17811,13 @@ pub fn step_3d_pm_strength_plasticity_damage_heat_correction_periodic<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageHeatCorrectionPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `muscl + periodic` ([`FxMusclPeriodic`]).
 ///
@@ -17440,12 +17836,13 @@ pub fn step_3d_pm_muscl_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + muscl + periodic` ([`FxStrengthMusclPeriodic`]).
 ///
@@ -17465,12 +17862,13 @@ pub fn step_3d_pm_strength_muscl_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + muscl + periodic` ([`FxStrengthPlasticityMusclPeriodic`]).
 ///
@@ -17490,12 +17888,13 @@ pub fn step_3d_pm_strength_plasticity_muscl_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + muscl + periodic` ([`FxStrengthPlasticityDamageMusclPeriodic`]).
 ///
@@ -17516,12 +17915,13 @@ pub fn step_3d_pm_strength_plasticity_damage_muscl_periodic<X: crate::exec::Exec
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + muscl + periodic` ([`FxStrengthPlasticityHeatMusclPeriodic`]).
 ///
@@ -17542,12 +17942,13 @@ pub fn step_3d_pm_strength_plasticity_heat_muscl_periodic<X: crate::exec::Execut
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityHeatMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + muscl + periodic` ([`FxStrengthPlasticityDamageHeatMusclPeriodic`]).
 ///
@@ -17571,12 +17972,13 @@ pub fn step_3d_pm_strength_plasticity_damage_heat_muscl_periodic<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageHeatMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `correction + muscl + periodic` ([`FxCorrectionMusclPeriodic`]).
 ///
@@ -17596,12 +17998,13 @@ pub fn step_3d_pm_correction_muscl_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxCorrectionMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + correction + muscl + periodic` ([`FxStrengthCorrectionMusclPeriodic`]).
 ///
@@ -17622,12 +18025,13 @@ pub fn step_3d_pm_strength_correction_muscl_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthCorrectionMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + correction + muscl + periodic` ([`FxStrengthPlasticityCorrectionMusclPeriodic`]).
 ///
@@ -17650,12 +18054,13 @@ pub fn step_3d_pm_strength_plasticity_correction_muscl_periodic<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityCorrectionMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + correction + muscl + periodic` ([`FxStrengthPlasticityDamageCorrectionMusclPeriodic`]).
 ///
@@ -17679,12 +18084,13 @@ pub fn step_3d_pm_strength_plasticity_damage_correction_muscl_periodic<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageCorrectionMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + correction + muscl + periodic` ([`FxStrengthPlasticityHeatCorrectionMusclPeriodic`]).
 ///
@@ -17708,12 +18114,13 @@ pub fn step_3d_pm_strength_plasticity_heat_correction_muscl_periodic<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityHeatCorrectionMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + correction + muscl + periodic` ([`FxStrengthPlasticityDamageHeatCorrectionMusclPeriodic`]).
 ///
@@ -17738,12 +18145,13 @@ pub fn step_3d_pm_strength_plasticity_damage_heat_correction_muscl_periodic<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageHeatCorrectionMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `artificial_stress` ([`FxArtificialStress`]).
 ///
@@ -17757,12 +18165,13 @@ pub fn step_3d_pm_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + artificial_stress` ([`FxStrengthArtificialStress`]).
 ///
@@ -17781,12 +18190,13 @@ pub fn step_3d_pm_strength_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + artificial_stress` ([`FxStrengthPlasticityArtificialStress`]).
 ///
@@ -17805,12 +18215,13 @@ pub fn step_3d_pm_strength_plasticity_artificial_stress<X: crate::exec::Executor
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + artificial_stress` ([`FxStrengthPlasticityDamageArtificialStress`]).
 ///
@@ -17830,12 +18241,13 @@ pub fn step_3d_pm_strength_plasticity_damage_artificial_stress<X: crate::exec::E
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + artificial_stress` ([`FxStrengthPlasticityHeatArtificialStress`]).
 ///
@@ -17855,12 +18267,13 @@ pub fn step_3d_pm_strength_plasticity_heat_artificial_stress<X: crate::exec::Exe
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityHeatArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + artificial_stress` ([`FxStrengthPlasticityDamageHeatArtificialStress`]).
 ///
@@ -17883,12 +18296,13 @@ pub fn step_3d_pm_strength_plasticity_damage_heat_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageHeatArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `correction + artificial_stress` ([`FxCorrectionArtificialStress`]).
 ///
@@ -17907,12 +18321,13 @@ pub fn step_3d_pm_correction_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxCorrectionArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + correction + artificial_stress` ([`FxStrengthCorrectionArtificialStress`]).
 ///
@@ -17932,12 +18347,13 @@ pub fn step_3d_pm_strength_correction_artificial_stress<X: crate::exec::Executor
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthCorrectionArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + correction + artificial_stress` ([`FxStrengthPlasticityCorrectionArtificialStress`]).
 ///
@@ -17959,12 +18375,13 @@ pub fn step_3d_pm_strength_plasticity_correction_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityCorrectionArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + correction + artificial_stress` ([`FxStrengthPlasticityDamageCorrectionArtificialStress`]).
 ///
@@ -17987,12 +18404,13 @@ pub fn step_3d_pm_strength_plasticity_damage_correction_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageCorrectionArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + correction + artificial_stress` ([`FxStrengthPlasticityHeatCorrectionArtificialStress`]).
 ///
@@ -18015,12 +18433,13 @@ pub fn step_3d_pm_strength_plasticity_heat_correction_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityHeatCorrectionArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + correction + artificial_stress` ([`FxStrengthPlasticityDamageHeatCorrectionArtificialStress`]).
 ///
@@ -18044,12 +18463,13 @@ pub fn step_3d_pm_strength_plasticity_damage_heat_correction_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageHeatCorrectionArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `muscl + artificial_stress` ([`FxMusclArtificialStress`]).
 ///
@@ -18068,12 +18488,13 @@ pub fn step_3d_pm_muscl_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + muscl + artificial_stress` ([`FxStrengthMusclArtificialStress`]).
 ///
@@ -18093,12 +18514,13 @@ pub fn step_3d_pm_strength_muscl_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + muscl + artificial_stress` ([`FxStrengthPlasticityMusclArtificialStress`]).
 ///
@@ -18118,12 +18540,13 @@ pub fn step_3d_pm_strength_plasticity_muscl_artificial_stress<X: crate::exec::Ex
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + muscl + artificial_stress` ([`FxStrengthPlasticityDamageMusclArtificialStress`]).
 ///
@@ -18146,12 +18569,13 @@ pub fn step_3d_pm_strength_plasticity_damage_muscl_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + muscl + artificial_stress` ([`FxStrengthPlasticityHeatMusclArtificialStress`]).
 ///
@@ -18174,12 +18598,13 @@ pub fn step_3d_pm_strength_plasticity_heat_muscl_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityHeatMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + muscl + artificial_stress` ([`FxStrengthPlasticityDamageHeatMusclArtificialStress`]).
 ///
@@ -18203,12 +18628,13 @@ pub fn step_3d_pm_strength_plasticity_damage_heat_muscl_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageHeatMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `correction + muscl + artificial_stress` ([`FxCorrectionMusclArtificialStress`]).
 ///
@@ -18228,12 +18654,13 @@ pub fn step_3d_pm_correction_muscl_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxCorrectionMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + correction + muscl + artificial_stress` ([`FxStrengthCorrectionMusclArtificialStress`]).
 ///
@@ -18254,12 +18681,13 @@ pub fn step_3d_pm_strength_correction_muscl_artificial_stress<X: crate::exec::Ex
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthCorrectionMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + correction + muscl + artificial_stress` ([`FxStrengthPlasticityCorrectionMusclArtificialStress`]).
 ///
@@ -18282,12 +18710,13 @@ pub fn step_3d_pm_strength_plasticity_correction_muscl_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityCorrectionMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + correction + muscl + artificial_stress` ([`FxStrengthPlasticityDamageCorrectionMusclArtificialStress`]).
 ///
@@ -18311,12 +18740,13 @@ pub fn step_3d_pm_strength_plasticity_damage_correction_muscl_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageCorrectionMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + correction + muscl + artificial_stress` ([`FxStrengthPlasticityHeatCorrectionMusclArtificialStress`]).
 ///
@@ -18340,12 +18770,13 @@ pub fn step_3d_pm_strength_plasticity_heat_correction_muscl_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityHeatCorrectionMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + correction + muscl + artificial_stress` ([`FxStrengthPlasticityDamageHeatCorrectionMusclArtificialStress`]).
 ///
@@ -18370,12 +18801,13 @@ pub fn step_3d_pm_strength_plasticity_damage_heat_correction_muscl_artificial_st
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageHeatCorrectionMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `periodic + artificial_stress` ([`FxPeriodicArtificialStress`]).
 ///
@@ -18394,12 +18826,13 @@ pub fn step_3d_pm_periodic_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + periodic + artificial_stress` ([`FxStrengthPeriodicArtificialStress`]).
 ///
@@ -18419,12 +18852,13 @@ pub fn step_3d_pm_strength_periodic_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + periodic + artificial_stress` ([`FxStrengthPlasticityPeriodicArtificialStress`]).
 ///
@@ -18446,12 +18880,13 @@ pub fn step_3d_pm_strength_plasticity_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + periodic + artificial_stress` ([`FxStrengthPlasticityDamagePeriodicArtificialStress`]).
 ///
@@ -18474,12 +18909,13 @@ pub fn step_3d_pm_strength_plasticity_damage_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamagePeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + periodic + artificial_stress` ([`FxStrengthPlasticityHeatPeriodicArtificialStress`]).
 ///
@@ -18502,12 +18938,13 @@ pub fn step_3d_pm_strength_plasticity_heat_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityHeatPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + periodic + artificial_stress` ([`FxStrengthPlasticityDamageHeatPeriodicArtificialStress`]).
 ///
@@ -18531,12 +18968,13 @@ pub fn step_3d_pm_strength_plasticity_damage_heat_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageHeatPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `correction + periodic + artificial_stress` ([`FxCorrectionPeriodicArtificialStress`]).
 ///
@@ -18556,12 +18994,13 @@ pub fn step_3d_pm_correction_periodic_artificial_stress<X: crate::exec::Executor
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxCorrectionPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + correction + periodic + artificial_stress` ([`FxStrengthCorrectionPeriodicArtificialStress`]).
 ///
@@ -18584,12 +19023,13 @@ pub fn step_3d_pm_strength_correction_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthCorrectionPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + correction + periodic + artificial_stress` ([`FxStrengthPlasticityCorrectionPeriodicArtificialStress`]).
 ///
@@ -18612,12 +19052,13 @@ pub fn step_3d_pm_strength_plasticity_correction_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityCorrectionPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + correction + periodic + artificial_stress` ([`FxStrengthPlasticityDamageCorrectionPeriodicArtificialStress`]).
 ///
@@ -18641,12 +19082,13 @@ pub fn step_3d_pm_strength_plasticity_damage_correction_periodic_artificial_stre
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageCorrectionPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + correction + periodic + artificial_stress` ([`FxStrengthPlasticityHeatCorrectionPeriodicArtificialStress`]).
 ///
@@ -18670,12 +19112,13 @@ pub fn step_3d_pm_strength_plasticity_heat_correction_periodic_artificial_stress
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityHeatCorrectionPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + correction + periodic + artificial_stress` ([`FxStrengthPlasticityDamageHeatCorrectionPeriodicArtificialStress`]).
 ///
@@ -18700,12 +19143,13 @@ pub fn step_3d_pm_strength_plasticity_damage_heat_correction_periodic_artificial
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageHeatCorrectionPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `muscl + periodic + artificial_stress` ([`FxMusclPeriodicArtificialStress`]).
 ///
@@ -18725,12 +19169,13 @@ pub fn step_3d_pm_muscl_periodic_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + muscl + periodic + artificial_stress` ([`FxStrengthMusclPeriodicArtificialStress`]).
 ///
@@ -18751,12 +19196,13 @@ pub fn step_3d_pm_strength_muscl_periodic_artificial_stress<X: crate::exec::Exec
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + muscl + periodic + artificial_stress` ([`FxStrengthPlasticityMusclPeriodicArtificialStress`]).
 ///
@@ -18779,12 +19225,13 @@ pub fn step_3d_pm_strength_plasticity_muscl_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + muscl + periodic + artificial_stress` ([`FxStrengthPlasticityDamageMusclPeriodicArtificialStress`]).
 ///
@@ -18808,12 +19255,13 @@ pub fn step_3d_pm_strength_plasticity_damage_muscl_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + muscl + periodic + artificial_stress` ([`FxStrengthPlasticityHeatMusclPeriodicArtificialStress`]).
 ///
@@ -18837,12 +19285,13 @@ pub fn step_3d_pm_strength_plasticity_heat_muscl_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityHeatMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + muscl + periodic + artificial_stress` ([`FxStrengthPlasticityDamageHeatMusclPeriodicArtificialStress`]).
 ///
@@ -18867,12 +19316,13 @@ pub fn step_3d_pm_strength_plasticity_damage_heat_muscl_periodic_artificial_stre
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageHeatMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `correction + muscl + periodic + artificial_stress` ([`FxCorrectionMusclPeriodicArtificialStress`]).
 ///
@@ -18893,12 +19343,13 @@ pub fn step_3d_pm_correction_muscl_periodic_artificial_stress<X: crate::exec::Ex
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxCorrectionMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + correction + muscl + periodic + artificial_stress` ([`FxStrengthCorrectionMusclPeriodicArtificialStress`]).
 ///
@@ -18922,12 +19373,13 @@ pub fn step_3d_pm_strength_correction_muscl_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthCorrectionMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + correction + muscl + periodic + artificial_stress` ([`FxStrengthPlasticityCorrectionMusclPeriodicArtificialStress`]).
 ///
@@ -18951,12 +19403,13 @@ pub fn step_3d_pm_strength_plasticity_correction_muscl_periodic_artificial_stres
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityCorrectionMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + correction + muscl + periodic + artificial_stress` ([`FxStrengthPlasticityDamageCorrectionMusclPeriodicArtificialStress`]).
 ///
@@ -18981,12 +19434,13 @@ pub fn step_3d_pm_strength_plasticity_damage_correction_muscl_periodic_artificia
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageCorrectionMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + heat + correction + muscl + periodic + artificial_stress` ([`FxStrengthPlasticityHeatCorrectionMusclPeriodicArtificialStress`]).
 ///
@@ -19011,12 +19465,13 @@ pub fn step_3d_pm_strength_plasticity_heat_correction_muscl_periodic_artificial_
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityHeatCorrectionMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + damage + heat + correction + muscl + periodic + artificial_stress` ([`FxStrengthPlasticityDamageHeatCorrectionMusclPeriodicArtificialStress`]).
 ///
@@ -19042,12 +19497,13 @@ pub fn step_3d_pm_strength_plasticity_damage_heat_correction_muscl_periodic_arti
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageHeatCorrectionMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `hydro` ([`FxHydro`]).
 ///
@@ -19059,12 +19515,13 @@ pub fn step_3d_ts_hydro<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxHydro,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `strength` ([`FxStrength`]).
 ///
@@ -19076,12 +19533,13 @@ pub fn step_3d_ts_strength<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrength,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity` ([`FxStrengthPlasticity`]).
 ///
@@ -19093,12 +19551,13 @@ pub fn step_3d_ts_strength_plasticity<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticity,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage` ([`FxStrengthPlasticityDamage`]).
 ///
@@ -19117,12 +19576,13 @@ pub fn step_3d_ts_strength_plasticity_damage<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamage,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + heat` ([`FxStrengthPlasticityHeat`]).
 ///
@@ -19141,12 +19601,13 @@ pub fn step_3d_ts_strength_plasticity_heat<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityHeat,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + heat` ([`FxStrengthPlasticityDamageHeat`]).
 ///
@@ -19166,12 +19627,13 @@ pub fn step_3d_ts_strength_plasticity_damage_heat<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageHeat,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `muscl` ([`FxMuscl`]).
 ///
@@ -19183,12 +19645,13 @@ pub fn step_3d_ts_muscl<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `strength + muscl` ([`FxStrengthMuscl`]).
 ///
@@ -19207,12 +19670,13 @@ pub fn step_3d_ts_strength_muscl<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + muscl` ([`FxStrengthPlasticityMuscl`]).
 ///
@@ -19231,12 +19695,13 @@ pub fn step_3d_ts_strength_plasticity_muscl<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + muscl` ([`FxStrengthPlasticityDamageMuscl`]).
 ///
@@ -19256,12 +19721,13 @@ pub fn step_3d_ts_strength_plasticity_damage_muscl<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + heat + muscl` ([`FxStrengthPlasticityHeatMuscl`]).
 ///
@@ -19281,12 +19747,13 @@ pub fn step_3d_ts_strength_plasticity_heat_muscl<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityHeatMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + heat + muscl` ([`FxStrengthPlasticityDamageHeatMuscl`]).
 ///
@@ -19307,12 +19774,13 @@ pub fn step_3d_ts_strength_plasticity_damage_heat_muscl<X: crate::exec::Executor
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageHeatMuscl,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `periodic` ([`FxPeriodic`]).
 ///
@@ -19324,12 +19792,13 @@ pub fn step_3d_ts_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `strength + periodic` ([`FxStrengthPeriodic`]).
 ///
@@ -19348,12 +19817,13 @@ pub fn step_3d_ts_strength_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + periodic` ([`FxStrengthPlasticityPeriodic`]).
 ///
@@ -19372,12 +19842,13 @@ pub fn step_3d_ts_strength_plasticity_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + periodic` ([`FxStrengthPlasticityDamagePeriodic`]).
 ///
@@ -19397,12 +19868,13 @@ pub fn step_3d_ts_strength_plasticity_damage_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamagePeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + heat + periodic` ([`FxStrengthPlasticityHeatPeriodic`]).
 ///
@@ -19422,12 +19894,13 @@ pub fn step_3d_ts_strength_plasticity_heat_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityHeatPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + heat + periodic` ([`FxStrengthPlasticityDamageHeatPeriodic`]).
 ///
@@ -19448,12 +19921,13 @@ pub fn step_3d_ts_strength_plasticity_damage_heat_periodic<X: crate::exec::Execu
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageHeatPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `muscl + periodic` ([`FxMusclPeriodic`]).
 ///
@@ -19472,12 +19946,13 @@ pub fn step_3d_ts_muscl_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `strength + muscl + periodic` ([`FxStrengthMusclPeriodic`]).
 ///
@@ -19497,12 +19972,13 @@ pub fn step_3d_ts_strength_muscl_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + muscl + periodic` ([`FxStrengthPlasticityMusclPeriodic`]).
 ///
@@ -19522,12 +19998,13 @@ pub fn step_3d_ts_strength_plasticity_muscl_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + muscl + periodic` ([`FxStrengthPlasticityDamageMusclPeriodic`]).
 ///
@@ -19548,12 +20025,13 @@ pub fn step_3d_ts_strength_plasticity_damage_muscl_periodic<X: crate::exec::Exec
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + heat + muscl + periodic` ([`FxStrengthPlasticityHeatMusclPeriodic`]).
 ///
@@ -19574,12 +20052,13 @@ pub fn step_3d_ts_strength_plasticity_heat_muscl_periodic<X: crate::exec::Execut
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityHeatMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + heat + muscl + periodic` ([`FxStrengthPlasticityDamageHeatMusclPeriodic`]).
 ///
@@ -19603,12 +20082,13 @@ pub fn step_3d_ts_strength_plasticity_damage_heat_muscl_periodic<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageHeatMusclPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `artificial_stress` ([`FxArtificialStress`]).
 ///
@@ -19622,12 +20102,13 @@ pub fn step_3d_ts_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `strength + artificial_stress` ([`FxStrengthArtificialStress`]).
 ///
@@ -19646,12 +20127,13 @@ pub fn step_3d_ts_strength_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + artificial_stress` ([`FxStrengthPlasticityArtificialStress`]).
 ///
@@ -19670,12 +20152,13 @@ pub fn step_3d_ts_strength_plasticity_artificial_stress<X: crate::exec::Executor
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + artificial_stress` ([`FxStrengthPlasticityDamageArtificialStress`]).
 ///
@@ -19695,12 +20178,13 @@ pub fn step_3d_ts_strength_plasticity_damage_artificial_stress<X: crate::exec::E
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + heat + artificial_stress` ([`FxStrengthPlasticityHeatArtificialStress`]).
 ///
@@ -19720,12 +20204,13 @@ pub fn step_3d_ts_strength_plasticity_heat_artificial_stress<X: crate::exec::Exe
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityHeatArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + heat + artificial_stress` ([`FxStrengthPlasticityDamageHeatArtificialStress`]).
 ///
@@ -19748,12 +20233,13 @@ pub fn step_3d_ts_strength_plasticity_damage_heat_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageHeatArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `muscl + artificial_stress` ([`FxMusclArtificialStress`]).
 ///
@@ -19772,12 +20258,13 @@ pub fn step_3d_ts_muscl_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `strength + muscl + artificial_stress` ([`FxStrengthMusclArtificialStress`]).
 ///
@@ -19797,12 +20284,13 @@ pub fn step_3d_ts_strength_muscl_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + muscl + artificial_stress` ([`FxStrengthPlasticityMusclArtificialStress`]).
 ///
@@ -19822,12 +20310,13 @@ pub fn step_3d_ts_strength_plasticity_muscl_artificial_stress<X: crate::exec::Ex
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + muscl + artificial_stress` ([`FxStrengthPlasticityDamageMusclArtificialStress`]).
 ///
@@ -19850,12 +20339,13 @@ pub fn step_3d_ts_strength_plasticity_damage_muscl_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + heat + muscl + artificial_stress` ([`FxStrengthPlasticityHeatMusclArtificialStress`]).
 ///
@@ -19878,12 +20368,13 @@ pub fn step_3d_ts_strength_plasticity_heat_muscl_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityHeatMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + heat + muscl + artificial_stress` ([`FxStrengthPlasticityDamageHeatMusclArtificialStress`]).
 ///
@@ -19907,12 +20398,13 @@ pub fn step_3d_ts_strength_plasticity_damage_heat_muscl_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageHeatMusclArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `periodic + artificial_stress` ([`FxPeriodicArtificialStress`]).
 ///
@@ -19931,12 +20423,13 @@ pub fn step_3d_ts_periodic_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `strength + periodic + artificial_stress` ([`FxStrengthPeriodicArtificialStress`]).
 ///
@@ -19956,12 +20449,13 @@ pub fn step_3d_ts_strength_periodic_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + periodic + artificial_stress` ([`FxStrengthPlasticityPeriodicArtificialStress`]).
 ///
@@ -19983,12 +20477,13 @@ pub fn step_3d_ts_strength_plasticity_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + periodic + artificial_stress` ([`FxStrengthPlasticityDamagePeriodicArtificialStress`]).
 ///
@@ -20011,12 +20506,13 @@ pub fn step_3d_ts_strength_plasticity_damage_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamagePeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + heat + periodic + artificial_stress` ([`FxStrengthPlasticityHeatPeriodicArtificialStress`]).
 ///
@@ -20039,12 +20535,13 @@ pub fn step_3d_ts_strength_plasticity_heat_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityHeatPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + heat + periodic + artificial_stress` ([`FxStrengthPlasticityDamageHeatPeriodicArtificialStress`]).
 ///
@@ -20068,12 +20565,13 @@ pub fn step_3d_ts_strength_plasticity_damage_heat_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageHeatPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `muscl + periodic + artificial_stress` ([`FxMusclPeriodicArtificialStress`]).
 ///
@@ -20093,12 +20591,13 @@ pub fn step_3d_ts_muscl_periodic_artificial_stress<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `strength + muscl + periodic + artificial_stress` ([`FxStrengthMusclPeriodicArtificialStress`]).
 ///
@@ -20119,12 +20618,13 @@ pub fn step_3d_ts_strength_muscl_periodic_artificial_stress<X: crate::exec::Exec
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + muscl + periodic + artificial_stress` ([`FxStrengthPlasticityMusclPeriodicArtificialStress`]).
 ///
@@ -20147,12 +20647,13 @@ pub fn step_3d_ts_strength_plasticity_muscl_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + muscl + periodic + artificial_stress` ([`FxStrengthPlasticityDamageMusclPeriodicArtificialStress`]).
 ///
@@ -20176,12 +20677,13 @@ pub fn step_3d_ts_strength_plasticity_damage_muscl_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + heat + muscl + periodic + artificial_stress` ([`FxStrengthPlasticityHeatMusclPeriodicArtificialStress`]).
 ///
@@ -20205,12 +20707,13 @@ pub fn step_3d_ts_strength_plasticity_heat_muscl_periodic_artificial_stress<
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityHeatMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 3D [`ts`](crate::schemes::ts::Ts) family with effects `strength + plasticity + damage + heat + muscl + periodic + artificial_stress` ([`FxStrengthPlasticityDamageHeatMusclPeriodicArtificialStress`]).
 ///
@@ -20235,12 +20738,13 @@ pub fn step_3d_ts_strength_plasticity_damage_heat_muscl_periodic_artificial_stre
     ws: &mut crate::state::Workspace<'_, 3>,
     params: &crate::state::StepParams<'_, 3>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
         3,
         FxStrengthPlasticityDamageHeatMusclPeriodicArtificialStress,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// The compiled 3D step function of `family` with exactly `effects`.
 ///

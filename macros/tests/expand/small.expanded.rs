@@ -73,12 +73,13 @@ pub fn step_2d_pm_hydro<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxHydro,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength` ([`FxStrength`]).
 ///
@@ -90,12 +91,13 @@ pub fn step_2d_pm_strength<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrength,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity` ([`FxStrengthPlasticity`]).
 ///
@@ -107,12 +109,13 @@ pub fn step_2d_pm_strength_plasticity<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticity,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `periodic` ([`FxPeriodic`]).
 ///
@@ -124,12 +127,13 @@ pub fn step_2d_pm_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + periodic` ([`FxStrengthPeriodic`]).
 ///
@@ -148,12 +152,13 @@ pub fn step_2d_pm_strength_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// One step of the 2D [`pm`](crate::schemes::pm::Pm) family with effects `strength + plasticity + periodic` ([`FxStrengthPlasticityPeriodic`]).
 ///
@@ -172,12 +177,13 @@ pub fn step_2d_pm_strength_plasticity_periodic<X: crate::exec::Executor>(
     ws: &mut crate::state::Workspace<'_, 2>,
     params: &crate::state::StepParams<'_, 2>,
     exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
     <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
         2,
         FxStrengthPlasticityPeriodic,
         X,
-    >(sys, ws, params, exec)
+    >(sys, ws, params, exec, halo)
 }
 /// The compiled 2D step function of `family` with exactly `effects`.
 ///

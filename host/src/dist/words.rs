@@ -1,0 +1,212 @@
+//! Per-particle values as `f64` words for MPI messages (bit-exact: every value is stored
+//! as an `f64` and read back unchanged; small integers are exact in an `f64`).
+
+use gsph_core::math::{Sym3, Vector};
+use gsph_core::state::{AvRates, Correction, Gradients};
+use nalgebra::SMatrix;
+
+/// A value that travels as a fixed number of `f64` words.
+pub trait Words: Sized {
+    /// Number of words.
+    fn words() -> usize;
+    /// Appends the words.
+    fn put_words(&self, out: &mut Vec<f64>);
+    /// Reads the value from the first [`Words::width`] words of `src`.
+    fn from_words(src: &[f64]) -> Self;
+}
+
+impl Words for f64 {
+    fn words() -> usize {
+        1
+    }
+    fn put_words(&self, out: &mut Vec<f64>) {
+        out.push(*self);
+    }
+    fn from_words(src: &[f64]) -> Self {
+        src[0]
+    }
+}
+
+impl<const R: usize, const C: usize> Words for SMatrix<f64, R, C> {
+    fn words() -> usize {
+        R * C
+    }
+    fn put_words(&self, out: &mut Vec<f64>) {
+        out.extend_from_slice(self.as_slice());
+    }
+    fn from_words(src: &[f64]) -> Self {
+        SMatrix::<f64, R, C>::from_column_slice(&src[..R * C])
+    }
+}
+
+impl Words for Sym3 {
+    fn words() -> usize {
+        6
+    }
+    fn put_words(&self, out: &mut Vec<f64>) {
+        out.extend_from_slice(&[self.xx, self.yy, self.zz, self.xy, self.xz, self.yz]);
+    }
+    fn from_words(s: &[f64]) -> Self {
+        Sym3 {
+            xx: s[0],
+            yy: s[1],
+            zz: s[2],
+            xy: s[3],
+            xz: s[4],
+            yz: s[5],
+        }
+    }
+}
+
+impl<const D: usize> Words for [Vector<D>; 6] {
+    fn words() -> usize {
+        6 * D
+    }
+    fn put_words(&self, out: &mut Vec<f64>) {
+        for v in self {
+            v.put_words(out);
+        }
+    }
+    fn from_words(s: &[f64]) -> Self {
+        core::array::from_fn(|k| Vector::<D>::from_words(&s[k * D..]))
+    }
+}
+
+impl<const D: usize> Words for Gradients<D> {
+    fn words() -> usize {
+        4 * D + D * D
+    }
+    fn put_words(&self, out: &mut Vec<f64>) {
+        self.rho.put_words(out);
+        self.p.put_words(out);
+        self.v.put_words(out);
+        self.cl.put_words(out);
+        self.ct.put_words(out);
+    }
+    fn from_words(s: &[f64]) -> Self {
+        let mut at = 0;
+        let mut next = |w: usize| {
+            let r = &s[at..at + w];
+            at += w;
+            r
+        };
+        Gradients {
+            rho: Vector::<D>::from_words(next(D)),
+            p: Vector::<D>::from_words(next(D)),
+            v: SMatrix::<f64, D, D>::from_words(next(D * D)),
+            cl: Vector::<D>::from_words(next(D)),
+            ct: Vector::<D>::from_words(next(D)),
+        }
+    }
+}
+
+impl<const D: usize> Words for Correction<D> {
+    fn words() -> usize {
+        D * D + 2
+    }
+    fn put_words(&self, out: &mut Vec<f64>) {
+        self.l_inv.put_words(out);
+        out.push(self.lambda_min);
+        out.push(self.boundary as f64);
+    }
+    fn from_words(s: &[f64]) -> Self {
+        Correction {
+            l_inv: SMatrix::<f64, D, D>::from_words(s),
+            lambda_min: s[D * D],
+            boundary: s[D * D + 1] as u8,
+        }
+    }
+}
+
+impl<const D: usize> Words for AvRates<D> {
+    fn words() -> usize {
+        2 * D + 17
+    }
+    fn put_words(&self, out: &mut Vec<f64>) {
+        self.acc.put_words(out);
+        out.extend_from_slice(&[self.de, self.drho]);
+        self.ds.put_words(out);
+        out.push(self.rate);
+        self.v_half.put_words(out);
+        out.extend_from_slice(&[self.e_half, self.rho_half]);
+        self.s_half.put_words(out);
+    }
+    fn from_words(s: &[f64]) -> Self {
+        let mut at = 0;
+        let mut next = |w: usize| {
+            let r = &s[at..at + w];
+            at += w;
+            r
+        };
+        let acc = Vector::<D>::from_words(next(D));
+        let de = next(1)[0];
+        let drho = next(1)[0];
+        let ds = Sym3::from_words(next(6));
+        let rate = next(1)[0];
+        let v_half = Vector::<D>::from_words(next(D));
+        let e_half = next(1)[0];
+        let rho_half = next(1)[0];
+        let s_half = Sym3::from_words(next(6));
+        AvRates {
+            acc,
+            de,
+            drho,
+            ds,
+            rate,
+            v_half,
+            e_half,
+            rho_half,
+            s_half,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn round_trip<T: Words + PartialEq + core::fmt::Debug>(v: T) {
+        let mut out = Vec::new();
+        v.put_words(&mut out);
+        assert_eq!(out.len(), T::words());
+        assert_eq!(T::from_words(&out), v);
+    }
+
+    #[test]
+    fn every_record_round_trips_bit_exactly() {
+        round_trip(std::f64::consts::PI);
+        round_trip(Vector::<3>::new(1.0, -2.5, 1e-300));
+        round_trip(SMatrix::<f64, 2, 2>::new(1.0, 2.0, 3.0, 4.0));
+        round_trip(Sym3 {
+            xx: 1.0,
+            yy: 2.0,
+            zz: 3.0,
+            xy: 4.0,
+            xz: 5.0,
+            yz: 6.0,
+        });
+        let mut g = Gradients::<2>::default();
+        g.v[(0, 1)] = 7.0;
+        g.ct[1] = -1.0;
+        round_trip(g);
+        round_trip(Correction::<3> {
+            boundary: 2,
+            lambda_min: 0.25,
+            ..Default::default()
+        });
+        round_trip([Vector::<2>::new(1.0, 2.0); 6]);
+        let mut a = AvRates::<2> {
+            acc: Vector::<2>::new(1.0, 2.0),
+            de: 3.0,
+            drho: 4.0,
+            ds: Sym3::ZERO,
+            rate: 5.0,
+            v_half: Vector::<2>::new(6.0, 7.0),
+            e_half: 8.0,
+            rho_half: 9.0,
+            s_half: Sym3::ZERO,
+        };
+        a.s_half.xy = 10.0;
+        round_trip(a);
+    }
+}

@@ -1,0 +1,319 @@
+//! A [`Sim`] split over MPI ranks (feature `mpi`; see [`crate::dist`]): particle records
+//! for migration, ghosts and gathers, the distributed neighbour-list rebuild, and the
+//! gathered views (table, diagnostics, checkpoints) in global id order.
+
+use super::Sim;
+use crate::dist::{self, rcb::Rcb, words::Words, Dist, Plan, REBALANCE_THRESHOLD};
+use crate::sim::SimError;
+use gsph_core::math::{Sym3, Vector};
+use gsph_core::state::{AvRates, Correction, Gradients, Layout, PairSums};
+use std::time::Instant;
+
+impl<const D: usize> Sim<D> {
+    /// Splits the particles over the ranks of the world communicator (no-op on one rank):
+    /// keeps this rank's block of the ids and rebuilds the neighbour lists, which moves
+    /// every particle to the rank whose sub-domain holds it and sets up the ghosts.
+    /// Every rank must call it with the same particles (all ranks build the same scene).
+    pub fn distribute(&mut self) -> Result<(), SimError> {
+        let size = dist::size();
+        if size <= 1 || self.dist.is_some() {
+            return Ok(());
+        }
+        let rank = dist::rank();
+        let mut order: Vec<usize> = (0..self.len()).collect();
+        order.sort_unstable_by_key(|&i| self.ids[i]);
+        let n = order.len();
+        let (a, b) = (rank * n / size, (rank + 1) * n / size);
+        let mut keep = vec![false; n];
+        for &i in &order[a..b] {
+            keep[i] = true;
+        }
+        self.retain(&keep);
+        self.dist = Some(Box::new(Dist::new()));
+        self.rebuild()
+    }
+
+    /// Words of one particle record (state, effect storage, `av` rates, driven velocity).
+    fn record_width(&self) -> usize {
+        let opt = |on: bool, w: usize| if on { w } else { 0 };
+        let [s, eps_p, damage, temp, av] = self.stored();
+        1 + 2 * D
+            + 8
+            + opt(s, 6)
+            + opt(eps_p, 1)
+            + opt(damage, 1)
+            + opt(temp, 1)
+            + opt(av, AvRates::<D>::words())
+            + 1
+            + D
+    }
+
+    /// Which of the optional per-particle arrays the effects store (deviator, plastic
+    /// strain, damage, temperature, `av` rates), whether or not this rank holds particles.
+    fn stored(&self) -> [bool; 5] {
+        use gsph_core::effects::EffectSet as E;
+        let has = |e| self.effects.contains(e);
+        [
+            has(E::STRENGTH),
+            has(E::PLASTICITY),
+            has(E::DAMAGE),
+            has(E::HEAT),
+            Layout::of(self.scheme.family(), self.effects).av,
+        ]
+    }
+
+    /// Appends the record of local particle `i` (`driven`: its prescribed velocity).
+    fn put_record(&self, i: usize, driven: Option<Vector<D>>, out: &mut Vec<f64>) {
+        out.push(self.ids[i] as f64);
+        self.x[i].put_words(out);
+        self.v[i].put_words(out);
+        out.extend_from_slice(&[
+            self.m[i],
+            self.mat[i] as f64,
+            self.rho[i],
+            self.e[i],
+            self.p[i],
+            self.c[i],
+            self.cl[i],
+            self.h[i],
+        ]);
+        let [s, eps_p, damage, temp, av] = self.stored();
+        if s {
+            self.s[i].put_words(out);
+        }
+        for (on, v) in [
+            (eps_p, &self.eps_p),
+            (damage, &self.damage),
+            (temp, &self.temp),
+        ] {
+            if on {
+                out.push(v[i]);
+            }
+        }
+        if av {
+            self.av[i].put_words(out);
+        }
+        out.push(driven.is_some() as u8 as f64);
+        driven.unwrap_or_else(Vector::<D>::zeros).put_words(out);
+    }
+
+    /// Appends a particle from its record (with default workspace entries); returns its
+    /// driven velocity.
+    fn push_record(&mut self, r: &[f64]) -> Option<Vector<D>> {
+        let mut at = 0;
+        let mut next = |w: usize| {
+            let s = &r[at..at + w];
+            at += w;
+            s
+        };
+        self.ids.push(next(1)[0] as u32);
+        self.x.push(Vector::<D>::from_words(next(D)));
+        self.v.push(Vector::<D>::from_words(next(D)));
+        let f = next(8);
+        self.m.push(f[0]);
+        self.mat.push(f[1] as u16);
+        self.rho.push(f[2]);
+        self.e.push(f[3]);
+        self.p.push(f[4]);
+        self.c.push(f[5]);
+        self.cl.push(f[6]);
+        self.h.push(f[7]);
+        let [s, pl, dm, ht, av] = self.stored();
+        if s {
+            self.s.push(Sym3::from_words(next(6)));
+        }
+        if pl {
+            self.eps_p.push(next(1)[0]);
+        }
+        if dm {
+            self.damage.push(next(1)[0]);
+        }
+        if ht {
+            self.temp.push(next(1)[0]);
+        }
+        let layout = Layout::of(self.scheme.family(), self.effects);
+        if av {
+            self.av
+                .push(AvRates::<D>::from_words(next(AvRates::<D>::words())));
+        }
+        let driven = next(1)[0] != 0.0;
+        let vd = Vector::<D>::from_words(next(D));
+        self.sums.push(PairSums::default());
+        if layout.grad {
+            self.grad.push(Gradients::default());
+        }
+        if layout.grad_stress {
+            self.grad_stress.push([Vector::<D>::zeros(); 6]);
+        }
+        if layout.corr {
+            self.corr.push(Correction::default());
+        }
+        if layout.art {
+            self.art.push(gsph_core::math::Matrix::<D>::zeros());
+        }
+        self.aux.push(gsph_core::state::Aux::default());
+        driven.then_some(vd)
+    }
+
+    /// The prescribed velocity of each local particle that is driven.
+    fn driven_of(&self) -> Vec<Option<Vector<D>>> {
+        let mut d = vec![None; self.len()];
+        for &(i, v) in &self.driven {
+            d[i] = Some(v);
+        }
+        d
+    }
+
+    /// Records of `idx` (local particles), concatenated.
+    fn records(&self, idx: impl Iterator<Item = usize>) -> Vec<f64> {
+        let driven = self.driven_of();
+        let mut out = Vec::new();
+        for i in idx {
+            self.put_record(i, driven[i], &mut out);
+        }
+        out
+    }
+
+    /// Appends the particles of concatenated records; `owned` ones may be driven.
+    fn push_records(&mut self, buf: &[f64], owned: bool) {
+        let w = self.record_width();
+        for r in buf.chunks_exact(w) {
+            let i = self.len();
+            if let Some(v) = self.push_record(r) {
+                if owned {
+                    self.driven.push((i, v));
+                }
+            }
+        }
+    }
+
+    /// The distributed rebuild: drop the ghosts, rebalance if needed, migrate, renumber,
+    /// exchange ghosts, build the lists over owned and ghost particles (collective).
+    pub(super) fn rebuild_distributed(&mut self) -> Result<(), SimError> {
+        let t0 = Instant::now();
+        let mut d = self.dist.take().expect("a distributed sim");
+        let (rank, size) = (d.rank, d.size);
+        // 1. owned particles only
+        if self.owned < self.len() {
+            let keep: Vec<bool> = (0..self.len()).map(|i| i < self.owned).collect();
+            self.retain(&keep);
+        }
+        // 2. sub-domains: recomputed when the owned counts are out of balance
+        let counts = dist::all_gather_u64(self.len() as u64);
+        let total: u64 = counts.iter().sum();
+        let mean = total as f64 / size as f64;
+        let max = counts.iter().copied().max().unwrap_or(0) as f64;
+        if d.rcb.is_none() || max > mean * (1.0 + REBALANCE_THRESHOLD) {
+            d.rcb = Some(Rcb::build(&self.x, size));
+            d.rebalances += 1;
+        }
+        let rcb = d.rcb.as_ref().expect("sub-domains");
+        // 3. migration
+        let dest: Vec<usize> = self.x.iter().map(|x| rcb.rank_of(x)).collect();
+        let parts: Vec<Vec<f64>> = (0..size)
+            .map(|r| {
+                if r == rank {
+                    Vec::new()
+                } else {
+                    self.records((0..self.len()).filter(|&i| dest[i] == r))
+                }
+            })
+            .collect();
+        let mut bytes = 8 * parts.iter().map(Vec::len).sum::<usize>() as u64;
+        let came = dist::all_to_all(&parts);
+        let keep: Vec<bool> = dest.iter().map(|&r| r == rank).collect();
+        self.retain(&keep);
+        for buf in &came {
+            self.push_records(buf, true);
+        }
+        // 4. memory order (results do not depend on it)
+        if self.reorder {
+            let hmax = self.h.iter().cloned().fold(0.0, f64::max);
+            let order = crate::neighbors::morton_order(&self.x, &self.ids, hmax, &self.periodic);
+            self.permute(&order);
+        }
+        self.owned = self.len();
+        // 5. ghosts: owned particles within the lists' reach of another sub-domain
+        let hmax = dist::all_max(self.h.iter().cloned().fold(0.0, f64::max));
+        let reach = self.kernel.support() * (1.0 + self.skin) * hmax;
+        let send: Vec<Vec<u32>> = (0..size)
+            .map(|r| {
+                if r == rank {
+                    return Vec::new();
+                }
+                (0..self.owned)
+                    .filter(|&i| rcb.near(r, &self.x[i], reach, &self.periodic))
+                    .map(|i| i as u32)
+                    .collect()
+            })
+            .collect();
+        let parts: Vec<Vec<f64>> = send
+            .iter()
+            .map(|idx| self.records(idx.iter().map(|&i| i as usize)))
+            .collect();
+        bytes += 8 * parts.iter().map(Vec::len).sum::<usize>() as u64;
+        let came = dist::all_to_all(&parts);
+        let w = self.record_width();
+        let recv: Vec<usize> = came.iter().map(|b| b.len() / w).collect();
+        for buf in &came {
+            self.push_records(buf, false);
+        }
+        d.owned = self.owned;
+        d.plan = Plan { send, recv };
+        d.rebuild.seconds += t0.elapsed().as_secs_f64();
+        d.rebuild.bytes += bytes;
+        d.rebuild.calls += 1;
+        self.dist = Some(d);
+        // 6. lists over owned and ghost particles; a failure on one rank fails all
+        self.build_x.clone_from(&self.x);
+        self.build_h.clone_from(&self.h);
+        let built = self.build_lists();
+        let msg = built.as_ref().err().map(|e| e.to_string());
+        match dist::agree(msg.map_or(Ok(()), Err)) {
+            Ok(()) => Ok(()),
+            Err(m) => built.and(Err(SimError::Distributed(m))),
+        }
+    }
+
+    /// All particles, gathered from every rank in global id order, as one serial
+    /// simulation (no lists); `None` when this simulation is not distributed.
+    pub fn gathered(&self) -> Option<Sim<D>> {
+        self.dist.as_ref()?;
+        let mine = self.records(0..self.owned);
+        let all = dist::all_gather(&mine);
+        let w = self.record_width();
+        let mut recs: Vec<&[f64]> = all.chunks_exact(w).collect();
+        recs.sort_unstable_by_key(|r| r[0] as u32);
+        let mut s = self.clone();
+        s.dist = None;
+        let none = vec![false; s.len()];
+        s.retain(&none);
+        for r in recs {
+            let i = s.len();
+            if let Some(v) = s.push_record(r) {
+                s.driven.push((i, v));
+            }
+        }
+        s.owned = s.len();
+        // a checkpoint of it rebuilds its lists at these positions on restore
+        s.build_x.clone_from(&s.x);
+        s.build_h.clone_from(&s.h);
+        s.rebuilds = dist::all_max(self.rebuilds as f64) as u64;
+        s.pair_interactions = dist::all_sum_u64(self.pair_interactions);
+        Some(s)
+    }
+
+    /// `(id, m, e, v)` of the owned particles of every rank, in global id order.
+    pub(super) fn gathered_motion(&self) -> Vec<f64> {
+        let w = 3 + D;
+        let mut mine = Vec::with_capacity(self.owned * w);
+        for i in 0..self.owned {
+            mine.extend_from_slice(&[self.ids[i] as f64, self.m[i], self.e[i]]);
+            self.v[i].put_words(&mut mine);
+        }
+        let all = dist::all_gather(&mine);
+        let mut rows: Vec<&[f64]> = all.chunks_exact(w).collect();
+        rows.sort_unstable_by_key(|r| r[0] as u32);
+        rows.concat()
+    }
+}
