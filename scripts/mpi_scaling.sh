@@ -20,7 +20,8 @@ ROUNDS=${ROUNDS:-2}
 OUT=${OUT:-out/mpi_scaling}
 mkdir -p "$OUT"
 scripts/setup.sh
-cargo build -q --release -p gsph --features mpi
+# the build `make test` makes (same features, so no rebuild after it)
+cargo test -q --release --workspace --features gsph/mpi --no-run 2>/dev/null
 bin=target/release/gsph
 # containers: allow root, no cross-memory attach; laptops: allow more ranks than cores
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1

@@ -41,8 +41,11 @@ fn gsph(ranks: usize, threads: usize, args: &[String]) -> (bool, String) {
             .arg(bin());
         c
     };
-    cmd.args(args)
-        .args(["--threads", &threads.to_string(), "--quiet"])
+    cmd.args(args);
+    if args.first().is_some_and(|a| a == "run") {
+        cmd.args(["--threads", &threads.to_string(), "--quiet"]);
+    }
+    cmd
         // containers: root allowed, no cross-memory attach between ranks
         .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
         .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
