@@ -33,4 +33,5 @@ echo "$refused"
 grep -qx 'error: cases/riemann_al_2d.toml: this gsph was built without the specialisation 2D tkc (strength+plasticity+correction+muscl+periodic) `step_2d_pm_strength_plasticity_correction_muscl_periodic` (it contains 3 of 504); rebuild with `--features dim2,scheme-pm,effects-strength,effects-correction,effects-muscl,effects-periodic` or the default features' <<<"$refused"
 echo "== docs"
 RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps -q
+RUSTDOCFLAGS="-D warnings" cargo doc -p gsph --features mpi --no-deps -q
 echo "all checks passed"

@@ -11,7 +11,7 @@ pub trait Words: Sized {
     fn words() -> usize;
     /// Appends the words.
     fn put_words(&self, out: &mut Vec<f64>);
-    /// Reads the value from the first [`Words::width`] words of `src`.
+    /// Reads the value from the first [`Words::words`] words of `src`.
     fn from_words(src: &[f64]) -> Self;
 }
 
