@@ -50,6 +50,19 @@ impl Fields {
     pub const GRAD_STRESS: Fields = Fields(1 << 10);
     /// Kernel corrections ([`crate::state::Workspace::corr`]).
     pub const CORR: Fields = Fields(1 << 11);
+    /// The state a stress-based pair pass reads at the start of a step: geometry (x, h)
+    /// and the Cauchy stress, velocity and wave speed of the other side (`av`'s rates,
+    /// `pm`/`tkc`'s correction, gradients and Riemann problems).
+    pub const STRESS_STATE: Fields = Fields(
+        Fields::X.0
+            | Fields::H.0
+            | Fields::V.0
+            | Fields::RHO.0
+            | Fields::P.0
+            | Fields::CL.0
+            | Fields::S.0
+            | Fields::DAMAGE.0,
+    );
     /// Every field, in the order [`Fields::names`] gives.
     pub const ALL: [(Fields, &'static str); 12] = [
         (Fields::X, "x"),

@@ -36,14 +36,7 @@ use crate::state::{Aux, AvRates, Family, PairGeom, StepError, StepParams, System
 /// exchange comes before each rate evaluation.
 pub const EXCHANGES: [Exchange; 1] = [Exchange {
     before: "rates",
-    fields: Fields::X
-        .with(Fields::H)
-        .with(Fields::V)
-        .with(Fields::RHO)
-        .with(Fields::P)
-        .with(Fields::CL)
-        .with(Fields::S)
-        .with(Fields::DAMAGE),
+    fields: Fields::STRESS_STATE,
     needs: EffectSet::HYDRO,
     needs_any: EffectSet::HYDRO,
 }];

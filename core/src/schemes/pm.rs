@@ -54,14 +54,7 @@ use crate::state::{
 pub const EXCHANGES: [Exchange; 3] = [
     Exchange {
         before: "correction+gradients",
-        fields: Fields::X
-            .with(Fields::H)
-            .with(Fields::V)
-            .with(Fields::RHO)
-            .with(Fields::P)
-            .with(Fields::CL)
-            .with(Fields::S)
-            .with(Fields::DAMAGE),
+        fields: Fields::STRESS_STATE,
         needs: EffectSet::HYDRO,
         needs_any: EffectSet::HYDRO,
     },

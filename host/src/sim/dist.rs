@@ -6,7 +6,7 @@ use super::Sim;
 use crate::dist::{self, rcb::Rcb, words::Words, Dist, Plan, REBALANCE_THRESHOLD};
 use crate::sim::SimError;
 use gsph_core::math::{Sym3, Vector};
-use gsph_core::state::{AvRates, Correction, Gradients, Layout, PairSums};
+use gsph_core::state::{AvRates, Layout};
 use std::time::Instant;
 
 impl<const D: usize> Sim<D> {
@@ -138,20 +138,7 @@ impl<const D: usize> Sim<D> {
         }
         let driven = next(1)[0] != 0.0;
         let vd = Vector::<D>::from_words(next(D));
-        self.sums.push(PairSums::default());
-        if layout.grad {
-            self.grad.push(Gradients::default());
-        }
-        if layout.grad_stress {
-            self.grad_stress.push([Vector::<D>::zeros(); 6]);
-        }
-        if layout.corr {
-            self.corr.push(Correction::default());
-        }
-        if layout.art {
-            self.art.push(gsph_core::math::Matrix::<D>::zeros());
-        }
-        self.aux.push(gsph_core::state::Aux::default());
+        self.push_scratch(&layout);
         driven.then_some(vd)
     }
 

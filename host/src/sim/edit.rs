@@ -109,26 +109,32 @@ impl<const D: usize> Sim<D> {
             if heat {
                 self.temp.push(mat.initial_temperature());
             }
-            self.sums.push(PairSums::default());
-            if layout.grad {
-                self.grad.push(Gradients::default());
-            }
-            if layout.grad_stress {
-                self.grad_stress.push([Vector::<D>::zeros(); 6]);
-            }
-            if layout.corr {
-                self.corr.push(Correction::default());
-            }
             if layout.av {
                 self.av.push(AvRates::default());
             }
-            if layout.art {
-                self.art.push(gsph_core::math::Matrix::<D>::zeros());
-            }
-            self.aux.push(gsph_core::state::Aux::default());
+            self.push_scratch(&layout);
         }
         self.resize_lists();
         first
+    }
+
+    /// Appends one particle's entries of the per-step workspace (recomputed before they
+    /// are read in every step; `av`'s rates, which carry over, are the caller's).
+    pub(super) fn push_scratch(&mut self, layout: &Layout) {
+        self.sums.push(PairSums::default());
+        if layout.grad {
+            self.grad.push(Gradients::default());
+        }
+        if layout.grad_stress {
+            self.grad_stress.push([Vector::<D>::zeros(); 6]);
+        }
+        if layout.corr {
+            self.corr.push(Correction::default());
+        }
+        if layout.art {
+            self.art.push(gsph_core::math::Matrix::<D>::zeros());
+        }
+        self.aux.push(gsph_core::state::Aux::default());
     }
 
     /// Empties the neighbour lists (for the current particle count) and marks them stale.
