@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The test suite (what `make test` and CI run): formatting, lints, every unit, integration
-# and validation test, and the no_std proof (the core alone and the firmware runner built
-# for a Cortex-M4F without std or an allocator).
+# and validation test, the no_std proof (the core alone and the firmware runner built for a
+# Cortex-M4F without std or an allocator, and run under QEMU), the C/C++/Fortran examples
+# of the C ABI and the Python package.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
@@ -13,16 +14,24 @@ echo "== cargo clippy"
 cargo clippy --workspace --all-targets --features gsph/mpi -- -D warnings
 cargo clippy -p gsph --all-targets --no-default-features --features dim1,scheme-ts,effects-strength -- -D warnings
 echo "== cargo test (release: the validation tests run simulations; with MPI, host/tests/mpi.rs)"
-cargo test --workspace --release --features gsph/mpi
+# host/python is tested through pip and pytest below (scripts/python.sh)
+cargo test --workspace --exclude gsph-python --release --features gsph/mpi
 echo "== no_std: gsph-core for thumbv7em-none-eabihf"
 cargo build -p gsph-core --release --target thumbv7em-none-eabihf
 cargo build -p gsph-core --release --target thumbv7em-none-eabihf --no-default-features --features f32,dim1,scheme-ts,effects-strength
-cargo rustc -p gsph-core --release --example firmware_flyer --target thumbv7em-none-eabihf -- -C link-arg=--entry=gsph_flyer_main
+# the firmware with every specialisation links into the board's memory map
+cargo rustc -p gsph-core --release --example firmware_flyer --target thumbv7em-none-eabihf -- -C link-arg=-Tcore/firmware/mps2_an386.ld
 echo "== firmware runner on the host (fails if stepping allocates)"
 cargo run -q -p gsph-core --release --example firmware_flyer
+echo "== firmware runner on an emulated Cortex-M4F (QEMU), f64 and f32, against the host and gsph run"
+scripts/firmware.sh
+echo "== the C ABI from C, C++ and Fortran, against gsph run"
+scripts/ffi.sh
+echo "== the Python package (pip install ./host/python, pytest, the plotting example)"
+scripts/python.sh
 echo "== one-specialisation build: runs what it contains, refuses the rest in one line"
 # README "Compile-time-selected builds". Dev profile, own target dir (about 2 minutes).
-cargo build -q -p gsph --no-default-features --features dim1,scheme-ts,effects-strength --target-dir target/one-spec
+cargo build -q -p gsph --no-default-features --features cli,dim1,scheme-ts,effects-strength --target-dir target/one-spec
 one=target/one-spec/debug/gsph
 ok=$("$one" check cases/flyer_plate.toml --set scheme=ts1)
 grep -qx 'kernel    step_1d_ts_strength_plasticity (compiled; this build contains 3 of 504 specialisations)' <<<"$ok"

@@ -11,6 +11,8 @@ macro_rules! out {
     }};
 }
 
+pub use crate::driver::scene_name;
+
 use crate::driver::{run_checkpointed, CheckpointOptions, Outcome, RunError, RunOptions};
 use crate::reference::Reference;
 use crate::scene::{self, build_particles};
@@ -211,15 +213,6 @@ pub enum PlotCommand {
     },
 }
 
-/// Scene name: the `name` key or the file stem.
-pub fn scene_name(scene: &scene::Scene, path: &std::path::Path) -> String {
-    scene.name.clone().unwrap_or_else(|| {
-        path.file_stem()
-            .map(|s| s.to_string_lossy().into_owned())
-            .unwrap_or_default()
-    })
-}
-
 fn pool(threads: Option<usize>) -> Result<rayon::ThreadPool, String> {
     let mut b = rayon::ThreadPoolBuilder::new();
     if let Some(t) = threads {
@@ -292,6 +285,76 @@ pub fn main_with_args(args: impl IntoIterator<Item = std::ffi::OsString>) -> i32
     }
 }
 
+/// `gsph plot ...`.
+#[cfg(feature = "plot")]
+fn plot(cmd: PlotCommand) -> Result<(), String> {
+    match cmd {
+        PlotCommand::Particles {
+            dir,
+            field,
+            step,
+            time,
+            range,
+            highlight_material,
+            out,
+        } => {
+            let range = match range {
+                None => None,
+                Some(r) => {
+                    let v: Vec<f64> = r.split(',').filter_map(|x| x.trim().parse().ok()).collect();
+                    if v.len() != 2 || v[0] >= v[1] {
+                        return Err(format!(
+                            "--range: expected MIN,MAX with MIN < MAX, got `{r}`"
+                        ));
+                    }
+                    Some((v[0], v[1]))
+                }
+            };
+            let path = crate::commands::plot_particles(
+                &dir,
+                &field,
+                step,
+                time,
+                range,
+                highlight_material,
+                out,
+            )?;
+            out!("wrote {}", path.display());
+            Ok(())
+        }
+        PlotCommand::Profile { dir, out } => {
+            let path = crate::commands::plot_profile(&dir, out)?;
+            out!("wrote {}", path.display());
+            Ok(())
+        }
+        PlotCommand::Hugoniot { dirs, labels, out } => {
+            let labels: Vec<String> = labels
+                .map(|l| l.split(',').map(|x| x.trim().to_string()).collect())
+                .unwrap_or_default();
+            crate::window::plot::plot_runs(&dirs, &labels, &out)?;
+            out!("wrote {}", out.display());
+            Ok(())
+        }
+        PlotCommand::Series {
+            dir,
+            columns,
+            y_label,
+            out,
+        } => {
+            let cols: Vec<String> = columns.split(',').map(|c| c.trim().to_string()).collect();
+            let path = crate::commands::plot_series(&dir, &cols, y_label, out)?;
+            out!("wrote {}", path.display());
+            Ok(())
+        }
+    }
+}
+
+/// `gsph plot ...` in a build without plotting: refused.
+#[cfg(not(feature = "plot"))]
+fn plot(_cmd: PlotCommand) -> Result<(), String> {
+    Err(format!("gsph plot: {}", crate::commands::NO_PLOT))
+}
+
 fn execute(cmd: Command) -> Result<(), String> {
     match cmd {
         Command::Study {
@@ -324,63 +387,7 @@ fn execute(cmd: Command) -> Result<(), String> {
             Ok(())
         }
         Command::Stability(args) => crate::stability::command(&args),
-        Command::Plot(PlotCommand::Particles {
-            dir,
-            field,
-            step,
-            time,
-            range,
-            highlight_material,
-            out,
-        }) => {
-            let range = match range {
-                None => None,
-                Some(r) => {
-                    let v: Vec<f64> = r.split(',').filter_map(|x| x.trim().parse().ok()).collect();
-                    if v.len() != 2 || v[0] >= v[1] {
-                        return Err(format!(
-                            "--range: expected MIN,MAX with MIN < MAX, got `{r}`"
-                        ));
-                    }
-                    Some((v[0], v[1]))
-                }
-            };
-            let path = crate::commands::plot_particles(
-                &dir,
-                &field,
-                step,
-                time,
-                range,
-                highlight_material,
-                out,
-            )?;
-            out!("wrote {}", path.display());
-            Ok(())
-        }
-        Command::Plot(PlotCommand::Profile { dir, out }) => {
-            let path = crate::commands::plot_profile(&dir, out)?;
-            out!("wrote {}", path.display());
-            Ok(())
-        }
-        Command::Plot(PlotCommand::Hugoniot { dirs, labels, out }) => {
-            let labels: Vec<String> = labels
-                .map(|l| l.split(',').map(|x| x.trim().to_string()).collect())
-                .unwrap_or_default();
-            crate::window::plot::plot_runs(&dirs, &labels, &out)?;
-            out!("wrote {}", out.display());
-            Ok(())
-        }
-        Command::Plot(PlotCommand::Series {
-            dir,
-            columns,
-            y_label,
-            out,
-        }) => {
-            let cols: Vec<String> = columns.split(',').map(|c| c.trim().to_string()).collect();
-            let path = crate::commands::plot_series(&dir, &cols, y_label, out)?;
-            out!("wrote {}", path.display());
-            Ok(())
-        }
+        Command::Plot(cmd) => plot(cmd),
         Command::Check {
             scene: path,
             set,

@@ -1,14 +1,27 @@
-//! The `gsph plot` and `gsph study` commands (argument handling around [`crate::plot`] and
-//! [`crate::study`]).
+//! The `gsph plot`, `gsph study` and `gsph hugoniot` commands (argument handling around
+//! `crate::plot`, [`crate::study`] and [`crate::window::hugoniot`]).
+//!
+//! The plots need the cargo feature `plot` (on by default). Without it the `plot_*`
+//! functions are absent and [`run_study`] and [`run_hugoniot`] write their tables but no
+//! plots ([`NO_PLOT`] on stderr).
 
+#[cfg(feature = "plot")]
 use crate::output::{read_frame, read_snapshot_times};
+#[cfg(feature = "plot")]
 use crate::plot::{ParticlePlot, Series, SeriesStyle, XyPlot};
 use crate::study::{study, StudyOptions, StudyRow};
 use gsph_core::schemes::Scheme;
-use std::path::{Path, PathBuf};
+use std::path::Path;
+#[cfg(feature = "plot")]
+use std::path::PathBuf;
+
+/// Why a plot was refused or left out by a build without the cargo feature `plot`.
+pub const NO_PLOT: &str = "this gsph was built without plotting (cargo feature `plot`)";
 
 /// Renders one snapshot of a run directory as a picture coloured by `field`.
 /// `step`/`time` pick the snapshot (exact step, or the one nearest in time; default last).
+/// Needs the feature `hdf5` too (else an error naming it).
+#[cfg(feature = "plot")]
 #[allow(clippy::too_many_arguments)]
 pub fn plot_particles(
     dir: &Path,
@@ -56,6 +69,7 @@ pub fn plot_particles(
     Ok(out)
 }
 
+#[cfg(feature = "plot")]
 fn list(times: &[(u64, f64)]) -> String {
     let v: Vec<String> = times.iter().map(|(s, _)| s.to_string()).collect();
     v.join(", ")
@@ -63,6 +77,7 @@ fn list(times: &[(u64, f64)]) -> String {
 
 /// Plots columns of a run's `series.csv` against time (in microseconds). Columns whose
 /// name ends in `_exact` are drawn dashed, as analytic references.
+#[cfg(feature = "plot")]
 pub fn plot_series(
     dir: &Path,
     columns: &[String],
@@ -150,7 +165,8 @@ pub fn parse_positive(flag: &str, s: &str) -> Result<Vec<f64>, String> {
         .collect()
 }
 
-/// `gsph hugoniot`: the Hugoniot points of a window scene, written into `out`.
+/// `gsph hugoniot`: the Hugoniot points of a window scene, written into `out` (the tables;
+/// the plots only with the feature `plot`).
 pub fn run_hugoniot(
     scene: &crate::scene::Scene,
     opts: &crate::window::hugoniot::HugoniotOptions,
@@ -164,6 +180,8 @@ pub fn run_hugoniot(
     // points are done, and the partial table is then removed
     let partial = out.join("hugoniot.partial.csv");
     let mut rows = String::new();
+    #[cfg(not(feature = "plot"))]
+    eprintln!("hugoniot: plots left out: {NO_PLOT}");
     let points = hugoniot(scene, opts, |p| {
         write_point(out, p)?;
         let one = to_csv(std::slice::from_ref(p));
@@ -204,15 +222,34 @@ pub fn run_hugoniot(
     Ok(points)
 }
 
-/// Runs a study and writes its plots: error against wall time and against particles.
+/// Runs a study (which writes study.csv and study.md) and writes its plots: error against
+/// wall time and against particles (only with the feature `plot`).
 pub fn run_study(scene: &Path, opts: &StudyOptions) -> Result<Vec<StudyRow>, String> {
     let (rows, metric) = study(scene, opts)?;
+    #[cfg(feature = "plot")]
+    write_study_plots(scene, opts, &rows, &metric)?;
+    #[cfg(not(feature = "plot"))]
+    {
+        let _ = metric;
+        eprintln!("study: plots left out: {NO_PLOT}");
+    }
+    Ok(rows)
+}
+
+/// The plots of [`run_study`].
+#[cfg(feature = "plot")]
+fn write_study_plots(
+    scene: &Path,
+    opts: &StudyOptions,
+    rows: &[StudyRow],
+    metric: &str,
+) -> Result<(), String> {
     let name = scene
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_default();
     let mut schemes: Vec<&str> = Vec::new();
-    for r in &rows {
+    for r in rows {
         if !schemes.contains(&r.scheme.as_str()) {
             schemes.push(&r.scheme);
         }
@@ -239,7 +276,7 @@ pub fn run_study(scene: &Path, opts: &StudyOptions) -> Result<Vec<StudyRow>, Str
         XyPlot {
             title: format!("{name}: {metric} against wall time"),
             x_label: "wall time (s)".into(),
-            y_label: metric.clone(),
+            y_label: metric.to_string(),
             log_x: true,
             log_y: true,
             series: lines(&|r| r.wall_s),
@@ -255,7 +292,7 @@ pub fn run_study(scene: &Path, opts: &StudyOptions) -> Result<Vec<StudyRow>, Str
         XyPlot {
             title: format!("{name}: {metric} against particles"),
             x_label: "particles".into(),
-            y_label: metric.clone(),
+            y_label: metric.to_string(),
             log_x: true,
             log_y: true,
             series: lines(&|r| r.particles as f64),
@@ -265,11 +302,12 @@ pub fn run_study(scene: &Path, opts: &StudyOptions) -> Result<Vec<StudyRow>, Str
         .save(&opts.out.join(format!("error_vs_particles.{ext}")))
         .map_err(|e| e.to_string())?;
     }
-    Ok(rows)
+    Ok(())
 }
 
 /// Plots a run's `profile.csv`: sigma_xx of the particles (markers) against the exact
 /// profile (dashed), like seed 000 fig 1 and seed 004 fig 2a.
+#[cfg(feature = "plot")]
 pub fn plot_profile(dir: &Path, out: Option<PathBuf>) -> Result<PathBuf, String> {
     let path = dir.join("profile.csv");
     let text = std::fs::read_to_string(&path).map_err(|e| {

@@ -8,7 +8,6 @@ use crate::scene::{build_particles, InitialParticles, Scene, SceneError};
 use crate::sim::{Sim, SimError};
 use crate::window::Window;
 use serde_json::{json, Map, Value};
-use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -66,9 +65,71 @@ impl From<std::io::Error> for RunError {
 #[derive(Debug, Clone)]
 pub struct RunOptions {
     /// Output directory (`None`: keep results in memory only; used by studies and tests).
+    /// Its snapshots need the cargo feature `hdf5`: without it a run with a directory is
+    /// refused before it starts ([`SnapshotWriter::supported`]).
     pub out: Option<PathBuf>,
-    /// Show a progress bar (only drawn on a terminal).
+    /// Show a progress bar (only drawn on a terminal, and only with the cargo feature `cli`).
     pub progress: bool,
+}
+
+/// Scene name: the `name` key or the file stem of `path`.
+pub fn scene_name(scene: &Scene, path: &Path) -> String {
+    scene.name.clone().unwrap_or_else(|| {
+        path.file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default()
+    })
+}
+
+/// The progress bar of a run (drawn with the cargo feature `cli` only).
+struct Progress {
+    #[cfg(feature = "cli")]
+    bar: Option<indicatif::ProgressBar>,
+}
+
+impl Progress {
+    /// A bar if `show` and stderr is a terminal.
+    fn new(show: bool) -> Self {
+        #[cfg(feature = "cli")]
+        {
+            use std::io::IsTerminal;
+            let bar = (show && std::io::stderr().is_terminal()).then(|| {
+                let b = indicatif::ProgressBar::new(1000);
+                b.set_style(
+                    indicatif::ProgressStyle::with_template(
+                        "{spinner} [{elapsed_precise}] {bar:40} {percent:>3}% t={msg} eta {eta}",
+                    )
+                    .expect("valid template"),
+                );
+                b
+            });
+            Progress { bar }
+        }
+        #[cfg(not(feature = "cli"))]
+        {
+            let _ = show;
+            Progress {}
+        }
+    }
+
+    /// Shows time `t` of `t_end`.
+    fn set(&self, t: f64, t_end: f64) {
+        #[cfg(feature = "cli")]
+        if let Some(b) = &self.bar {
+            b.set_position((1000.0 * t / t_end) as u64);
+            b.set_message(format!("{t:.3e}"));
+        }
+        #[cfg(not(feature = "cli"))]
+        let _ = (t, t_end);
+    }
+
+    /// Removes the bar.
+    fn finish(self) {
+        #[cfg(feature = "cli")]
+        if let Some(b) = self.bar {
+            b.finish_and_clear();
+        }
+    }
 }
 
 /// What a run produced.
@@ -173,19 +234,7 @@ pub fn run_checkpointed(
 /// (`x,sigma_xx,sigma_xx_exact`; the exact value is empty where it does not hold), or
 /// `None` for references that are not stress profiles.
 fn profile_csv(r: &Reference, table: &crate::output::ParticleTable, t: f64) -> Option<String> {
-    if !r.is_profile() {
-        return None;
-    }
-    let mut rows: Vec<(f64, f64, Option<f64>)> = (0..table.len())
-        .map(|i| {
-            (
-                table.x[i],
-                table.sxx[i] - table.p[i],
-                r.sigma_xx(table.x[i], t),
-            )
-        })
-        .collect();
-    rows.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let rows = r.profile(table, t)?;
     let mut s = String::from("x,sigma_xx,sigma_xx_exact\n");
     for (x, sxx, ex) in rows {
         s.push_str(&format!(
@@ -278,6 +327,10 @@ fn run_dim<const D: usize>(
     ckpt: Option<&CheckpointOptions>,
 ) -> Result<Outcome, RunError> {
     let t_total = Instant::now();
+    if opts.out.is_some() {
+        // before anything is built or cleared, on every MPI rank
+        SnapshotWriter::supported()?;
+    }
     let reference = Reference::from_scene(scene, &parts.x, &parts.spacing)?;
     let mut sim = Sim::<D>::new(scene, parts)?;
     let ranks = crate::dist_size();
@@ -380,16 +433,7 @@ fn run_dim<const D: usize>(
         }
     }
     drop(frames);
-    let bar = (root && opts.progress && std::io::stderr().is_terminal()).then(|| {
-        let b = indicatif::ProgressBar::new(1000);
-        b.set_style(
-            indicatif::ProgressStyle::with_template(
-                "{spinner} [{elapsed_precise}] {bar:40} {percent:>3}% t={msg} eta {eta}",
-            )
-            .expect("valid template"),
-        );
-        b
-    });
+    let bar = Progress::new(root && opts.progress);
     let t_end = scene.t_end;
     let max_steps = scene.max_steps.unwrap_or(u64::MAX);
     let t_loop = Instant::now();
@@ -427,10 +471,7 @@ fn run_dim<const D: usize>(
             }
             next_out += 1;
         }
-        if let Some(b) = &bar {
-            b.set_position((1000.0 * sim.t / t_end) as u64);
-            b.set_message(format!("{:.3e}", sim.t));
-        }
+        bar.set(sim.t, t_end);
         if let Some(c) = control.as_mut() {
             let (write, stop) = c.due(sim.step);
             // a wall-clock schedule differs between ranks: rank 0's decision holds
@@ -464,17 +505,13 @@ fn run_dim<const D: usize>(
                 }
             }
             if stop {
-                if let Some(b) = bar {
-                    b.finish_and_clear();
-                }
+                bar.finish();
                 return Ok(Outcome::Stopped { step: sim.step });
             }
         }
     }
     let wall = t_loop.elapsed().as_secs_f64();
-    if let Some(b) = bar {
-        b.finish_and_clear();
-    }
+    bar.finish();
     let (k1, i1) = sim.energy();
     let energy1 = k1 + i1;
     let mom1 = sim.momentum();

@@ -2,8 +2,15 @@
 //!
 //! The std host of gsph: scenes, parallel neighbour search, the run driver, output
 //! (HDF5 + XDMF, CSV, JSON) and the `gsph` command line. The physics is in `gsph-core`.
+//!
+//! Cargo features besides the step specialisations, all on by default: `hdf5` (snapshot
+//! files; without it a run with an output directory is refused), `plot` (the `plot`
+//! module and the plots of studies and Hugoniots; without it they write tables only) and
+//! `cli` (the `cli` module and the `gsph` binary, with its progress bar).
 
+pub mod api;
 pub mod checkpoint;
+#[cfg(feature = "cli")]
 pub mod cli;
 pub mod commands;
 #[cfg(feature = "mpi")]
@@ -15,6 +22,7 @@ pub mod monitor;
 pub mod monitor_elastic;
 pub mod neighbors;
 pub mod output;
+#[cfg(feature = "plot")]
 pub mod plot;
 pub mod reference;
 pub mod scene;

@@ -265,6 +265,23 @@ impl Reference {
         }
     }
 
+    /// `(x, sigma_xx, exact sigma_xx)` of every particle sorted by x (the exact value
+    /// `None` where it does not hold), or `None` for references that are not stress
+    /// profiles.
+    pub fn profile(&self, table: &ParticleTable, t: f64) -> Option<Vec<(f64, f64, Option<f64>)>> {
+        if !self.is_profile() {
+            return None;
+        }
+        let mut rows: Vec<(f64, f64, Option<f64>)> = (0..table.len())
+            .map(|i| {
+                let x = table.x[i];
+                (x, table.sxx[i] - table.p[i], self.sigma_xx(x, t))
+            })
+            .collect();
+        rows.sort_by(|a, b| a.0.total_cmp(&b.0));
+        Some(rows)
+    }
+
     /// True for references that are a sigma_xx profile (profile.csv, `l1_error` of stress).
     pub fn is_profile(&self) -> bool {
         matches!(self, Reference::Flyer(_) | Reference::EpRiemann { .. })

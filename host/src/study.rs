@@ -89,7 +89,7 @@ pub fn study(scene_path: &Path, opts: &StudyOptions) -> Result<(Vec<StudyRow>, S
                     );
                 }
             }
-            let name = crate::cli::scene_name(&sc, scene_path);
+            let name = crate::driver::scene_name(&sc, scene_path);
             eprintln!(
                 "study: run {}/{total}: {} at resolution {res}",
                 rows.len() + 1,
@@ -200,6 +200,21 @@ fn write_outputs(
     )
     .map_err(|e| e.to_string())?;
     Ok(())
+}
+
+/// A study row as JSON (the Python package's `gsph.study` returns these).
+pub fn row_json(r: &StudyRow) -> serde_json::Value {
+    serde_json::json!({
+        "scheme": r.scheme,
+        "resolution": r.resolution,
+        "particles": r.particles,
+        "error": r.error,
+        "wall_s": r.wall_s,
+        "steps": r.steps,
+        "pair_interactions": r.pair_interactions,
+        "energy_rel_error": r.energy_rel_error,
+        "pareto": r.pareto,
+    })
 }
 
 #[cfg(test)]

@@ -39,7 +39,7 @@ pub fn load(path: &Path, overrides: &[String]) -> Result<(Scene, SceneSource), S
         .map_err(|e| format!("{}: cannot read scene: {e}", path.display()))?;
     let origin = path.display().to_string();
     let sc = scene::parse(&text, &origin, overrides).map_err(|e| e.to_string())?;
-    let name = crate::cli::scene_name(&sc, path);
+    let name = crate::driver::scene_name(&sc, path);
     let source = SceneSource {
         origin,
         text,

@@ -9,63 +9,16 @@
 //! writes the XDMF sidecar atomically; a writer dropped without `finish` removes its temp file.
 //! [`read_frame`](super::hdf5_read::read_frame) reads a snapshot back.
 
-use core::fmt;
 use std::io;
 use std::path::{Path, PathBuf};
+
+pub use super::error::OutputError;
 
 use super::atomic::{commit_tmp, tmp_path, write_atomic};
 use super::table::{Frame, ParticleTable};
 use super::xdmf::{group_name, xdmf_document, XdmfGrid, SCALAR_DATASETS};
 
-/// File name of the HDF5 snapshots in the output directory.
-pub const SNAPSHOTS_H5: &str = "snapshots.h5";
-/// File name of the XDMF sidecar in the output directory.
-pub const SNAPSHOTS_XDMF: &str = "snapshots.xdmf";
-
-/// An error while writing or reading output files.
-#[derive(Debug)]
-pub enum OutputError {
-    /// A file-system error.
-    Io(io::Error),
-    /// An error reported by the HDF5 library.
-    Hdf5(hdf5::Error),
-    /// Inconsistent data or a file that does not have the expected layout.
-    Format(String),
-}
-
-impl fmt::Display for OutputError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let (kind, msg) = match self {
-            Self::Io(e) => ("I/O error", e.to_string()),
-            Self::Hdf5(e) => ("HDF5 error", e.to_string()),
-            Self::Format(m) => ("bad output data", m.clone()),
-        };
-        let one_line: Vec<&str> = msg.split_whitespace().collect();
-        write!(f, "{kind}: {}", one_line.join(" "))
-    }
-}
-
-impl core::error::Error for OutputError {
-    fn source(&self) -> Option<&(dyn core::error::Error + 'static)> {
-        match self {
-            Self::Io(e) => Some(e),
-            Self::Hdf5(e) => Some(e),
-            Self::Format(_) => None,
-        }
-    }
-}
-
-impl From<io::Error> for OutputError {
-    fn from(e: io::Error) -> Self {
-        Self::Io(e)
-    }
-}
-
-impl From<hdf5::Error> for OutputError {
-    fn from(e: hdf5::Error) -> Self {
-        Self::Hdf5(e)
-    }
-}
+pub use super::{SNAPSHOTS_H5, SNAPSHOTS_XDMF};
 
 /// Removes `path`, treating "not found" as success.
 fn remove_if_exists(path: &Path) -> io::Result<()> {
@@ -85,6 +38,12 @@ pub struct SnapshotWriter {
 }
 
 impl SnapshotWriter {
+    /// `Ok`: this build writes snapshots (a build without the feature `hdf5` refuses with
+    /// [`OutputError::Unsupported`]).
+    pub fn supported() -> Result<(), OutputError> {
+        Ok(())
+    }
+
     /// Starts `dir/snapshots.h5.tmp` for a run of dimension `dim`; removes stale `snapshots.h5` and
     /// `snapshots.xdmf` of an earlier run in `dir`, so a failed run leaves neither.
     pub fn create(dir: &Path, dim: usize) -> Result<Self, OutputError> {

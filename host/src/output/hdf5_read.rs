@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use super::hdf5::OutputError;
+use super::error::OutputError;
 use super::table::{Frame, ParticleTable, FLOAT_COLUMNS};
 use super::xdmf::group_name;
 

@@ -14,17 +14,38 @@
 //! sidecar is written only after `snapshots.h5` has been renamed into place.
 //!
 //! Files: [`table`] (the particle table), [`atomic`] (temp-file-and-rename helpers), [`csv`],
-//! [`mod@hdf5`] (the snapshot writer), [`hdf5_read`] (its reader), [`xdmf`] (the sidecar).
+//! `hdf5` (the snapshot writer), `hdf5_read` (its reader), [`xdmf`] (the sidecar),
+//! [`error`] ([`OutputError`]).
+//!
+//! The snapshots need the cargo feature `hdf5` (on by default). Without it
+//! [`SnapshotWriter`], [`read_snapshot_times`] and [`read_frame`] keep their signatures but
+//! refuse with [`OutputError::Unsupported`] ([`error::NO_HDF5`]): `gsph run` with an output
+//! directory fails in one line, a run without one (the library's) is unaffected.
 
 pub mod atomic;
 pub mod csv;
+pub mod error;
+#[cfg(feature = "hdf5")]
 pub mod hdf5;
+#[cfg(feature = "hdf5")]
 pub mod hdf5_read;
+#[cfg(not(feature = "hdf5"))]
+mod no_hdf5;
 pub mod table;
 pub mod xdmf;
 
+/// File name of the HDF5 snapshots in the output directory.
+pub const SNAPSHOTS_H5: &str = "snapshots.h5";
+/// File name of the XDMF sidecar in the output directory.
+pub const SNAPSHOTS_XDMF: &str = "snapshots.xdmf";
+
 pub use self::atomic::{write_atomic, AtomicFile};
 pub use self::csv::{read_csv, write_csv};
-pub use self::hdf5::{OutputError, SnapshotWriter, SNAPSHOTS_H5, SNAPSHOTS_XDMF};
+pub use self::error::OutputError;
+#[cfg(feature = "hdf5")]
+pub use self::hdf5::SnapshotWriter;
+#[cfg(feature = "hdf5")]
 pub use self::hdf5_read::{read_frame, read_snapshot_times};
+#[cfg(not(feature = "hdf5"))]
+pub use self::no_hdf5::{read_frame, read_snapshot_times, SnapshotWriter};
 pub use self::table::{Frame, ParticleRow, ParticleTable, COLUMNS};

@@ -84,7 +84,12 @@ fn at_most(v: f64, limit: f64) -> bool {
 /// Builds the particles once and checks that the run fits in memory (see [`MAX_PARTICLES`],
 /// [`MAX_CELLS`], [`MAX_NEIGHBOR_ENTRIES`]). Errors name the key.
 pub fn check_build(scene: &Scene) -> Result<(), SceneError> {
-    let parts = build_particles(scene)?;
+    check_particles(scene, &build_particles(scene)?)
+}
+
+/// Refuses particles spread over more neighbour-search cells, or needing more
+/// neighbour-list entries, than the limits allow.
+pub fn check_particles(scene: &Scene, parts: &InitialParticles) -> Result<(), SceneError> {
     let dim = scene.dim;
     let finest = parts.spacing.iter().cloned().fold(f64::INFINITY, f64::min);
     let mut cells = 1.0;

@@ -14,7 +14,7 @@ mod spec;
 mod validate;
 mod window;
 
-pub use build::{build_particles, InitialParticles};
+pub use build::{build_particles, check_particles, InitialParticles};
 pub use spec::*;
 pub use window::{WindowGeometry, WindowSpec};
 
@@ -49,7 +49,25 @@ pub fn load(path: &Path, overrides: &[String]) -> Result<Scene, SceneError> {
 /// body that holds no particle, an initial state the EOS cannot reach, or a scene too large
 /// for memory is reported here, before any output is written.
 pub fn parse(text: &str, origin: &str, overrides: &[String]) -> Result<Scene, SceneError> {
-    parse_inner(text, origin, overrides, false).map(|(s, _)| s)
+    parse_inner(text, origin, overrides, Mode::Bodies).map(|(s, _)| s)
+}
+
+/// Parses and validates the settings of a scene whose particles the caller gives (the
+/// library's `Simulation::from_particles`): scene text without `bodies`. The particles
+/// are checked with [`build::check_particles`] once they are known.
+pub fn parse_settings(text: &str, origin: &str, overrides: &[String]) -> Result<Scene, SceneError> {
+    parse_inner(text, origin, overrides, Mode::Settings).map(|(s, _)| s)
+}
+
+/// What [`parse_inner`] checks.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Mode {
+    /// A whole scene.
+    Bodies,
+    /// A whole scene whose inapplicable `[options]` keys are dropped.
+    Strip,
+    /// A scene without bodies.
+    Settings,
 }
 
 /// Reads a scene for a sweep that sets the scheme itself (`gsph study`, `gsph stability`):
@@ -64,14 +82,14 @@ pub fn load_for_scheme(
         .map_err(|e| SceneError(format!("{}: cannot read scene: {e}", path.display())))?;
     let mut set = overrides.to_vec();
     set.push(format!("scheme={scheme}"));
-    parse_inner(&text, &path.display().to_string(), &set, true)
+    parse_inner(&text, &path.display().to_string(), &set, Mode::Strip)
 }
 
 fn parse_inner(
     text: &str,
     origin: &str,
     overrides: &[String],
-    strip: bool,
+    mode: Mode,
 ) -> Result<(Scene, Vec<&'static str>), SceneError> {
     let mut value: toml::Table = text
         .parse::<toml::Table>()
@@ -84,19 +102,31 @@ fn parse_inner(
                 .map_err(|e| SceneError(format!("--set {o}: {}", e.0)))?,
         }
     }
+    if mode == Mode::Settings {
+        // the caller gives the particles: no bodies (validate_settings refuses any)
+        value
+            .entry("bodies")
+            .or_insert_with(|| toml::Value::Array(Vec::new()));
+    }
     let blame = |msg: String, up: bool| {
         SceneError(format!("{}: {msg}", source_of(&msg, up, origin, overrides)))
     };
     let mut scene = Scene::deserialize_table(value).map_err(|e| blame(e, true))?;
-    let dropped = if strip {
+    let dropped = if mode == Mode::Strip {
         applies::strip_inapplicable(&mut scene)
     } else {
         Vec::new()
     };
-    validate::validate(&scene).map_err(|e| blame(e.0, false))?;
+    if mode == Mode::Settings {
+        validate::validate_settings(&scene).map_err(|e| blame(e.0, false))?;
+    } else {
+        validate::validate(&scene).map_err(|e| blame(e.0, false))?;
+    }
     periodic::check_length(&scene).map_err(|e| blame(e.0, false))?;
     validate::resolve_poisson(&mut scene).map_err(|e| blame(e.0, false))?;
-    build::check_build(&scene).map_err(|e| blame(e.0, false))?;
+    if mode != Mode::Settings {
+        build::check_build(&scene).map_err(|e| blame(e.0, false))?;
+    }
     Ok((scene, dropped))
 }
 

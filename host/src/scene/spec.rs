@@ -1,6 +1,6 @@
 //! The scene schema (serde). Units are SI; every field is documented in `cases/README.md`.
 
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 fn one() -> f64 {
     1.0
@@ -264,7 +264,7 @@ pub struct PeriodicSpec {
 }
 
 /// A material.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct MaterialSpec {
     /// Name bodies refer to.
@@ -290,7 +290,7 @@ pub struct MaterialSpec {
 }
 
 /// Equations of state (DESIGN §4).
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
 pub enum EosSpec {
     /// p = c0² (rho - rho0) + (gamma - 1) rho e.
@@ -345,7 +345,7 @@ pub enum EosSpec {
 }
 
 /// Strength models.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
 pub enum StrengthSpec {
     /// No deviatoric stress.
@@ -413,7 +413,7 @@ pub enum StrengthSpec {
 }
 
 /// A body: a shape filled with a lattice of particles of one material.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct BodySpec {
     /// Material name.
@@ -456,7 +456,7 @@ pub struct BodySpec {
 
 /// Circular (2D) or spherical (3D) pores repeated on a periodic cell: a particle is removed
 /// when its centre lies within `radius` of a pore centre or of any periodic image of one.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct PoresSpec {
     /// Period of the pore pattern along each axis, m.
@@ -471,7 +471,7 @@ pub struct PoresSpec {
 }
 
 /// Shapes.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
 pub enum ShapeSpec {
     /// 1D interval [min, max].
@@ -507,7 +507,7 @@ pub enum ShapeSpec {
 }
 
 /// Initial velocity fields.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
 pub enum VelocitySpec {
     /// Uniform velocity, m/s.
@@ -539,7 +539,7 @@ pub enum VelocitySpec {
 }
 
 /// Initial mechanical states.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
 pub enum InitialSpec {
     /// The state reached by uniaxial-strain compression (along x) to `sigma_xx`

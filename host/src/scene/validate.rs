@@ -74,6 +74,34 @@ pub const KERNELS: [&str; 3] = ["cubic_spline", "wendland_c2", "gaussian"];
 
 /// Checks the scene.
 pub fn validate(s: &Scene) -> R {
+    validate_with(s, true)
+}
+
+/// As [`validate`] for a scene whose particles the caller gives (the library's
+/// `Simulation::from_particles`): `bodies` must be absent.
+pub fn validate_settings(s: &Scene) -> R {
+    if !s.bodies.is_empty() {
+        return fail(
+            "bodies",
+            "the particles come from the caller's arrays; leave `bodies` out of the settings",
+        );
+    }
+    if s.window.is_some() {
+        return fail(
+            "window",
+            "the moving window feeds particles from `bodies`; it cannot run on the caller's particles",
+        );
+    }
+    if s.resolution_scale != 1.0 {
+        return fail(
+            "resolution_scale",
+            "the particles come from the caller's arrays; there is no lattice to refine",
+        );
+    }
+    validate_with(s, false)
+}
+
+fn validate_with(s: &Scene, bodies_required: bool) -> R {
     if !(1..=3).contains(&s.dim) {
         return fail("dim", format!("must be 1, 2 or 3 (got {})", s.dim));
     }
@@ -310,7 +338,7 @@ pub fn validate(s: &Scene) -> R {
             _ => {}
         }
     }
-    if s.bodies.is_empty() {
+    if bodies_required && s.bodies.is_empty() {
         return fail("bodies", "at least one body is required");
     }
     if s.bodies.len() > MAX_COUNT {

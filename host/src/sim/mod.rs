@@ -24,18 +24,17 @@ mod edit;
 mod state_io;
 pub use edit::HeldState;
 
-/// The step function for dimension `D` (looked up once per run).
+/// The step function for dimension `D` (looked up once per run; the specialisations are
+/// compiled in `gsph-kernels`).
 fn select<const D: usize>(scheme: Scheme, effects: EffectSet) -> Option<StepFn<D, Rayon>> {
-    use gsph_core::dispatch::{select_1d, select_2d, select_3d};
+    use gsph_kernels::{select_1d, select_2d, select_3d};
     let family = scheme.family();
     let effects = effects.kernel_part();
+    let cast = |f: &dyn Any| f.downcast_ref::<StepFn<D, Rayon>>().copied();
     match D {
-        1 => select_1d::<Rayon>(family, effects)
-            .and_then(|f| (&f as &dyn Any).downcast_ref::<StepFn<D, Rayon>>().copied()),
-        2 => select_2d::<Rayon>(family, effects)
-            .and_then(|f| (&f as &dyn Any).downcast_ref::<StepFn<D, Rayon>>().copied()),
-        3 => select_3d::<Rayon>(family, effects)
-            .and_then(|f| (&f as &dyn Any).downcast_ref::<StepFn<D, Rayon>>().copied()),
+        1 => select_1d(family, effects).and_then(|f| cast(&f)),
+        2 => select_2d(family, effects).and_then(|f| cast(&f)),
+        3 => select_3d(family, effects).and_then(|f| cast(&f)),
         _ => None,
     }
 }
@@ -330,7 +329,13 @@ impl<const D: usize> Sim<D> {
         let mut sim = Sim {
             ids: Vec::with_capacity(n),
             driven: (0..n)
-                .filter(|&i| scene.bodies[parts.body[i] as usize].driven)
+                .filter(|&i| {
+                    // caller-given particles (the library) belong to no body
+                    scene
+                        .bodies
+                        .get(parts.body[i] as usize)
+                        .is_some_and(|b| b.driven)
+                })
                 .map(|i| (i, vec_of::<D>(&parts.v[i])))
                 .collect(),
             x: Vec::with_capacity(n),

@@ -360,6 +360,7 @@ pub fn run_suite(opts: &StabilityOptions) -> Result<Vec<Row>, String> {
 }
 
 /// Arguments of `gsph stability`.
+#[cfg(feature = "cli")]
 #[derive(clap::Args, Debug)]
 pub struct StabilityArgs {
     /// Reduced sizes and shorter runs (a few minutes in all).
@@ -381,6 +382,7 @@ pub struct StabilityArgs {
 
 /// `gsph stability`: runs the suite, prints the table; an error (non-zero exit) if any run
 /// fails.
+#[cfg(feature = "cli")]
 pub fn command(args: &StabilityArgs) -> Result<(), String> {
     let opts = StabilityOptions {
         cases: args.cases.clone(),

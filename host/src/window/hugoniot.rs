@@ -448,3 +448,34 @@ pub fn to_csv(points: &[HugoniotPoint]) -> String {
     }
     s
 }
+
+/// The points as JSON, the columns of [`to_csv`] (the Python package's `gsph.hugoniot`).
+pub fn to_json(points: &[HugoniotPoint]) -> serde_json::Value {
+    let rows = points.iter().map(|p| {
+        let fit = seed_fit(p.up);
+        serde_json::json!({
+            "up": p.up,
+            "us": p.us,
+            "sigma_behind": p.stress_behind,
+            "sigma_precursor": p.stress_precursor,
+            "us_fit": fit,
+            "us_rel_diff": (p.us - fit) / fit,
+            "bracket": p.bracket,
+            "us_rounds": p.rounds,
+            "precursor_velocity": p.precursor_velocity,
+            "rho_ahead": p.rho_ahead,
+            "rho_behind": p.rho_behind,
+            "mass_jump_ratio": p.mass_jump_ratio(),
+            "momentum_jump_ratio": p.momentum_jump_ratio(),
+            "front_m": p.front,
+            "omega_slope": p.omega_slope,
+            "trials": p.trials,
+            "steps": p.steps,
+            "wall_s": p.wall_s,
+            "sigma_behind_matrix": p.stress_behind_matrix,
+            "sigma_precursor_matrix": p.stress_precursor_matrix,
+            "pores_behind": p.pores_behind,
+        })
+    });
+    serde_json::Value::Array(rows.collect())
+}

@@ -1,13 +1,18 @@
-//! The files `gsph hugoniot` writes besides hugoniot.csv: each point's averaged profiles
-//! (fig 9) and the u_s(u_p) plot against the seed's fits (fig 8), and `gsph plot hugoniot`,
-//! which overlays the points of several runs (for example several resolutions).
+//! The files `gsph hugoniot` writes: hugoniot.csv, each point's averaged profiles (fig 9)
+//! and the u_s(u_p) plot against the seed's fits (fig 8), and `gsph plot hugoniot`, which
+//! overlays the points of several runs (for example several resolutions). The plots need
+//! the cargo feature `plot`; without it only the CSV files are written.
 
-use super::hugoniot::{seed_fit, to_csv, HugoniotPoint};
+#[cfg(feature = "plot")]
+use super::hugoniot::seed_fit;
+use super::hugoniot::{to_csv, HugoniotPoint};
+#[cfg(feature = "plot")]
 use crate::plot::xy::{Series, SeriesStyle, XyPlot};
 use std::path::Path;
 
 /// Writes the files of one point into `dir`: `profile_up<UP>.csv` with
-/// `profile_up<UP>_stress.png` and `profile_up<UP>_density.png` (fig 9), PNG and SVG.
+/// `profile_up<UP>_stress.png` and `profile_up<UP>_density.png` (fig 9), PNG and SVG (the
+/// plots only with the feature `plot`).
 pub fn write_point(dir: &Path, p: &HugoniotPoint) -> Result<(), String> {
     use crate::output::write_atomic;
     let io = |e: std::io::Error| format!("{}: {e}", dir.display());
@@ -18,6 +23,14 @@ pub fn write_point(dir: &Path, p: &HugoniotPoint) -> Result<(), String> {
         p.profile.to_csv().as_bytes(),
     )
     .map_err(io)?;
+    #[cfg(feature = "plot")]
+    plot_point(dir, &stem, p)?;
+    Ok(())
+}
+
+/// The plots of [`write_point`].
+#[cfg(feature = "plot")]
+fn plot_point(dir: &Path, stem: &str, p: &HugoniotPoint) -> Result<(), String> {
     let bins = p.profile.bins();
     let line = |name: &str, f: &dyn Fn(&super::profile::Bin) -> f64| Series {
         name: name.into(),
@@ -65,6 +78,7 @@ pub fn write_point(dir: &Path, p: &HugoniotPoint) -> Result<(), String> {
 
 /// The u_s(u_p) plot: each `(name, points)` as markers, and the seed's two fits dashed
 /// over the range of the points (fig 8).
+#[cfg(feature = "plot")]
 pub fn hugoniot_plot(runs: &[(String, Vec<(f64, f64)>)]) -> XyPlot {
     let curve = |a: f64, b: f64| -> Vec<(f64, f64)> {
         (0..=40)
@@ -102,19 +116,22 @@ pub fn hugoniot_plot(runs: &[(String, Vec<(f64, f64)>)]) -> XyPlot {
     }
 }
 
-/// Writes `hugoniot.csv` and `hugoniot.png`/`.svg` (u_s against u_p with the seed's fits)
-/// into `dir`, after all points are done.
+/// Writes `hugoniot.csv` and `hugoniot.png`/`.svg` (u_s against u_p with the seed's fits;
+/// only with the feature `plot`) into `dir`, after all points are done.
 pub fn write_outputs(dir: &Path, points: &[HugoniotPoint]) -> Result<(), String> {
     use crate::output::write_atomic;
     let io = |e: std::io::Error| format!("{}: {e}", dir.display());
     std::fs::create_dir_all(dir).map_err(io)?;
-    let plot = hugoniot_plot(&[(
-        "gsph moving window".to_string(),
-        points.iter().map(|p| (p.up, p.us)).collect(),
-    )]);
-    for ext in ["png", "svg"] {
-        plot.save(&dir.join(format!("hugoniot.{ext}")))
-            .map_err(|e| e.to_string())?;
+    #[cfg(feature = "plot")]
+    {
+        let plot = hugoniot_plot(&[(
+            "gsph moving window".to_string(),
+            points.iter().map(|p| (p.up, p.us)).collect(),
+        )]);
+        for ext in ["png", "svg"] {
+            plot.save(&dir.join(format!("hugoniot.{ext}")))
+                .map_err(|e| e.to_string())?;
+        }
     }
     write_atomic(dir.join("hugoniot.csv"), to_csv(points).as_bytes()).map_err(io)?;
     Ok(())
@@ -123,6 +140,7 @@ pub fn write_outputs(dir: &Path, points: &[HugoniotPoint]) -> Result<(), String>
 /// `gsph plot hugoniot DIR... --labels A,B,... --out FILE`: the u_s(u_p) points of the
 /// `hugoniot.csv` in each directory (labelled by `labels`, default the directory names)
 /// on one plot with the seed's fits. Returns the file written.
+#[cfg(feature = "plot")]
 pub fn plot_runs(dirs: &[std::path::PathBuf], labels: &[String], out: &Path) -> Result<(), String> {
     if !labels.is_empty() && labels.len() != dirs.len() {
         return Err(format!(
