@@ -12,6 +12,8 @@ if [ ! -x "$venv/bin/python" ]; then
   python3 -m venv "$venv"
 fi
 py="$venv/bin/python"
+# the build backend runs the `maturin` executable of the venv
+export PATH="$venv/bin:$PATH"
 if ! "$py" -c 'import numpy, pytest, matplotlib, maturin' 2>/dev/null; then
   echo "python: installing numpy, pytest, matplotlib, maturin into $venv (pip)" >&2
   "$py" -m pip install -q --upgrade pip

@@ -6,6 +6,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+typedef struct gsph_sim gsph_sim;
+
 // Success.
 #define GSPH_OK 0
 
@@ -21,14 +23,12 @@
 // The simulation failed (a step, a neighbour overflow); the message names step and particle.
 #define GSPH_ERR_SIMULATION 4
 
-// A file could not be read or written.
+// A snapshot or checkpoint could not be written, or a checkpoint read (a scene file
+// that cannot be read is a GSPH_ERR_SCENE).
 #define GSPH_ERR_IO 5
 
 // A bug in gsph (a caught panic); the message says where.
 #define GSPH_ERR_INTERNAL 6
-
-// An opaque simulation handle.
-typedef struct gsph_sim gsph_sim;
 
 // Particles given by the caller to [`gsph_create_from_particles`]. Vectors hold `dim`
 // values per particle; optional arrays may be null.
@@ -58,103 +58,159 @@ extern "C" {
 #endif // __cplusplus
 
 // The gsph version, a static string. Any thread.
+//
+// Thread safety: any thread, any time.
 const char *gsph_version(void);
 
 // Sets the number of worker threads of the process-wide pool (0: one per core). Only
 // before the first simulation is created; later calls fail. Any thread.
+//
+// Thread safety: any thread; once, before the first simulation is created.
 int gsph_set_threads(size_t threads);
 
 // Creates a simulation from a scene file, with `n_overrides` overrides `KEY=VALUE` (as
 // `gsph run --set`; may be null when 0). `*out` is the new handle, or null on error.
+//
+// Thread safety: any thread, concurrently with other calls; the new handle belongs to the caller.
 int gsph_create_from_file(const char *path,
                           const char *const *overrides,
                           size_t n_overrides,
-                          struct gsph_sim **out);
+                          gsph_sim **out);
 
 // Creates a simulation from scene text (TOML, as a scene file), with overrides.
+//
+// Thread safety: any thread, concurrently with other calls; the new handle belongs to the caller.
 int gsph_create_from_text(const char *text,
                           const char *const *overrides,
                           size_t n_overrides,
-                          struct gsph_sim **out);
+                          gsph_sim **out);
 
 // Creates a simulation of the caller's particles: `settings` is scene text without
 // `bodies` (dim, scheme, t_end, materials, options).
+//
+// Thread safety: any thread, concurrently with other calls; the new handle belongs to the caller.
 int gsph_create_from_particles(const char *settings,
                                const char *const *overrides,
                                size_t n_overrides,
                                const struct gsph_particles *particles,
-                               struct gsph_sim **out);
+                               gsph_sim **out);
 
 // Continues a simulation from a checkpoint written by [`gsph_write_checkpoint`].
-int gsph_create_from_checkpoint(const char *dir, struct gsph_sim **out);
+//
+// Thread safety: any thread, concurrently with other calls; the new handle belongs to the caller.
+int gsph_create_from_checkpoint(const char *dir, gsph_sim **out);
 
 // Destroys a simulation (null is ignored). The handle must not be used afterwards.
-void gsph_destroy(struct gsph_sim *sim);
+//
+// Thread safety: not concurrently with any other call on the same handle.
+void gsph_destroy(gsph_sim *sim);
 
 // Dimension of the simulation (1, 2, 3).
-int gsph_dim(struct gsph_sim *sim, size_t *dim);
+//
+// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
+int gsph_dim(gsph_sim *sim, size_t *dim);
 
 // Number of particles.
-int gsph_count(struct gsph_sim *sim, size_t *count);
+//
+// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
+int gsph_count(gsph_sim *sim, size_t *count);
 
 // Simulated time, s, and steps taken (either output may be null).
-int gsph_time(struct gsph_sim *sim, double *t, uint64_t *steps);
+//
+// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
+int gsph_time(gsph_sim *sim, double *t, uint64_t *steps);
 
 // The time step the scene's rule gives now (its fixed `dt`, or the CFL step), s.
-int gsph_stable_dt(struct gsph_sim *sim, double *dt);
+//
+// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
+int gsph_stable_dt(gsph_sim *sim, double *dt);
+
+// The scene's end time `t_end`, s, and its snapshot count (the times `t_end k /
+// snapshots` that [`gsph_run`] lands on); either output may be null.
+//
+// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
+int gsph_schedule(gsph_sim *sim, double *t_end, size_t *snapshots);
 
 // Takes one step: `dt` > 0 is the step (refused above the CFL-1 limit), `dt` = 0 takes
 // the scene's rule. `dt_taken` (may be null) receives the step taken.
-int gsph_step(struct gsph_sim *sim, double dt, double *dt_taken);
+//
+// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
+int gsph_step(gsph_sim *sim, double dt, double *dt_taken);
 
 // Steps until time `t`, the last step shortened to land on it. `steps` (may be null)
 // receives the number of steps taken.
-int gsph_advance(struct gsph_sim *sim, double t, uint64_t *steps);
+//
+// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
+int gsph_advance(gsph_sim *sim, double t, uint64_t *steps);
 
 // Runs to the scene's `t_end` through its snapshot times: the steps of `gsph run`.
-int gsph_run(struct gsph_sim *sim, uint64_t *steps);
+//
+// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
+int gsph_run(gsph_sim *sim, uint64_t *steps);
 
 // Values per particle of the field `name` (position, velocity, mass, density, pressure,
 // energy, sound_speed, deviator, plastic_strain, damage, temperature, h, material; or
 // the short names of final.csv: x, v, m, rho, p, e, c, s, eps_p, temp).
-int gsph_field_components(struct gsph_sim *sim, const char *name, size_t *components);
+//
+// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
+int gsph_field_components(gsph_sim *sim, const char *name, size_t *components);
 
 // Copies the field `name` into `buf` (`len` = count x components doubles, id order).
-int gsph_read_field(struct gsph_sim *sim, const char *name, double *buf, size_t len);
+//
+// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
+int gsph_read_field(gsph_sim *sim, const char *name, double *buf, size_t len);
 
 // Sets the field `name` from `data` (`len` = count x components doubles, id order);
 // every value is checked before any is written. Pressure, sound speed and material are
 // read-only; writing density or energy updates pressure through the EOS.
-int gsph_write_field(struct gsph_sim *sim, const char *name, const double *data, size_t len);
+//
+// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
+int gsph_write_field(gsph_sim *sim, const char *name, const double *data, size_t len);
 
 // Copies the particle ids into `ids` (`len` = count), in the order of every field.
-int gsph_read_ids(struct gsph_sim *sim, uint32_t *ids, size_t len);
+//
+// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
+int gsph_read_ids(gsph_sim *sim, uint32_t *ids, size_t len);
 
 // Sets the external acceleration, m/s² (`len` = count x dim, id order), applied in every
 // following step (half before, half after it) until set again; `len` 0 removes it.
-int gsph_set_acceleration(struct gsph_sim *sim, const double *acceleration, size_t len);
+//
+// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
+int gsph_set_acceleration(gsph_sim *sim, const double *acceleration, size_t len);
 
 // Kinetic and internal energy, J (either may be null).
-int gsph_energy(struct gsph_sim *sim, double *kinetic, double *internal);
+//
+// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
+int gsph_energy(gsph_sim *sim, double *kinetic, double *internal);
 
 // Total momentum (3 doubles, unused components 0) and the momentum the external
 // accelerations added so far (3 doubles; may be null).
-int gsph_momentum(struct gsph_sim *sim, double *momentum, double *external);
+//
+// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
+int gsph_momentum(gsph_sim *sim, double *momentum, double *external);
 
 // The summary as JSON (NUL-terminated) into `buf` of `len` bytes; `needed` (may be null)
 // receives the length including the NUL. A `buf` too small (or null with `len` 0) gets
 // nothing and the call fails with GSPH_ERR_ARGUMENT, `needed` set: call again.
-int gsph_summary_json(struct gsph_sim *sim, char *buf, size_t len, size_t *needed);
+//
+// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
+int gsph_summary_json(gsph_sim *sim, char *buf, size_t len, size_t *needed);
 
 // Writes the state as a CSV file with the columns of `gsph run`'s final.csv.
-int gsph_write_snapshot(struct gsph_sim *sim, const char *path);
+//
+// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
+int gsph_write_snapshot(gsph_sim *sim, const char *path);
 
 // Writes a checkpoint into the directory `dir` (created if missing), from which
 // [`gsph_create_from_checkpoint`] continues bitwise identically.
-int gsph_write_checkpoint(struct gsph_sim *sim, const char *dir);
+//
+// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
+int gsph_write_checkpoint(gsph_sim *sim, const char *dir);
 
 // The message of the last failed call on this thread ("" after a success), valid until
 // the next gsph call on this thread. Never null.
+//
+// Thread safety: any thread; each thread has its own message.
 const char *gsph_last_error(void);
 
 #ifdef __cplusplus

@@ -262,3 +262,59 @@ fn checkpoint_continues_bit_for_bit() {
     again.advance_to(0.4e-6).unwrap();
     assert!(again.table() == whole.table(), "the continued run differs");
 }
+
+#[test]
+fn a_failed_step_stops_the_simulation_and_writes_keep_h_consistent() {
+    let mut sim = flyer();
+    // density brings h along (h = h_factor (m / rho)^(1/D)), as the step's EOS refresh does
+    let mut rho = sim.get("rho").unwrap();
+    let h0 = sim.get("h").unwrap();
+    rho[3] *= 1.1;
+    sim.write("rho", &rho).unwrap();
+    let h1 = sim.get("h").unwrap();
+    assert!((h1[3] / h0[3] - 1.0 / 1.1).abs() < 1e-12 && h1[4] == h0[4]);
+    // a deviator no material can hold overflows the step: the error names it, and the
+    // half-stepped state refuses to go on
+    let mut s = sim.get("deviator").unwrap();
+    s[6 * 50] = 1e307;
+    sim.write("deviator", &s).unwrap();
+    let first = sim.step(None).expect_err("the step overflows").to_string();
+    assert!(first.starts_with("step 1"), "{first}");
+    let again = sim.step(None).err().unwrap().to_string();
+    assert!(
+        again.starts_with("this simulation failed (step 1"),
+        "{again}"
+    );
+    assert!(sim.write("rho", &rho).is_err());
+    // reading still works (for a post-mortem)
+    assert_eq!(sim.get("rho").unwrap().len(), 100);
+}
+
+#[test]
+fn a_checkpoint_refuses_state_it_cannot_hold() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut sim = flyer();
+    sim.set_external_acceleration(&[1e3; 100]).unwrap();
+    sim.step(None).unwrap();
+    let e = sim.write_checkpoint(dir.path()).err().unwrap().to_string();
+    assert!(e.contains("external accelerations have acted"), "{e}");
+    let parts = Particles {
+        position: &[0.0, 1e-4, 2e-4],
+        material: &[0, 0, 0],
+        spacing: &[1e-4],
+        ..Default::default()
+    };
+    let settings = "dim = 1\nscheme = \"ts1\"\nt_end = 1e-7\n[[materials]]\nname = \"m\"\nrho0 = 1000.0\neos = { type = \"linear\", c0 = 1000.0 }\n";
+    let sim = Simulation::from_particles(settings, "settings", &[], &parts).unwrap();
+    let e = sim.write_checkpoint(dir.path()).err().unwrap().to_string();
+    assert!(e.contains("only a simulation built from scene text"), "{e}");
+    // keys the library does not use are refused, not ignored
+    let e = Simulation::from_file(&case("flyer_plate.toml"), &["output.series=5".into()])
+        .err()
+        .unwrap()
+        .to_string();
+    assert_eq!(
+        e,
+        "output.series: not used by the library (series.csv is written by `gsph run`)"
+    );
+}

@@ -63,14 +63,19 @@ fn set_error(msg: &str) {
         .collect::<Vec<_>>()
         .join(" ")
         .replace('\0', " ");
-    LAST_ERROR.with(|e| *e.borrow_mut() = CString::new(line).unwrap_or_default());
+    // try_with: a call during thread teardown keeps no message rather than aborting
+    let _ = LAST_ERROR.try_with(|e| *e.borrow_mut() = CString::new(line).unwrap_or_default());
 }
 
 /// The message of the last failed call on this thread ("" after a success), valid until
 /// the next gsph call on this thread. Never null.
+///
+/// Thread safety: any thread; each thread has its own message.
 #[no_mangle]
 pub extern "C" fn gsph_last_error() -> *const c_char {
-    LAST_ERROR.with(|e| e.borrow().as_ptr())
+    LAST_ERROR
+        .try_with(|e| e.borrow().as_ptr())
+        .unwrap_or(c"".as_ptr())
 }
 
 /// Runs `f`, turning its error or panic into a status and the thread's message.

@@ -37,17 +37,22 @@ pub const GSPH_ERR_ARGUMENT: c_int = 2;
 pub const GSPH_ERR_SCENE: c_int = 3;
 /// The simulation failed (a step, a neighbour overflow); the message names step and particle.
 pub const GSPH_ERR_SIMULATION: c_int = 4;
-/// A file could not be read or written.
+/// A snapshot or checkpoint could not be written, or a checkpoint read (a scene file
+/// that cannot be read is a GSPH_ERR_SCENE).
 pub const GSPH_ERR_IO: c_int = 5;
 /// A bug in gsph (a caught panic); the message says where.
 pub const GSPH_ERR_INTERNAL: c_int = 6;
 
 const TAG: u64 = 0x6773_7068_2d73_696d; // "gsph-sim"
 
-/// An opaque simulation handle.
+/// An opaque simulation handle: a tag at offset 0, read before the handle is trusted.
+/// C sees only `typedef struct gsph_sim gsph_sim;` (cbindgen.toml `after_includes`).
+///
+/// cbindgen:ignore
+#[repr(C)]
 pub struct GsphSim {
     tag: u64,
-    sim: Simulation,
+    sim: Box<Simulation>,
 }
 
 /// Particles given by the caller to [`gsph_create_from_particles`]. Vectors hold `dim`
@@ -81,15 +86,18 @@ unsafe fn handle<'a>(p: *mut GsphSim) -> Result<&'a mut Simulation, Failure> {
     if (p as usize) % std::mem::align_of::<GsphSim>() != 0 {
         return Err(Failure::pointer("sim: misaligned handle"));
     }
-    // SAFETY: non-null and aligned; the caller promises a live handle from gsph_create_*,
-    // and the tag catches most foreign or destroyed ones.
-    let h = unsafe { &mut *p };
-    if h.tag != TAG {
+    // SAFETY: non-null and aligned; the caller promises at least a readable u64 there (a
+    // live handle from gsph_create_* is a GsphSim, tag first). The tag is read alone,
+    // before any reference to a GsphSim is formed, and catches most foreign or destroyed
+    // pointers.
+    let tag = unsafe { std::ptr::read_volatile(p.cast::<u64>()) };
+    if tag != TAG {
         return Err(Failure::pointer(
             "sim: not a live gsph handle (destroyed, or not from gsph_create_*)",
         ));
     }
-    Ok(&mut h.sim)
+    // SAFETY: the tag says this is a live GsphSim from Box::into_raw.
+    Ok(unsafe { &mut *(*p).sim })
 }
 
 unsafe fn create(
@@ -100,12 +108,17 @@ unsafe fn create(
         let slot = unsafe { out(out_sim, "out")? };
         *slot = std::ptr::null_mut();
         let sim = f()?;
-        *slot = Box::into_raw(Box::new(GsphSim { tag: TAG, sim }));
+        *slot = Box::into_raw(Box::new(GsphSim {
+            tag: TAG,
+            sim: Box::new(sim),
+        }));
         Ok(())
     })
 }
 
 /// The gsph version, a static string. Any thread.
+///
+/// Thread safety: any thread, any time.
 #[no_mangle]
 pub extern "C" fn gsph_version() -> *const c_char {
     concat!(env!("CARGO_PKG_VERSION"), "\0").as_ptr().cast()
@@ -113,6 +126,8 @@ pub extern "C" fn gsph_version() -> *const c_char {
 
 /// Sets the number of worker threads of the process-wide pool (0: one per core). Only
 /// before the first simulation is created; later calls fail. Any thread.
+///
+/// Thread safety: any thread; once, before the first simulation is created.
 #[no_mangle]
 pub extern "C" fn gsph_set_threads(threads: usize) -> c_int {
     guard(|| {
@@ -129,6 +144,8 @@ pub extern "C" fn gsph_set_threads(threads: usize) -> c_int {
 
 /// Creates a simulation from a scene file, with `n_overrides` overrides `KEY=VALUE` (as
 /// `gsph run --set`; may be null when 0). `*out` is the new handle, or null on error.
+///
+/// Thread safety: any thread, concurrently with other calls; the new handle belongs to the caller.
 #[no_mangle]
 pub unsafe extern "C" fn gsph_create_from_file(
     path: *const c_char,
@@ -146,6 +163,8 @@ pub unsafe extern "C" fn gsph_create_from_file(
 }
 
 /// Creates a simulation from scene text (TOML, as a scene file), with overrides.
+///
+/// Thread safety: any thread, concurrently with other calls; the new handle belongs to the caller.
 #[no_mangle]
 pub unsafe extern "C" fn gsph_create_from_text(
     text: *const c_char,
@@ -164,6 +183,8 @@ pub unsafe extern "C" fn gsph_create_from_text(
 
 /// Creates a simulation of the caller's particles: `settings` is scene text without
 /// `bodies` (dim, scheme, t_end, materials, options).
+///
+/// Thread safety: any thread, concurrently with other calls; the new handle belongs to the caller.
 #[no_mangle]
 pub unsafe extern "C" fn gsph_create_from_particles(
     settings: *const c_char,
@@ -202,6 +223,8 @@ pub unsafe extern "C" fn gsph_create_from_particles(
 }
 
 /// Continues a simulation from a checkpoint written by [`gsph_write_checkpoint`].
+///
+/// Thread safety: any thread, concurrently with other calls; the new handle belongs to the caller.
 #[no_mangle]
 pub unsafe extern "C" fn gsph_create_from_checkpoint(
     dir: *const c_char,
@@ -215,22 +238,29 @@ pub unsafe extern "C" fn gsph_create_from_checkpoint(
 }
 
 /// Destroys a simulation (null is ignored). The handle must not be used afterwards.
+///
+/// Thread safety: not concurrently with any other call on the same handle.
 #[no_mangle]
 pub unsafe extern "C" fn gsph_destroy(sim: *mut GsphSim) {
     if sim.is_null() {
         return;
     }
-    let _ = guard(|| {
-        unsafe { handle(sim)? };
-        // SAFETY: a live handle from Box::into_raw (checked above); the tag is cleared
-        // so that a second destroy of the same pointer is caught while the memory lasts.
-        let mut b = unsafe { Box::from_raw(sim) };
-        b.tag = 0;
-        Ok(())
+    // not through `guard`: destroying leaves the thread's last message as it was
+    let _ = std::panic::catch_unwind(|| {
+        if unsafe { handle(sim) }.is_err() {
+            return;
+        }
+        // SAFETY: a live handle from Box::into_raw (checked above). The tag is cleared
+        // (a volatile write the optimiser keeps) so that a second destroy of the pointer
+        // is caught while the freed memory still holds it.
+        unsafe { std::ptr::write_volatile(sim.cast::<u64>(), 0) };
+        drop(unsafe { Box::from_raw(sim) });
     });
 }
 
 /// Dimension of the simulation (1, 2, 3).
+///
+/// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
 #[no_mangle]
 pub unsafe extern "C" fn gsph_dim(sim: *mut GsphSim, dim: *mut usize) -> c_int {
     guard(|| {
@@ -241,6 +271,8 @@ pub unsafe extern "C" fn gsph_dim(sim: *mut GsphSim, dim: *mut usize) -> c_int {
 }
 
 /// Number of particles.
+///
+/// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
 #[no_mangle]
 pub unsafe extern "C" fn gsph_count(sim: *mut GsphSim, count: *mut usize) -> c_int {
     guard(|| {
@@ -251,6 +283,8 @@ pub unsafe extern "C" fn gsph_count(sim: *mut GsphSim, count: *mut usize) -> c_i
 }
 
 /// Simulated time, s, and steps taken (either output may be null).
+///
+/// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
 #[no_mangle]
 pub unsafe extern "C" fn gsph_time(sim: *mut GsphSim, t: *mut f64, steps: *mut u64) -> c_int {
     guard(|| {
@@ -266,6 +300,8 @@ pub unsafe extern "C" fn gsph_time(sim: *mut GsphSim, t: *mut f64, steps: *mut u
 }
 
 /// The time step the scene's rule gives now (its fixed `dt`, or the CFL step), s.
+///
+/// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
 #[no_mangle]
 pub unsafe extern "C" fn gsph_stable_dt(sim: *mut GsphSim, dt: *mut f64) -> c_int {
     guard(|| {
@@ -276,8 +312,32 @@ pub unsafe extern "C" fn gsph_stable_dt(sim: *mut GsphSim, dt: *mut f64) -> c_in
     })
 }
 
+/// The scene's end time `t_end`, s, and its snapshot count (the times `t_end k /
+/// snapshots` that [`gsph_run`] lands on); either output may be null.
+///
+/// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
+#[no_mangle]
+pub unsafe extern "C" fn gsph_schedule(
+    sim: *mut GsphSim,
+    t_end: *mut f64,
+    snapshots: *mut usize,
+) -> c_int {
+    guard(|| {
+        let s = unsafe { handle(sim)? };
+        if !t_end.is_null() {
+            *unsafe { out(t_end, "t_end")? } = s.scene().t_end;
+        }
+        if !snapshots.is_null() {
+            *unsafe { out(snapshots, "snapshots")? } = s.scene().output.snapshots;
+        }
+        Ok(())
+    })
+}
+
 /// Takes one step: `dt` > 0 is the step (refused above the CFL-1 limit), `dt` = 0 takes
 /// the scene's rule. `dt_taken` (may be null) receives the step taken.
+///
+/// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
 #[no_mangle]
 pub unsafe extern "C" fn gsph_step(sim: *mut GsphSim, dt: f64, dt_taken: *mut f64) -> c_int {
     guard(|| {
@@ -292,6 +352,8 @@ pub unsafe extern "C" fn gsph_step(sim: *mut GsphSim, dt: f64, dt_taken: *mut f6
 
 /// Steps until time `t`, the last step shortened to land on it. `steps` (may be null)
 /// receives the number of steps taken.
+///
+/// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
 #[no_mangle]
 pub unsafe extern "C" fn gsph_advance(sim: *mut GsphSim, t: f64, steps: *mut u64) -> c_int {
     guard(|| {
@@ -305,6 +367,8 @@ pub unsafe extern "C" fn gsph_advance(sim: *mut GsphSim, t: f64, steps: *mut u64
 }
 
 /// Runs to the scene's `t_end` through its snapshot times: the steps of `gsph run`.
+///
+/// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
 #[no_mangle]
 pub unsafe extern "C" fn gsph_run(sim: *mut GsphSim, steps: *mut u64) -> c_int {
     guard(|| {
@@ -320,6 +384,8 @@ pub unsafe extern "C" fn gsph_run(sim: *mut GsphSim, steps: *mut u64) -> c_int {
 /// Values per particle of the field `name` (position, velocity, mass, density, pressure,
 /// energy, sound_speed, deviator, plastic_strain, damage, temperature, h, material; or
 /// the short names of final.csv: x, v, m, rho, p, e, c, s, eps_p, temp).
+///
+/// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
 #[no_mangle]
 pub unsafe extern "C" fn gsph_field_components(
     sim: *mut GsphSim,
@@ -335,6 +401,8 @@ pub unsafe extern "C" fn gsph_field_components(
 }
 
 /// Copies the field `name` into `buf` (`len` = count x components doubles, id order).
+///
+/// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
 #[no_mangle]
 pub unsafe extern "C" fn gsph_read_field(
     sim: *mut GsphSim,
@@ -353,6 +421,8 @@ pub unsafe extern "C" fn gsph_read_field(
 /// Sets the field `name` from `data` (`len` = count x components doubles, id order);
 /// every value is checked before any is written. Pressure, sound speed and material are
 /// read-only; writing density or energy updates pressure through the EOS.
+///
+/// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
 #[no_mangle]
 pub unsafe extern "C" fn gsph_write_field(
     sim: *mut GsphSim,
@@ -369,6 +439,8 @@ pub unsafe extern "C" fn gsph_write_field(
 }
 
 /// Copies the particle ids into `ids` (`len` = count), in the order of every field.
+///
+/// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
 #[no_mangle]
 pub unsafe extern "C" fn gsph_read_ids(sim: *mut GsphSim, ids: *mut u32, len: usize) -> c_int {
     guard(|| {
@@ -387,6 +459,8 @@ pub unsafe extern "C" fn gsph_read_ids(sim: *mut GsphSim, ids: *mut u32, len: us
 
 /// Sets the external acceleration, m/s² (`len` = count x dim, id order), applied in every
 /// following step (half before, half after it) until set again; `len` 0 removes it.
+///
+/// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
 #[no_mangle]
 pub unsafe extern "C" fn gsph_set_acceleration(
     sim: *mut GsphSim,
@@ -401,6 +475,8 @@ pub unsafe extern "C" fn gsph_set_acceleration(
 }
 
 /// Kinetic and internal energy, J (either may be null).
+///
+/// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
 #[no_mangle]
 pub unsafe extern "C" fn gsph_energy(
     sim: *mut GsphSim,
@@ -422,6 +498,8 @@ pub unsafe extern "C" fn gsph_energy(
 
 /// Total momentum (3 doubles, unused components 0) and the momentum the external
 /// accelerations added so far (3 doubles; may be null).
+///
+/// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
 #[no_mangle]
 pub unsafe extern "C" fn gsph_momentum(
     sim: *mut GsphSim,
@@ -441,6 +519,8 @@ pub unsafe extern "C" fn gsph_momentum(
 /// The summary as JSON (NUL-terminated) into `buf` of `len` bytes; `needed` (may be null)
 /// receives the length including the NUL. A `buf` too small (or null with `len` 0) gets
 /// nothing and the call fails with GSPH_ERR_ARGUMENT, `needed` set: call again.
+///
+/// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
 #[no_mangle]
 pub unsafe extern "C" fn gsph_summary_json(
     sim: *mut GsphSim,
@@ -468,6 +548,8 @@ pub unsafe extern "C" fn gsph_summary_json(
 }
 
 /// Writes the state as a CSV file with the columns of `gsph run`'s final.csv.
+///
+/// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
 #[no_mangle]
 pub unsafe extern "C" fn gsph_write_snapshot(sim: *mut GsphSim, path: *const c_char) -> c_int {
     guard(|| {
@@ -478,6 +560,8 @@ pub unsafe extern "C" fn gsph_write_snapshot(sim: *mut GsphSim, path: *const c_c
 
 /// Writes a checkpoint into the directory `dir` (created if missing), from which
 /// [`gsph_create_from_checkpoint`] continues bitwise identically.
+///
+/// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
 #[no_mangle]
 pub unsafe extern "C" fn gsph_write_checkpoint(sim: *mut GsphSim, dir: *const c_char) -> c_int {
     guard(|| {

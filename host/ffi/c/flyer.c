@@ -25,16 +25,14 @@ int main(int argc, char **argv) {
     gsph_sim *sim = NULL;
     if (gsph_create_from_file(argv[1], NULL, 0, &sim) != GSPH_OK) return fail("create");
 
-    /* the snapshot times of the scene: t_end k / snapshots, k = 1..10 */
-    char buf[4096];
-    size_t needed = 0;
-    if (gsph_summary_json(sim, buf, sizeof buf, &needed) != GSPH_OK) return fail("summary");
-    const double t_end = 0.5e-6;
-    const int snapshots = 10;
+    /* the scene's snapshot times: t_end k / snapshots, k = 1..snapshots */
+    double t_end = 0.0;
+    size_t snapshots = 0;
+    if (gsph_schedule(sim, &t_end, &snapshots) != GSPH_OK) return fail("schedule");
     uint64_t steps = 0;
-    for (int k = 1; k <= snapshots; k++) {
+    for (size_t k = 1; k <= snapshots; k++) {
         uint64_t n = 0;
-        if (gsph_advance(sim, t_end * k / snapshots, &n) != GSPH_OK) return fail("advance");
+        if (gsph_advance(sim, t_end * (double)k / (double)snapshots, &n) != GSPH_OK) return fail("advance");
         steps += n;
     }
 

@@ -5,6 +5,7 @@ use super::{with_sim, ApiError, ApiResult, Simulation};
 use crate::sim::Sim;
 use gsph_core::effects::EffectSet;
 use gsph_core::math::{Sym3, Vector};
+use gsph_core::state::smoothing_length;
 
 /// A per-particle field.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -233,6 +234,13 @@ fn set<const D: usize>(s: &mut Sim<D>, f: Field, order: &[usize], data: &[f64]) 
         }
         Field::Pressure | Field::SoundSpeed | Field::Material => unreachable!("read-only"),
     }
+    if matches!(f, Field::Density | Field::Mass) && !s.options.constant_h {
+        // h follows m and rho, as the step's EOS refresh sets it
+        for &i in order {
+            s.h[i] = smoothing_length::<D>(s.h_factor, s.m[i], s.rho[i]);
+        }
+    }
+    s.state_changed();
     if matches!(f, Field::Density | Field::Energy) {
         for &i in order {
             let mat = s.materials[s.mat[i] as usize];
@@ -298,8 +306,11 @@ impl Simulation {
     }
 
     /// Sets the field `name` from `data` (`components` values per particle, id order).
-    /// Every value is checked before any is written.
+    /// Every value is checked before any is written. Density and mass bring the smoothing
+    /// length along (unless the scene has `constant_h`), density and energy the pressure
+    /// and sound speeds.
     pub fn write(&mut self, name: &str, data: &[f64]) -> ApiResult<()> {
+        self.check_usable()?;
         let f = self.field(name)?;
         if !f.writable() {
             return Err(ApiError::Argument(format!(

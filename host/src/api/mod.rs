@@ -1,7 +1,7 @@
 //! The library interface: a [`Simulation`] whatever its dimension, built from a scene file,
-//! scene text, a [`SceneBuilder`](builder::SceneBuilder) or caller-given particle arrays,
+//! scene text, a [`SceneBuilder`] or caller-given particle arrays,
 //! stepped by the caller, its per-particle fields read and written by name in particle-id
-//! order, external accelerations applied for coupling. The C ABI ([`crate::capi`]) and
+//! order, external accelerations applied for coupling. The C ABI (`host/capi`) and
 //! the Python package (`host/python`) are thin layers over this module.
 //!
 //! ```no_run
@@ -108,8 +108,10 @@ pub struct Simulation {
     external: Vec<f64>,
     impulse: [f64; 3],
     external_work: f64,
-    /// Indices in memory of the particles in id order, and the rebuild count they hold for.
+    /// Indices in memory of the particles in id order, and the renumbering they hold for.
     order: (u64, Vec<usize>),
+    /// Why the simulation can no longer step (a step failed part-way).
+    failed: Option<String>,
 }
 
 impl Simulation {
@@ -213,6 +215,7 @@ impl Simulation {
             impulse: [0.0; 3],
             external_work: 0.0,
             order: (u64::MAX, Vec::new()),
+            failed: None,
         };
         let (k, i) = s.energy();
         s.energy0 = k + i;
@@ -263,6 +266,7 @@ impl Simulation {
     /// The step the scene's rule gives now: its fixed `dt` if it has one (an error if that
     /// exceeds the stability limit), else the CFL step `cfl min h / (c_l + |v|)`.
     pub fn stable_dt(&mut self) -> ApiResult<f64> {
+        self.check_usable()?;
         let (cfl, fixed) = (self.scene.cfl(), self.scene.dt);
         Ok(with_sim!(&mut self.sim, s => s.next_dt(cfl, fixed))?)
     }
@@ -289,10 +293,27 @@ impl Simulation {
     /// One step of exactly `dt` with the external accelerations applied as a half kick
     /// before and after it (second order, and the momentum they add is `m a dt` exactly).
     fn step_exact(&mut self, dt: f64) -> ApiResult<()> {
+        self.check_usable()?;
         self.kick(0.5 * dt);
-        with_sim!(&mut self.sim, s => s.step(dt))?;
+        if let Err(e) = with_sim!(&mut self.sim, s => s.step(dt)) {
+            // the step changed the state in place before it failed: stepping on would
+            // start from a half-step (and count the half kick twice)
+            let e = ApiError::from(e);
+            self.failed = Some(e.to_string());
+            return Err(e);
+        }
         self.kick(0.5 * dt);
         Ok(())
+    }
+
+    /// An error if a step failed before: the state is half a step and cannot go on.
+    fn check_usable(&self) -> ApiResult<()> {
+        match &self.failed {
+            Some(why) => Err(ApiError::Simulation(format!(
+                "this simulation failed ({why}); build it again or continue from a checkpoint"
+            ))),
+            None => Ok(()),
+        }
     }
 
     /// Steps with the scene's rule until time `t`, the last step shortened to land on it
@@ -358,6 +379,7 @@ impl Simulation {
     /// particle in id order), applied in every following step until it is set again;
     /// an empty slice removes it. Driven particles keep their prescribed velocity.
     pub fn set_external_acceleration(&mut self, a: &[f64]) -> ApiResult<()> {
+        self.check_usable()?;
         if a.is_empty() {
             self.external.clear();
             return Ok(());
@@ -411,14 +433,15 @@ impl Simulation {
             *acc += add;
         }
         self.external_work += work;
+        with_sim!(&mut self.sim, s => s.state_changed());
     }
 
     /// Memory indices of the particles in id order (renewed after a rebuild renumbered them).
     fn id_order(&mut self) -> &[usize] {
-        let rebuilds = with_sim!(&self.sim, s => s.rebuilds);
-        if self.order.0 != rebuilds {
+        let renumbered = with_sim!(&self.sim, s => s.renumbered);
+        if self.order.0 != renumbered {
             let order: Vec<usize> = with_sim!(&self.sim, s => s.by_id().collect());
-            self.order = (rebuilds, order);
+            self.order = (renumbered, order);
         }
         &self.order.1
     }
@@ -515,6 +538,12 @@ impl Simulation {
     /// ([`Self::from_checkpoint`]) continues bitwise identically. Only for simulations
     /// built from a scene file or text.
     pub fn write_checkpoint(&self, dir: &Path) -> ApiResult<()> {
+        self.check_usable()?;
+        if !self.external.is_empty() || self.external_work != 0.0 {
+            return Err(ApiError::Argument(
+                "checkpoint: external accelerations have acted on this simulation, and a checkpoint does not hold them nor the impulse and work they added".into(),
+            ));
+        }
         let Some(source) = &self.source else {
             return Err(ApiError::Argument(
                 "checkpoint: only a simulation built from scene text or a file can be checkpointed"
@@ -533,8 +562,9 @@ impl Simulation {
             .map_err(|e| ApiError::Io(format!("{}: checkpoint: {e}", dir.display())))
     }
 
-    /// Continues from a checkpoint written by [`Self::write_checkpoint`] (or by
-    /// `gsph run --checkpoint-every`).
+    /// Continues from a checkpoint written by [`Self::write_checkpoint`] (or by `gsph run
+    /// --checkpoint-every` for a scene the library accepts: no monitor, no series or
+    /// checkpoint keys).
     pub fn from_checkpoint(dir: &Path) -> ApiResult<Self> {
         let ck =
             crate::checkpoint::Checkpoint::read(dir).map_err(|e| ApiError::Io(e.to_string()))?;

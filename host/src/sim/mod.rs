@@ -188,6 +188,9 @@ pub struct Sim<const D: usize> {
     ts_star: Vec<TsStar>,
     pm_star: Vec<PmStar<D>>,
     primed: bool,
+    /// Times the particles were renumbered in memory (a caller that maps ids to memory
+    /// indices renews its map when this changes).
+    pub renumbered: u64,
     lists: Lists,
     capacity: usize,
     /// Renumber particles in Morton order at every neighbour-list rebuild (results do not
@@ -364,6 +367,7 @@ impl<const D: usize> Sim<D> {
             ts_star: Vec::new(),
             pm_star: Vec::new(),
             primed: false,
+            renumbered: 0,
             lists: Lists::default(),
             capacity,
             reorder,
@@ -489,6 +493,7 @@ impl<const D: usize> Sim<D> {
 
     /// Moves particle `order[k]` to place `k` in every per-particle array.
     fn permute(&mut self, order: &[u32]) {
+        self.renumbered += 1;
         fn apply<T: Copy>(v: &mut Vec<T>, order: &[u32]) {
             if v.len() == order.len() {
                 *v = order.iter().map(|&i| v[i as usize]).collect();
@@ -678,6 +683,13 @@ impl<const D: usize> Sim<D> {
             });
         }
         Ok(dt)
+    }
+
+    /// Forgets what a scheme carries from one step into the next (av's rates, computed at
+    /// the end of a step from its state): the next step recomputes it from the state, which
+    /// the caller has changed (the library's field writes and external kicks).
+    pub fn state_changed(&mut self) {
+        self.primed = false;
     }
 
     /// Advances by `dt`.

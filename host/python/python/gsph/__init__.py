@@ -68,6 +68,27 @@ def _flat(a):
     return _np.ascontiguousarray(a, dtype=_np.float64).ravel()
 
 
+def _shaped(a, name, n, c):
+    """`a` (shape (n, c), or (n,) when c is 1) as a contiguous float64 vector; any other
+    shape is refused (a (c, n) array would be read with its components mixed)."""
+    arr = _np.asarray(a, dtype=_np.float64)
+    if arr.shape != (n, c) and not (c == 1 and arr.shape == (n,)):
+        want = f"({n}, {c})" + (f" or ({n},)" if c == 1 else "")
+        raise ArgumentError(f"{name}: shape {arr.shape}, {want} needed")
+    return _np.ascontiguousarray(arr).ravel()
+
+
+def _indices(a, name):
+    """Material indices: non-negative integers, refused otherwise (never truncated)."""
+    arr = _np.asarray(a).ravel()
+    if arr.dtype.kind not in "iu":
+        if arr.dtype.kind != "f" or not _np.all(_np.isfinite(arr) & (arr == _np.floor(arr))):
+            raise ArgumentError(f"{name}: must be integers (got dtype {arr.dtype})")
+    if _np.any(arr < 0):
+        raise ArgumentError(f"{name}: must not be negative")
+    return [int(m) for m in arr]
+
+
 class Scene:
     """A scene file or text with overrides. `build()` validates and builds it."""
 
@@ -114,12 +135,18 @@ class Simulation:
         """The caller's particles: `settings` is scene text without bodies; `position`
         (n, dim); `material` (n,) indices into the settings' materials; `spacing` one
         value or (n,); the rest optional (rest, rho0, 0, density * spacing**dim)."""
-        mat = [int(m) for m in _np.asarray(material).ravel()]
+        mat = _indices(material, "material")
+        n = len(mat)
+        pos = _np.asarray(position, dtype=_np.float64)
+        dim = 1 if pos.ndim == 1 else (pos.shape[1] if pos.ndim == 2 else -1)
+        vec = lambda a, name: None if a is None else _shaped(a, name, n, dim)  # noqa: E731
+        sca = lambda a, name: None if a is None else _shaped(a, name, n, 1)  # noqa: E731
+        spacing = _np.asarray(spacing, dtype=_np.float64)
         raw = _gsph.Simulation.from_particles(
-            settings, _overrides(overrides), _flat(position),
-            _flat(velocity), _flat(density),
-            _flat(energy), _flat(mass), mat,
-            _flat(spacing))
+            settings, _overrides(overrides), _shaped(pos, "position", n, max(dim, 1)),
+            _flat(vec(velocity, "velocity")), _flat(sca(density, "density")),
+            _flat(sca(energy, "energy")), _flat(sca(mass, "mass")), mat,
+            _flat(spacing if spacing.ndim == 0 else sca(spacing, "spacing")))
         return cls(raw)
 
     @classmethod
@@ -160,7 +187,7 @@ class Simulation:
 
     def set_field(self, name, values):
         """Sets a writable field (id order; all values checked before any is written)."""
-        self._raw.set_field(name, _flat(values))
+        self._raw.set_field(name, _shaped(values, name, len(self), self._raw.components(name)))
 
     def ids(self):
         """Particle ids, in the order of every field."""
@@ -169,7 +196,8 @@ class Simulation:
     def set_acceleration(self, a):
         """External acceleration, m/s², shape (n, dim), applied in every following step
         (half before, half after it) until set again; None removes it."""
-        self._raw.set_acceleration(_flat(a))
+        self._raw.set_acceleration(
+            _np.zeros(0) if a is None else _shaped(a, "acceleration", len(self), self.dim))
 
     def energy(self):
         """(kinetic, internal) energy, J."""
@@ -182,6 +210,12 @@ class Simulation:
     def external_impulse(self):
         """Momentum added by the external accelerations so far, sum m a dt."""
         return _np.array(self._raw.external_impulse())
+
+    def profile(self):
+        """(n, 3) array: x, sigma_xx and the exact sigma_xx (NaN where it does not hold) of
+        every particle sorted by x, for scenes whose reference is a stress profile (the
+        flyer plate, the elastic-plastic Riemann problem)."""
+        return self._raw.profile()
 
     def summary(self):
         """The summary now, as a dict (the keys of `gsph run`'s summary.json that need
