@@ -151,6 +151,14 @@ pub unsafe fn out<'a, T>(p: *mut T, name: &str) -> Result<&'a mut T, Failure> {
     Ok(unsafe { &mut *p })
 }
 
+/// Writes `v` to the optional output `p` (nothing when `p` is null).
+pub unsafe fn put<T>(p: *mut T, name: &str, v: T) -> Result<(), Failure> {
+    if !p.is_null() {
+        *unsafe { out(p, name)? } = v;
+    }
+    Ok(())
+}
+
 /// The struct at `p`.
 pub unsafe fn get<'a, T>(p: *const T, name: &str) -> Result<&'a T, Failure> {
     check(p, 1, name)?;

@@ -21,7 +21,7 @@
 mod guard;
 
 use gsph_rs::api::{Particles, Simulation};
-use guard::{cstr, guard, out, slice, slice_mut, strings, Failure};
+use guard::{cstr, guard, out, put, slice, slice_mut, strings, Failure};
 use std::ffi::{c_char, c_int};
 use std::path::Path;
 
@@ -289,12 +289,8 @@ pub unsafe extern "C" fn gsph_count(sim: *mut GsphSim, count: *mut usize) -> c_i
 pub unsafe extern "C" fn gsph_time(sim: *mut GsphSim, t: *mut f64, steps: *mut u64) -> c_int {
     guard(|| {
         let s = unsafe { handle(sim)? };
-        if !t.is_null() {
-            *unsafe { out(t, "t")? } = s.time();
-        }
-        if !steps.is_null() {
-            *unsafe { out(steps, "steps")? } = s.steps();
-        }
+        unsafe { put(t, "t", s.time())? };
+        unsafe { put(steps, "steps", s.steps())? };
         Ok(())
     })
 }
@@ -324,12 +320,8 @@ pub unsafe extern "C" fn gsph_schedule(
 ) -> c_int {
     guard(|| {
         let s = unsafe { handle(sim)? };
-        if !t_end.is_null() {
-            *unsafe { out(t_end, "t_end")? } = s.scene().t_end;
-        }
-        if !snapshots.is_null() {
-            *unsafe { out(snapshots, "snapshots")? } = s.scene().output.snapshots;
-        }
+        unsafe { put(t_end, "t_end", s.scene().t_end)? };
+        unsafe { put(snapshots, "snapshots", s.scene().output.snapshots)? };
         Ok(())
     })
 }
@@ -343,9 +335,7 @@ pub unsafe extern "C" fn gsph_step(sim: *mut GsphSim, dt: f64, dt_taken: *mut f6
     guard(|| {
         let s = unsafe { handle(sim)? };
         let taken = s.step((dt != 0.0).then_some(dt))?;
-        if !dt_taken.is_null() {
-            *unsafe { out(dt_taken, "dt_taken")? } = taken;
-        }
+        unsafe { put(dt_taken, "dt_taken", taken)? };
         Ok(())
     })
 }
@@ -359,9 +349,7 @@ pub unsafe extern "C" fn gsph_advance(sim: *mut GsphSim, t: f64, steps: *mut u64
     guard(|| {
         let s = unsafe { handle(sim)? };
         let n = s.advance_to(t)?;
-        if !steps.is_null() {
-            *unsafe { out(steps, "steps")? } = n;
-        }
+        unsafe { put(steps, "steps", n)? };
         Ok(())
     })
 }
@@ -374,9 +362,7 @@ pub unsafe extern "C" fn gsph_run(sim: *mut GsphSim, steps: *mut u64) -> c_int {
     guard(|| {
         let s = unsafe { handle(sim)? };
         let n = s.run()?;
-        if !steps.is_null() {
-            *unsafe { out(steps, "steps")? } = n;
-        }
+        unsafe { put(steps, "steps", n)? };
         Ok(())
     })
 }
@@ -486,12 +472,8 @@ pub unsafe extern "C" fn gsph_energy(
     guard(|| {
         let s = unsafe { handle(sim)? };
         let (k, i) = s.energy();
-        if !kinetic.is_null() {
-            *unsafe { out(kinetic, "kinetic")? } = k;
-        }
-        if !internal.is_null() {
-            *unsafe { out(internal, "internal")? } = i;
-        }
+        unsafe { put(kinetic, "kinetic", k)? };
+        unsafe { put(internal, "internal", i)? };
         Ok(())
     })
 }
@@ -532,9 +514,7 @@ pub unsafe extern "C" fn gsph_summary_json(
         let s = unsafe { handle(sim)? };
         let text = serde_json::Value::Object(s.summary()).to_string();
         let need = text.len() + 1;
-        if !needed.is_null() {
-            *unsafe { out(needed, "needed")? } = need;
-        }
+        unsafe { put(needed, "needed", need)? };
         if len < need {
             return Err(Failure::argument(format!(
                 "buf: {len} bytes, the summary needs {need}"

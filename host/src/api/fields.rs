@@ -293,8 +293,9 @@ impl Simulation {
     pub fn read(&mut self, name: &str, out: &mut [f64]) -> ApiResult<()> {
         let f = self.field(name)?;
         self.check_len(f, out.len())?;
-        let order = self.id_order().to_vec();
-        with_sim!(&self.sim, s => get(s, f, &order, out));
+        self.refresh_order();
+        let order = &self.order.1;
+        with_sim!(&self.sim, s => get(s, f, order, out));
         Ok(())
     }
 
@@ -332,8 +333,9 @@ impl Simulation {
                 data[k]
             )));
         }
-        let order = self.id_order().to_vec();
-        with_sim!(&mut self.sim, s => set(s, f, &order, data));
+        self.refresh_order();
+        let order = &self.order.1;
+        with_sim!(&mut self.sim, s => set(s, f, order, data));
         Ok(())
     }
 }

@@ -108,7 +108,8 @@ pub struct Simulation {
     external: Vec<f64>,
     impulse: [f64; 3],
     external_work: f64,
-    /// Indices in memory of the particles in id order, and the renumbering they hold for.
+    /// Indices in memory of the particles in id order, and the renumbering they hold for
+    /// ([`Self::refresh_order`]).
     order: (u64, Vec<usize>),
     /// Why the simulation can no longer step (a step failed part-way).
     failed: Option<String>,
@@ -408,8 +409,8 @@ impl Simulation {
         if self.external.is_empty() {
             return;
         }
-        let order = self.id_order().to_vec();
-        let a = &self.external;
+        self.refresh_order();
+        let (order, a) = (&self.order.1, &self.external);
         let (impulse, work) = with_sim!(&mut self.sim, s => {
             let d = s.x.first().map_or(0, |x| x.len());
             let driven: std::collections::HashSet<usize> = s.driven.iter().map(|p| p.0).collect();
@@ -436,19 +437,19 @@ impl Simulation {
         with_sim!(&mut self.sim, s => s.state_changed());
     }
 
-    /// Memory indices of the particles in id order (renewed after a rebuild renumbered them).
-    fn id_order(&mut self) -> &[usize] {
+    /// Renews [`Self::order`] (memory indices in id order) after a renumbering.
+    fn refresh_order(&mut self) {
         let renumbered = with_sim!(&self.sim, s => s.renumbered);
         if self.order.0 != renumbered {
             let order: Vec<usize> = with_sim!(&self.sim, s => s.by_id().collect());
             self.order = (renumbered, order);
         }
-        &self.order.1
     }
 
     /// Particle ids in id order (0..n for a scene as built).
     pub fn ids(&mut self) -> Vec<u32> {
-        let order = self.id_order().to_vec();
+        self.refresh_order();
+        let order = &self.order.1;
         with_sim!(&self.sim, s => order.iter().map(|&i| s.ids[i]).collect())
     }
 
