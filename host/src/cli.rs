@@ -103,6 +103,23 @@ pub enum Command {
     /// Pictures of a run's output directory.
     #[command(subcommand)]
     Plot(PlotCommand),
+    /// The material library (cases/materials/, compiled in): one line per material; with
+    /// NAME, its TOML (source and units in comments); with --scene, the scene's materials
+    /// as a run resolves them and where each came from.
+    Materials {
+        /// A library material to print.
+        #[arg(conflicts_with = "scene")]
+        name: Option<String>,
+        /// Print the resolved materials of this scene instead.
+        #[arg(long)]
+        scene: Option<PathBuf>,
+        /// Override a scene key (dotted path; with --scene).
+        #[arg(long = "set", value_name = "KEY=VALUE", requires = "scene")]
+        set: Vec<String>,
+        /// Remove a scene key (dotted path; with --scene).
+        #[arg(long = "unset", value_name = "KEY", requires = "scene")]
+        unset: Vec<String>,
+    },
     /// Validate a scene, print particle counts and the resolved effects.
     Check {
         /// Scene file.
@@ -213,24 +230,29 @@ pub enum PlotCommand {
     },
 }
 
+/// The exit code of a failed command when not 1: 128 + the signal's number after
+/// SIGINT/SIGTERM stopped a run.
+static EXIT_CODE: std::sync::atomic::AtomicI32 = std::sync::atomic::AtomicI32::new(0);
+
+/// Most worker threads per core `--threads` may ask for.
+pub const MAX_THREADS_PER_CORE: usize = 8;
+
 fn pool(threads: Option<usize>) -> Result<rayon::ThreadPool, String> {
     let mut b = rayon::ThreadPoolBuilder::new();
     if let Some(t) = threads {
         if t == 0 {
             return Err("--threads must be at least 1".into());
         }
+        let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+        if t > MAX_THREADS_PER_CORE * cores {
+            return Err(format!(
+                "--threads {t}: this machine has {cores} cores; more than {MAX_THREADS_PER_CORE} threads per core ({}) only slows a run down",
+                MAX_THREADS_PER_CORE * cores
+            ));
+        }
         b = b.num_threads(t);
     }
     b.build().map_err(|e| format!("cannot start threads: {e}"))
-}
-
-/// Removes the results of an earlier run from `dir`, so that a run that fails (on bad input
-/// too) leaves nothing that looks complete (DESIGN §6).
-fn clear_results(dir: &std::path::Path) -> Result<(), String> {
-    if !dir.exists() {
-        return Ok(());
-    }
-    crate::driver::clear_outputs(dir).map_err(|e| format!("{}: {e}", dir.display()))
 }
 
 /// Sets the scene up as a run would (neighbour lists, overlap check, specialisation), so
@@ -275,12 +297,16 @@ pub fn main_with_args(args: impl IntoIterator<Item = std::ffi::OsString>) -> i32
     match execute(cli.command) {
         Ok(()) => 0,
         Err(msg) => {
+            let code = match EXIT_CODE.load(std::sync::atomic::Ordering::Relaxed) {
+                0 => 1,
+                c => c,
+            };
             let who = match crate::dist_rank() {
                 0 => String::new(),
                 r => format!("rank {r}: "),
             };
             eprintln!("{who}error: {}", msg.replace('\n', " "));
-            1
+            code
         }
     }
 }
@@ -301,15 +327,23 @@ fn plot(cmd: PlotCommand) -> Result<(), String> {
             let range = match range {
                 None => None,
                 Some(r) => {
-                    let v: Vec<f64> = r.split(',').filter_map(|x| x.trim().parse().ok()).collect();
-                    if v.len() != 2 || v[0] >= v[1] {
+                    let v: Vec<f64> = r
+                        .split(',')
+                        .map(|x| x.trim().parse().unwrap_or(f64::NAN))
+                        .collect();
+                    if v.len() != 2 || v.iter().any(|x| !x.is_finite()) || v[0] >= v[1] {
                         return Err(format!(
-                            "--range: expected MIN,MAX with MIN < MAX, got `{r}`"
+                            "--range: expected MIN,MAX (finite numbers, MIN < MAX), got `{r}`"
                         ));
                     }
                     Some((v[0], v[1]))
                 }
             };
+            if let Some(t) = time.filter(|t| !t.is_finite()) {
+                return Err(format!(
+                    "--time: must be a finite number of seconds (got {t})"
+                ));
+            }
             let path = crate::commands::plot_particles(
                 &dir,
                 &field,
@@ -375,7 +409,10 @@ fn execute(cmd: Command) -> Result<(), String> {
                 resolutions: crate::commands::parse_resolutions(&resolutions)?,
                 overrides: set,
                 metric,
-                out: out.unwrap_or_else(|| PathBuf::from("out").join(format!("{name}_study"))),
+                out: match out {
+                    Some(o) => o,
+                    None => crate::outdir::default_dir(&name, "_study")?,
+                },
             };
             let pool = pool(threads)?;
             pool.install(|| crate::commands::run_study(&path, &opts))?;
@@ -387,6 +424,23 @@ fn execute(cmd: Command) -> Result<(), String> {
             Ok(())
         }
         Command::Stability(args) => crate::stability::command(&args),
+        Command::Materials {
+            name,
+            scene: path,
+            set,
+            unset,
+        } => {
+            use crate::scene::library;
+            let text = match (name, path) {
+                (Some(name), _) => library::show(&name)?,
+                (None, Some(path)) => {
+                    library::scene_report(&path, &scene::with_unsets(set, &unset))?
+                }
+                (None, None) => library::list()?,
+            };
+            out!("{}", text.trim_end());
+            Ok(())
+        }
         Command::Plot(cmd) => plot(cmd),
         Command::Check {
             scene: path,
@@ -529,7 +583,10 @@ fn execute(cmd: Command) -> Result<(), String> {
                 verbose: !quiet,
                 ..Default::default()
             };
-            let out = out.unwrap_or_else(|| PathBuf::from("out").join(format!("{name}_hugoniot")));
+            let out = match out {
+                Some(o) => o,
+                None => crate::outdir::default_dir(&name, "_hugoniot")?,
+            };
             let pool = pool(threads)?;
             pool.install(|| crate::commands::run_hugoniot(&sc, &opts, &out))
                 .map_err(|e| format!("{}: {e}", path.display()))?;
@@ -559,11 +616,8 @@ fn execute(cmd: Command) -> Result<(), String> {
             let (sc, out, ckpt) = match (restart, scene) {
                 (Some(dir), _) => setup::restart(&dir, flags)?,
                 (None, Some(path)) => {
-                    // under MPI rank 0 alone touches the output folder
-                    let root = crate::dist_rank() == 0;
-                    if let (Some(dir), true) = (&out, root) {
-                        clear_results(dir)?;
-                    }
+                    // nothing touches the output folder until the run is validated and
+                    // holds its lock (the driver; under MPI rank 0 alone)
                     let (sc, source) = setup::load(&path, &set)?;
                     let ranks = crate::dist_size();
                     if ranks > 1 && sc.window.is_some() {
@@ -572,10 +626,10 @@ fn execute(cmd: Command) -> Result<(), String> {
                             path.display()
                         ));
                     }
-                    let out = out.unwrap_or_else(|| PathBuf::from("out").join(&source.name));
-                    if root {
-                        clear_results(&out)?;
-                    }
+                    let out = match out {
+                        Some(o) => o,
+                        None => crate::outdir::default_dir(&source.name, "")?,
+                    };
                     let policy = setup::merge(flags, &sc);
                     (
                         sc,
@@ -592,6 +646,7 @@ fn execute(cmd: Command) -> Result<(), String> {
             let name = ckpt.source.name.clone();
             let origin = ckpt.source.origin.clone();
             let pool = pool(threads)?;
+            crate::interrupt::install()?;
             let opts = RunOptions {
                 out: Some(out.clone()),
                 progress: !quiet,
@@ -600,6 +655,10 @@ fn execute(cmd: Command) -> Result<(), String> {
                 .install(|| run_checkpointed(&sc, &name, &opts, &ckpt))
                 .map_err(|e| match e {
                     RunError::Output(e) => format!("{}: cannot write output: {e}", out.display()),
+                    e @ RunError::Interrupted { signal, .. } => {
+                        EXIT_CODE.store(128 + signal, std::sync::atomic::Ordering::Relaxed);
+                        format!("{origin}: {e}")
+                    }
                     e @ RunError::Checkpoint(_) => e.to_string(),
                     e => format!("{origin}: {e}"),
                 })?;

@@ -75,6 +75,44 @@ fn list(times: &[(u64, f64)]) -> String {
     v.join(", ")
 }
 
+/// The rows of a series table after its header: every row as many numbers as the header
+/// has names (a short or truncated row, or a value that is not a number, is refused
+/// naming the line).
+pub fn series_rows<'a>(
+    path: &Path,
+    header: &[&str],
+    lines: impl Iterator<Item = &'a str>,
+) -> Result<Vec<Vec<f64>>, String> {
+    lines
+        .enumerate()
+        .filter(|(_, l)| !l.trim().is_empty())
+        .map(|(k, l)| {
+            let line = k + 2;
+            let fields: Vec<&str> = l.split(',').collect();
+            if fields.len() != header.len() {
+                return Err(format!(
+                    "{} line {line}: {} values, the header names {} (a truncated file?)",
+                    path.display(),
+                    fields.len(),
+                    header.len()
+                ));
+            }
+            fields
+                .iter()
+                .zip(header)
+                .map(|(v, name)| {
+                    v.trim().parse::<f64>().map_err(|_| {
+                        format!(
+                            "{} line {line}, column {name}: `{v}` is not a number",
+                            path.display()
+                        )
+                    })
+                })
+                .collect()
+        })
+        .collect()
+}
+
 /// Plots columns of a run's `series.csv` against time (in microseconds). Columns whose
 /// name ends in `_exact` are drawn dashed, as analytic references.
 #[cfg(feature = "plot")]
@@ -99,13 +137,7 @@ pub fn plot_series(
     };
     let it = idx("t")?;
     let cols: Vec<usize> = columns.iter().map(|c| idx(c)).collect::<Result<_, _>>()?;
-    let rows: Vec<Vec<f64>> = lines
-        .map(|l| {
-            l.split(',')
-                .map(|v| v.parse::<f64>().unwrap_or(f64::NAN))
-                .collect()
-        })
-        .collect();
+    let rows = series_rows(&path, &header, lines)?;
     let series = columns
         .iter()
         .zip(&cols)
@@ -178,6 +210,9 @@ pub fn run_hugoniot(
     // into hugoniot.partial.csv (a run of hours that is stopped keeps its points under a
     // name that does not pass for the whole table); hugoniot.csv and the plot when all
     // points are done, and the partial table is then removed
+    // refused before any computation: an --out that is a file, or a folder another
+    // process writes
+    let _lock = crate::outdir::OutLock::acquire(out)?;
     let partial = out.join("hugoniot.partial.csv");
     let mut rows = String::new();
     #[cfg(not(feature = "plot"))]

@@ -253,7 +253,7 @@ impl Monitor {
             rest = &rest[el.restore(rest)?..];
         }
         match self.front.as_mut() {
-            Some(fr) if rest.len() % 2 == 0 => {
+            Some(fr) if rest.len().is_multiple_of(2) => {
                 fr.samples = rest.chunks_exact(2).map(|p| (p[0], p[1])).collect();
                 Ok(())
             }

@@ -69,8 +69,58 @@ pub fn mark_pareto(rows: &mut [StudyRow]) {
     }
 }
 
+/// Refuses a `--metric` that the summaries of this scene do not have, from a run of one
+/// step (the first scheme at the first resolution).
+fn check_metric(scene_path: &Path, opts: &StudyOptions, key: &str) -> Result<(), String> {
+    let (Some(&res), Some(&scheme)) = (opts.resolutions.first(), opts.schemes.first()) else {
+        return Ok(());
+    };
+    let mut set = opts.overrides.clone();
+    set.push(format!("resolution_scale={res}"));
+    set.push("max_steps=1".into());
+    let (sc, _) =
+        scene::load_for_scheme(scene_path, &set, scheme.name()).map_err(|e| e.to_string())?;
+    let name = crate::driver::scene_name(&sc, scene_path);
+    let r = run(
+        &sc,
+        &name,
+        &RunOptions {
+            out: None,
+            progress: false,
+        },
+    )
+    .map_err(|e| format!("{}: {e}", scheme.name()))?;
+    if r.summary.contains_key(key) {
+        return Ok(());
+    }
+    let numbers: Vec<&str> = r
+        .summary
+        .iter()
+        .filter(|(_, v)| v.is_number() || v.is_null())
+        .map(|(k, _)| k.as_str())
+        .collect();
+    Err(format!(
+        "--metric: `{key}` is not in the summary of {} (numbers there: {})",
+        scene_path.display(),
+        numbers.join(", ")
+    ))
+}
+
 /// Runs the study; returns the rows and the metric used.
 pub fn study(scene_path: &Path, opts: &StudyOptions) -> Result<(Vec<StudyRow>, String), String> {
+    // everything that can be refused is refused before the first run: every scene of the
+    // grid, the output folder, the metric
+    let _lock = crate::outdir::OutLock::acquire(&opts.out)?;
+    for &res in &opts.resolutions {
+        for &scheme in &opts.schemes {
+            let mut set = opts.overrides.clone();
+            set.push(format!("resolution_scale={res}"));
+            scene::load_for_scheme(scene_path, &set, scheme.name()).map_err(|e| e.to_string())?;
+        }
+    }
+    if let Some(key) = &opts.metric {
+        check_metric(scene_path, opts, key)?;
+    }
     let mut rows = Vec::new();
     let mut metric = opts.metric.clone();
     let total = opts.schemes.len() * opts.resolutions.len();

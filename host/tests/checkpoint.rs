@@ -51,12 +51,15 @@ fn read(dir: &Path, f: &str) -> Vec<u8> {
     std::fs::read(dir.join(f)).unwrap_or_else(|e| panic!("{}/{f}: {e}", dir.display()))
 }
 
-/// summary.json without its wall-time and thread-count lines.
+/// summary.json without its wall-time, thread-count and run-id lines (each run has its
+/// own id; a restart keeps the id of the run it continues).
 fn summary_sans_wall(dir: &Path) -> String {
     String::from_utf8(read(dir, "summary.json"))
         .unwrap()
         .lines()
-        .filter(|l| !l.contains("\"wall_") && !l.contains("\"threads\""))
+        .filter(|l| {
+            !l.contains("\"wall_") && !l.contains("\"threads\"") && !l.contains("\"run_id\"")
+        })
         .collect::<Vec<_>>()
         .join("\n")
 }

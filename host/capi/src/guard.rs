@@ -107,7 +107,7 @@ fn check<T>(p: *const T, len: usize, name: &str) -> Result<(), Failure> {
     if p.is_null() {
         return Err(Failure::pointer(format!("{name}: null pointer")));
     }
-    if (p as usize) % std::mem::align_of::<T>() != 0 {
+    if !p.is_aligned() {
         return Err(Failure::pointer(format!(
             "{name}: misaligned pointer (needs {}-byte alignment)",
             std::mem::align_of::<T>()

@@ -83,7 +83,7 @@ unsafe fn handle<'a>(p: *mut GsphSim) -> Result<&'a mut Simulation, Failure> {
     if p.is_null() {
         return Err(Failure::pointer("sim: null handle"));
     }
-    if (p as usize) % std::mem::align_of::<GsphSim>() != 0 {
+    if !p.is_aligned() {
         return Err(Failure::pointer("sim: misaligned handle"));
     }
     // SAFETY: non-null and aligned; the caller promises at least a readable u64 there (a

@@ -558,7 +558,9 @@ impl Simulation {
             mom0: self.momentum0,
             ..Default::default()
         };
-        let mut control = crate::checkpoint::Control::new(Default::default(), source.clone(), dir);
+        let run_id = crate::outdir::new_run_id();
+        let mut control =
+            crate::checkpoint::Control::new(Default::default(), source.clone(), dir, &run_id);
         with_sim!(&self.sim, s => control.write(s.as_ref(), &state, None))
             .map_err(|e| ApiError::Io(format!("{}: checkpoint: {e}", dir.display())))
     }

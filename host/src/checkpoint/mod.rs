@@ -13,7 +13,8 @@
 //! | 32 | … | payload |
 //!
 //! Payload, in order ([`codec`]: integers and floats fixed-width, floats as bit patterns;
-//! strings and arrays prefixed by their length as u64): the gsph version; the scene
+//! strings and arrays prefixed by their length as u64): the gsph version; the run id
+//! (also in summary.json: a checkpoint resumes only the run that wrote it); the scene
 //! origin, text, overrides and name; the checkpoint policy (steps, 0 for none; seconds,
 //! 0 for none); the [`DriverState`]; the simulation state (`Sim::save_checkpoint`).
 //!
@@ -40,7 +41,7 @@ pub const CHECKPOINT_H5: &str = "checkpoint.h5";
 /// Magic bytes at the start of a checkpoint.
 pub const MAGIC: &[u8; 8] = b"GSPHCKPT";
 /// The format version this build writes and reads.
-pub const FORMAT_VERSION: u32 = 2;
+pub const FORMAT_VERSION: u32 = 3;
 const HEADER: usize = 32;
 
 /// A checkpoint problem; `Display` is one line.
@@ -127,6 +128,8 @@ pub struct Checkpoint {
     pub t: f64,
     /// Steps taken at the checkpoint.
     pub step: u64,
+    /// The id of the run that wrote it ([`crate::outdir::new_run_id`]).
+    pub run_id: String,
     payload: Vec<u8>,
     sim_at: usize,
 }
@@ -189,6 +192,7 @@ impl Checkpoint {
                 ),
             ));
         }
+        let run_id: String = d.get().map_err(&de)?;
         let source = SceneSource {
             origin: d.get().map_err(&de)?,
             text: d.get().map_err(&de)?,
@@ -223,9 +227,58 @@ impl Checkpoint {
             driver,
             t,
             step,
+            run_id,
             payload: payload.to_vec(),
             sim_at,
         })
+    }
+
+    /// Checks the decoded driver state against the checkpoint's scene: a checksum proves
+    /// the bytes are as written, not that the values are a state a run can reach.
+    pub fn check_state(&self, scene: &crate::scene::Scene) -> Result<(), CheckpointError> {
+        let path = self.dir.join(CHECKPOINT_BIN);
+        let bad = |what: String| Err(err(&path, format!("bad checkpoint: {what}")));
+        let (t, t_end, dr) = (self.t, scene.t_end, &self.driver);
+        if !(t.is_finite() && t >= 0.0 && t <= t_end * (1.0 + 1e-9)) {
+            return bad(format!("time t = {t:e} s outside [0, t_end = {t_end:e} s]"));
+        }
+        if scene.max_steps.is_some_and(|m| self.step > m) {
+            return bad(format!("step {} beyond max_steps", self.step));
+        }
+        // the next snapshot and series sample: one past the last passed time
+        let schedule = |name: &str, next: u64, n: u64| -> Result<(), CheckpointError> {
+            let passed = t_end * (next.saturating_sub(1)) as f64 / n as f64;
+            if !(1..=n + 1).contains(&next) || passed > t * (1.0 + 1e-9) {
+                return Err(err(
+                    &path,
+                    format!("bad checkpoint: {name} = {next} at t = {t:e} s ({n} per run)"),
+                ));
+            }
+            Ok(())
+        };
+        schedule("next snapshot", dr.next_out, scene.output.snapshots as u64)?;
+        schedule(
+            "next series sample",
+            dr.next_series,
+            scene.output.series.unwrap_or(200) as u64,
+        )?;
+        if dr.frames > dr.next_out {
+            return bad(format!(
+                "{} snapshots written before snapshot {}",
+                dr.frames, dr.next_out
+            ));
+        }
+        let finite = dr.energy0.is_finite()
+            && dr.kinetic_max.is_finite()
+            && dr.kinetic_max >= 0.0
+            && dr.mom0.iter().all(|v| v.is_finite());
+        if !finite {
+            return bad("initial energy, momentum or largest kinetic energy not finite".into());
+        }
+        if !dr.series.starts_with("t,step,") {
+            return bad("series.csv so far has no header".into());
+        }
+        Ok(())
     }
 
     /// Overwrites the state of `sim` (built from the checkpoint's scene) with the saved one.
@@ -278,24 +331,29 @@ pub struct Control {
     last: Instant,
     /// Snapshots in the current checkpoint.h5 written by this process.
     frames_saved: Option<u64>,
+    run_id: String,
 }
 
 impl Control {
-    /// Checkpoints of the run of `source` into `dir` on the schedule of `policy`.
-    pub fn new(policy: Policy, source: SceneSource, dir: &Path) -> Self {
+    /// Checkpoints of the run `run_id` of `source` into `dir` on the schedule of `policy`.
+    pub fn new(policy: Policy, source: SceneSource, dir: &Path, run_id: &str) -> Self {
         Control {
             policy,
             source,
             dir: dir.to_path_buf(),
             last: Instant::now(),
             frames_saved: None,
+            run_id: run_id.to_owned(),
         }
     }
 
     /// After step `step`: (write a checkpoint, then stop).
     pub fn due(&self, step: u64) -> (bool, bool) {
         let stop = self.policy.stop_after_steps == Some(step);
-        let by_steps = self.policy.every_steps.is_some_and(|k| step % k == 0);
+        let by_steps = self
+            .policy
+            .every_steps
+            .is_some_and(|k| step.is_multiple_of(k));
         let by_time = self
             .policy
             .every_seconds
@@ -322,6 +380,7 @@ impl Control {
         }
         let mut e = Enc::default();
         e.put(&env!("CARGO_PKG_VERSION").to_string());
+        e.put(&self.run_id);
         e.put(&self.source.origin);
         e.put(&self.source.text);
         e.put(&self.source.overrides);

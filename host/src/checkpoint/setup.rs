@@ -55,6 +55,25 @@ pub fn restart(dir: &Path, flags: Policy) -> Result<(Scene, PathBuf, CheckpointO
     let ck = Checkpoint::read(dir).map_err(|e| e.to_string())?;
     let sc = scene::parse(&ck.source.text, &ck.source.origin, &ck.source.overrides)
         .map_err(|e| format!("{}: the checkpoint's scene: {e}", dir.display()))?;
+    ck.check_state(&sc).map_err(|e| e.to_string())?;
+    // bound to its run: never resumed over the results of another run, nor of its own
+    // finished run
+    match crate::outdir::summary_run_id(dir) {
+        Some(id) if id == ck.run_id => {
+            return Err(format!(
+                "{}: the run of this checkpoint (run {id}) has finished (summary.json); nothing to resume",
+                dir.display()
+            ))
+        }
+        Some(id) => {
+            return Err(format!(
+                "{}: checkpoint.bin belongs to run {} but summary.json to run {id}, a later run; refusing to resume over its results",
+                dir.display(),
+                ck.run_id
+            ))
+        }
+        None => {}
+    }
     let policy = Policy {
         every_steps: flags.every_steps.or(ck.policy.every_steps),
         every_seconds: flags.every_seconds.or(ck.policy.every_seconds),

@@ -1,18 +1,29 @@
 //! CSV export of a [`ParticleTable`] (`final.csv`) and the matching reader.
 //!
-//! The header is [`COLUMNS`] joined by commas; ids and materials are integers; floats are printed
-//! in shortest round-trip scientific notation (`{:e}`), so reading the file back gives the same
-//! bits.
+//! The header is [`COLUMNS`] followed by [`DERIVED_COLUMNS`] (the Cauchy stress
+//! `sigma_xx` .. `sigma_yz` = `-p I + S` and `von_mises`), joined by commas; ids and materials are
+//! integers; floats are printed in shortest round-trip scientific notation (`{:e}`), so reading
+//! the file back gives the same bits. The file has exactly one header line and no unit row (CSV
+//! readers would take one for data): the unit and meaning of every column are in
+//! [`QUANTITIES`](super::meta::QUANTITIES) and docs/output.md. New columns are only ever appended,
+//! so readers that look columns up by name (or by position from the left) keep working.
 
 use core::fmt::Write as _;
 use std::io::{self, Write};
 use std::path::Path;
 
 use super::atomic::AtomicFile;
+use super::meta::{derived_row, DERIVED_COLUMNS};
 use super::table::{ParticleRow, ParticleTable, COLUMNS, NUM_FLOAT_COLUMNS};
 
-/// The CSV header line (without newline).
+/// The CSV header line (without newline): [`COLUMNS`], then [`DERIVED_COLUMNS`].
 pub fn csv_header() -> String {
+    let all: Vec<&str> = COLUMNS.iter().chain(&DERIVED_COLUMNS).copied().collect();
+    all.join(",")
+}
+
+/// The header of `final.csv` files written before the derived columns were added.
+fn legacy_header() -> String {
     COLUMNS.join(",")
 }
 
@@ -21,11 +32,11 @@ pub fn write_csv(path: impl AsRef<Path>, table: &ParticleTable) -> io::Result<()
     let mut f = AtomicFile::create(path)?;
     writeln!(f, "{}", csv_header())?;
     let mut line = String::with_capacity(512);
-    for row in table.rows() {
+    for (i, row) in table.rows().enumerate() {
         line.clear();
         // Writing into a String cannot fail.
         let _ = write!(line, "{},{}", row.id, row.material);
-        for v in row.floats() {
+        for v in row.floats().into_iter().chain(derived_row(table, i)) {
             let _ = write!(line, ",{v:e}");
         }
         line.push('\n');
@@ -34,7 +45,8 @@ pub fn write_csv(path: impl AsRef<Path>, table: &ParticleTable) -> io::Result<()
     f.commit()
 }
 
-/// Reads a CSV written by [`write_csv`]; the header must match [`COLUMNS`] exactly.
+/// Reads a CSV written by [`write_csv`] (or by an earlier gsph, whose header is [`COLUMNS`]
+/// alone); the derived columns are checked to be numbers and otherwise ignored.
 ///
 /// Errors name the path and line, in one line.
 pub fn read_csv(path: impl AsRef<Path>) -> Result<ParticleTable, String> {
@@ -48,9 +60,13 @@ pub fn read_csv(path: impl AsRef<Path>) -> Result<ParticleTable, String> {
 pub fn parse_csv(text: &str) -> Result<ParticleTable, String> {
     let mut lines = text.lines().enumerate();
     let header = lines.next().map(|(_, l)| l.trim_end()).unwrap_or("");
-    if header != csv_header() {
+    let derived = if header == csv_header() {
+        DERIVED_COLUMNS.len()
+    } else if header == legacy_header() {
+        0
+    } else {
         return Err(format!("line 1: header is not `{}`", csv_header()));
-    }
+    };
     let mut table = ParticleTable::default();
     for (i, line) in lines {
         let line = line.trim_end();
@@ -78,10 +94,15 @@ pub fn parse_csv(text: &str) -> Result<ParticleTable, String> {
                 .parse::<f64>()
                 .map_err(|e| format!("line {lineno}: column `{name}`: `{s}`: {e}"))?;
         }
+        for name in &DERIVED_COLUMNS[..derived] {
+            let s = next(name)?;
+            s.parse::<f64>()
+                .map_err(|e| format!("line {lineno}: column `{name}`: `{s}`: {e}"))?;
+        }
         if fields.next().is_some() {
             return Err(format!(
                 "line {lineno}: more than {} columns",
-                COLUMNS.len()
+                COLUMNS.len() + derived
             ));
         }
         table.push(&ParticleRow::from_parts(id, material, floats));
@@ -108,7 +129,8 @@ mod tests {
         let text = std::fs::read_to_string(&p).unwrap();
         assert_eq!(
             text.lines().next().unwrap(),
-            "id,material,x,y,z,vx,vy,vz,m,rho,p,e,sxx,syy,szz,sxy,sxz,syz,eps_p,damage,temperature,h"
+            "id,material,x,y,z,vx,vy,vz,m,rho,p,e,sxx,syy,szz,sxy,sxz,syz,eps_p,damage,temperature,h,\
+             sigma_xx,sigma_yy,sigma_zz,sigma_xy,sigma_xz,sigma_yz,von_mises"
         );
         assert_eq!(text.lines().count(), 8);
         let back = read_csv(&p).unwrap();
@@ -119,6 +141,45 @@ mod tests {
         }
         let names: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
         assert_eq!(names.len(), 1, "no temp file left");
+    }
+
+    #[test]
+    fn derived_columns_are_the_cauchy_stress_and_von_mises() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("final.csv");
+        let t = sample_table(5, 0.7);
+        write_csv(&p, &t).unwrap();
+        let text = std::fs::read_to_string(&p).unwrap();
+        let mut lines = text.lines();
+        let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+        let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+        for (i, line) in lines.enumerate() {
+            let v: Vec<f64> = line.split(',').map(|s| s.parse().unwrap()).collect();
+            assert_eq!(v.len(), header.len());
+            assert_eq!(v[col("sigma_xx")], t.sxx[i] - t.p[i]);
+            assert_eq!(v[col("sigma_yy")], t.syy[i] - t.p[i]);
+            assert_eq!(v[col("sigma_zz")], t.szz[i] - t.p[i]);
+            assert_eq!(v[col("sigma_xy")], t.sxy[i]);
+            assert_eq!(v[col("sigma_xz")], t.sxz[i]);
+            assert_eq!(v[col("sigma_yz")], t.syz[i]);
+            let ss = t.sxx[i].powi(2)
+                + t.syy[i].powi(2)
+                + t.szz[i].powi(2)
+                + 2.0 * (t.sxy[i].powi(2) + t.sxz[i].powi(2) + t.syz[i].powi(2));
+            let vm = v[col("von_mises")];
+            assert!((vm - (1.5 * ss).sqrt()).abs() <= 1e-15 * vm, "{vm}");
+        }
+    }
+
+    #[test]
+    fn files_without_derived_columns_still_read() {
+        let t = sample_table(3, 0.2);
+        let mut text = format!("{}\n", COLUMNS.join(","));
+        for r in t.rows() {
+            let f: Vec<String> = r.floats().iter().map(|v| format!("{v:e}")).collect();
+            text.push_str(&format!("{},{},{}\n", r.id, r.material, f.join(",")));
+        }
+        assert_eq!(parse_csv(&text).unwrap(), t);
     }
 
     #[test]
@@ -135,11 +196,16 @@ mod tests {
         let h = csv_header();
         let e = parse_csv(&format!("{h}\n1,0,1.0\n")).unwrap_err();
         assert!(e.contains("line 2") && e.contains("missing"), "{e}");
-        let row: Vec<String> = (0..22).map(|k| k.to_string()).collect();
+        let row: Vec<String> = (0..29).map(|k| k.to_string()).collect();
         let e = parse_csv(&format!("{h}\n{},9\n", row.join(","))).unwrap_err();
-        assert!(e.contains("more than"), "{e}");
+        assert!(e.contains("more than 29"), "{e}");
         let e = parse_csv(&format!("{h}\n-1,{}\n", row[1..].join(","))).unwrap_err();
         assert!(e.contains("`id`"), "{e}");
+        let e = parse_csv(&format!("{h}\n{}\n", row[..28].join(","))).unwrap_err();
+        assert!(e.contains("`von_mises`"), "{e}");
+        let legacy = COLUMNS.join(",");
+        let e = parse_csv(&format!("{legacy}\n{},9\n", row[..22].join(","))).unwrap_err();
+        assert!(e.contains("more than 22"), "{e}");
         assert!(read_csv("/nonexistent/final.csv").is_err());
     }
 }

@@ -1,9 +1,13 @@
 //! Reading back `snapshots.h5` files written by [`SnapshotWriter`](super::hdf5::SnapshotWriter):
-//! the list of snapshot times and one snapshot as a [`Frame`].
+//! the list of snapshot times, one snapshot as a [`Frame`] and the run's attributes as a
+//! [`RunInfo`]. Files of both layouts read: format version 1 (before `stress`, `von_mises` and the
+//! run attributes) and 2; the derived datasets are not read back (the [`Frame`] holds `p` and the
+//! deviator they come from).
 
 use std::path::Path;
 
 use super::error::OutputError;
+use super::meta::RunInfo;
 use super::table::{Frame, ParticleTable, FLOAT_COLUMNS};
 use super::xdmf::group_name;
 
@@ -23,6 +27,37 @@ pub fn read_snapshot_times(path: impl AsRef<Path>) -> Result<Vec<(u64, f64)>, Ou
     }
     out.sort_by_key(|&(s, _)| s);
     Ok(out)
+}
+
+fn str_attr(loc: &hdf5::Location, name: &str) -> Result<String, OutputError> {
+    let v: hdf5::types::VarLenUnicode = loc.attr(name)?.read_scalar()?;
+    Ok(v.as_str().to_owned())
+}
+
+fn str_list_attr(loc: &hdf5::Location, name: &str) -> Result<Vec<String>, OutputError> {
+    let a = loc.attr(name)?;
+    if a.size() == 0 {
+        return Ok(Vec::new());
+    }
+    let v: Vec<hdf5::types::VarLenUnicode> = a.read_raw()?;
+    Ok(v.iter().map(|s| s.as_str().to_owned()).collect())
+}
+
+/// The run a snapshot file comes from (its root attributes), or `None` for a file written before
+/// they were (format version 1, no `format_version` attribute).
+pub fn read_run_info(path: impl AsRef<Path>) -> Result<Option<RunInfo>, OutputError> {
+    let file = hdf5::File::open(path)?;
+    if !file.attr_names()?.iter().any(|a| a == "format_version") {
+        return Ok(None);
+    }
+    Ok(Some(RunInfo {
+        name: str_attr(&file, "scene_name")?,
+        scene: str_attr(&file, "scene")?,
+        overrides: str_list_attr(&file, "scene_overrides")?,
+        scheme: str_attr(&file, "scheme")?,
+        effects: str_list_attr(&file, "effects")?,
+        materials: str_list_attr(&file, "material_names")?,
+    }))
 }
 
 fn read_1d<T: hdf5::H5Type>(g: &hdf5::Group, name: &str, n: usize) -> Result<Vec<T>, OutputError> {

@@ -5,6 +5,7 @@
 use std::path::{Path, PathBuf};
 
 use super::error::{OutputError, NO_HDF5};
+use super::meta::RunInfo;
 use super::table::Frame;
 use super::SNAPSHOTS_H5;
 
@@ -26,7 +27,7 @@ impl SnapshotWriter {
     }
 
     /// Refuses as [`SnapshotWriter::supported`] does.
-    pub fn create(_dir: &Path, _dim: usize) -> Result<Self, OutputError> {
+    pub fn create(_dir: &Path, _dim: usize, _info: &RunInfo) -> Result<Self, OutputError> {
         Err(refused(SNAPSHOTS_H5))
     }
 
@@ -51,6 +52,11 @@ impl SnapshotWriter {
     }
 
     /// Never called (no writer exists).
+    pub fn interrupt(self, _step: u64, _t: f64) -> Result<(), OutputError> {
+        match self.never {}
+    }
+
+    /// Never called (no writer exists).
     pub fn finish(self) -> Result<(), OutputError> {
         match self.never {}
     }
@@ -59,6 +65,11 @@ impl SnapshotWriter {
 /// Refuses (the caller names the file): `this gsph was built without HDF5 (cargo feature
 /// `hdf5`)`.
 pub fn read_snapshot_times(_path: impl AsRef<Path>) -> Result<Vec<(u64, f64)>, OutputError> {
+    Err(OutputError::Unsupported(NO_HDF5.into()))
+}
+
+/// Refuses as [`read_snapshot_times`] does.
+pub fn read_run_info(_path: impl AsRef<Path>) -> Result<Option<RunInfo>, OutputError> {
     Err(OutputError::Unsupported(NO_HDF5.into()))
 }
 
@@ -76,7 +87,10 @@ mod tests {
         let dir = Path::new("unused");
         let msg = "snapshots.h5: this gsph was built without HDF5 (cargo feature `hdf5`)";
         assert_eq!(SnapshotWriter::supported().unwrap_err().to_string(), msg);
-        assert_eq!(SnapshotWriter::create(dir, 1).unwrap_err().to_string(), msg);
+        let info = RunInfo::default();
+        let created = SnapshotWriter::create(dir, 1, &info).unwrap_err();
+        assert_eq!(created.to_string(), msg);
+        assert_eq!(read_run_info(dir).unwrap_err().to_string(), NO_HDF5);
         let read = read_snapshot_times(dir).unwrap_err().to_string();
         assert_eq!(read, NO_HDF5);
         assert_eq!(read_frame(dir, 0).unwrap_err().to_string(), NO_HDF5);

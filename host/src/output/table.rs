@@ -1,7 +1,9 @@
 //! The particle table: the state of all particles at one time, stored as columns.
 //!
-//! The column order is fixed ([`COLUMNS`]); it is the header of `final.csv` and the set of datasets
-//! in each snapshot group of `snapshots.h5`. Components that a dimension lacks are stored as 0.
+//! The column order is fixed ([`COLUMNS`]); it is the start of the header of `final.csv` (the
+//! derived columns [`DERIVED_COLUMNS`](super::meta::DERIVED_COLUMNS) follow) and the set of
+//! datasets in each snapshot group of `snapshots.h5`. Components that a dimension lacks are stored
+//! as 0. Units and meanings: [`QUANTITIES`](super::meta::QUANTITIES).
 
 /// Defines [`ParticleRow`], [`ParticleTable`] and the float-column list from one list of fields, so
 /// the three can never disagree.
@@ -62,7 +64,7 @@ macro_rules! particle_types {
 /// Number of float columns (all columns but `id` and `material`).
 pub const NUM_FLOAT_COLUMNS: usize = 20;
 
-/// All column names in order; this is the header of `final.csv`.
+/// All column names in order; `final.csv`'s header is these, then the derived columns.
 pub const COLUMNS: [&str; 22] = [
     "id",
     "material",

@@ -1,15 +1,23 @@
-//! The XDMF sidecar (`snapshots.xdmf`) that lets ParaView open `snapshots.h5`.
+//! The XDMF sidecar (`snapshots.xdmf`, `snapshots.partial.xdmf`) that lets ParaView (or VTK's
+//! `vtkXdmfReader`) open the snapshots.
 //!
 //! XDMF 3: one Temporal Collection of Uniform grids, one grid per snapshot group, each with its own
 //! particle count N: Topology Polyvertex, Geometry XYZ from `/step_XXXXXX/position` (N x 3),
-//! Attribute Vector `velocity`, one Attribute Scalar per 1-D dataset, and the Time Value of the
-//! snapshot.
+//! Attribute Vector `velocity`, Attribute Tensor `stress` (the Cauchy stress, N x 3 x 3: nine
+//! components), one Attribute Scalar per 1-D dataset ([`SCALAR_DATASETS`]: `von_mises`, `p`,
+//! `eps_p`, ...), and the Time Value of the snapshot. Every attribute carries an
+//! `<Information Name="units">` (SI). The Domain starts with `<Information>` elements `status`
+//! (`complete` in `snapshots.xdmf`, `partial: ...` with the reason, still running, interrupted or
+//! ended without finishing, in `snapshots.partial.xdmf`, which also opens with an XML comment
+//! saying so), `gsph_version` and `material_names` (`0: steel, 1: sic`).
 
 use core::fmt::Write as _;
 
-/// The 1-D datasets of each snapshot group, in `final.csv` column order (position and velocity are
-/// stored as N x 3 datasets `position` and `velocity`).
-pub const SCALAR_DATASETS: [&str; 16] = [
+use super::meta::{unit, GSPH_VERSION};
+
+/// The 1-D datasets of each snapshot group: the `final.csv` columns in their order (position and
+/// velocity are stored as N x 3 datasets `position` and `velocity`), then `von_mises`.
+pub const SCALAR_DATASETS: [&str; 17] = [
     "id",
     "material",
     "m",
@@ -26,7 +34,11 @@ pub const SCALAR_DATASETS: [&str; 16] = [
     "damage",
     "temperature",
     "h",
+    "von_mises",
 ];
+
+/// The `status` of a complete `snapshots.xdmf`.
+pub const STATUS_COMPLETE: &str = "complete";
 
 /// The HDF5 group name of a snapshot: `step_000123` (at least six digits).
 pub fn group_name(step: u64) -> String {
@@ -78,14 +90,79 @@ fn data_item(out: &mut String, h5_file: &str, group: &str, dataset: &str, dims: 
     );
 }
 
-/// The XDMF document for `grids`, whose heavy data live in `h5_file` (a path relative to the XDMF
-/// file, normally `snapshots.h5`).
-pub fn xdmf_document(h5_file: &str, grids: &[XdmfGrid]) -> String {
-    let mut out = String::with_capacity(1024 + grids.len() * 3000);
+fn attribute(
+    out: &mut String,
+    h5: &str,
+    group: &str,
+    name: &str,
+    ty: &str,
+    dims: &str,
+    dim: usize,
+) {
+    let _ = writeln!(
+        out,
+        "      <Attribute Name=\"{name}\" AttributeType=\"{ty}\" Center=\"Node\">"
+    );
+    let u = unit(name, dim);
+    if !u.is_empty() {
+        let _ = writeln!(out, "        <Information Name=\"units\" Value=\"{u}\"/>");
+    }
+    data_item(out, h5, group, name, dims);
+    out.push_str("      </Attribute>\n");
+}
+
+/// What an XDMF document says besides its grids.
+#[derive(Debug, Clone, Copy)]
+pub struct XdmfHeader<'a> {
+    /// The HDF5 file of the heavy data, relative to the XDMF file: `snapshots.h5`, or
+    /// `snapshots.partial.h5` while the run goes on.
+    pub h5_file: &'a str,
+    /// Dimension of the run (the unit of the mass depends on it).
+    pub dim: usize,
+    /// [`STATUS_COMPLETE`] or a line starting `partial:`.
+    pub status: &'a str,
+    /// Material names, in the order the `material` attribute indexes.
+    pub materials: &'a [String],
+}
+
+/// The XDMF document for the snapshots `grids` described by `head`.
+pub fn xdmf_document(head: &XdmfHeader, grids: &[XdmfGrid]) -> String {
+    let XdmfHeader {
+        h5_file,
+        dim,
+        status,
+        materials,
+    } = *head;
+    let mut out = String::with_capacity(1024 + grids.len() * 5000);
     out.push_str("<?xml version=\"1.0\" ?>\n");
     out.push_str("<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n");
+    if status != STATUS_COMPLETE {
+        // no `>` or `--` inside a comment
+        let text = status.replace("--", "- -").replace('>', " ");
+        let _ = writeln!(out, "<!-- PARTIAL OUTPUT, not a finished run: {text} -->");
+    }
     out.push_str("<Xdmf xmlns:xi=\"http://www.w3.org/2001/XInclude\" Version=\"3.0\">\n");
     out.push_str("  <Domain>\n");
+    let _ = writeln!(
+        out,
+        "    <Information Name=\"status\" Value=\"{}\"/>",
+        escape(status)
+    );
+    let _ = writeln!(
+        out,
+        "    <Information Name=\"gsph_version\" Value=\"{}\"/>",
+        escape(GSPH_VERSION)
+    );
+    let names: Vec<String> = materials
+        .iter()
+        .enumerate()
+        .map(|(k, m)| format!("{k}: {m}"))
+        .collect();
+    let _ = writeln!(
+        out,
+        "    <Information Name=\"material_names\" Value=\"{}\"/>",
+        escape(&names.join(", "))
+    );
     out.push_str(
         "    <Grid Name=\"particles\" GridType=\"Collection\" CollectionType=\"Temporal\">\n",
     );
@@ -102,18 +179,19 @@ pub fn xdmf_document(h5_file: &str, grids: &[XdmfGrid]) -> String {
         out.push_str("      <Geometry GeometryType=\"XYZ\">\n");
         data_item(&mut out, h5_file, &group, "position", &format!("{n} 3"));
         out.push_str("      </Geometry>\n");
-        out.push_str(
-            "      <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">\n",
-        );
-        data_item(&mut out, h5_file, &group, "velocity", &format!("{n} 3"));
-        out.push_str("      </Attribute>\n");
+        let (vec3, tensor) = (format!("{n} 3"), format!("{n} 3 3"));
+        attribute(&mut out, h5_file, &group, "velocity", "Vector", &vec3, dim);
+        attribute(&mut out, h5_file, &group, "stress", "Tensor", &tensor, dim);
         for name in SCALAR_DATASETS {
-            let _ = writeln!(
-                out,
-                "      <Attribute Name=\"{name}\" AttributeType=\"Scalar\" Center=\"Node\">"
+            attribute(
+                &mut out,
+                h5_file,
+                &group,
+                name,
+                "Scalar",
+                &n.to_string(),
+                dim,
             );
-            data_item(&mut out, h5_file, &group, name, &n.to_string());
-            out.push_str("      </Attribute>\n");
         }
         out.push_str("    </Grid>\n");
     }
@@ -172,8 +250,19 @@ mod tests {
                 n: 3,
             },
         ];
-        let x = xdmf_document("snapshots.h5", &grids);
+        let materials = ["steel".to_string(), "sic".to_string()];
+        let head = XdmfHeader {
+            h5_file: "snapshots.h5",
+            dim: 2,
+            status: STATUS_COMPLETE,
+            materials: &materials,
+        };
+        let x = xdmf_document(&head, &grids);
+        assert!(x.contains("<Information Name=\"material_names\" Value=\"0: steel, 1: sic\"/>"));
         check_balanced_tags(&x).unwrap();
+        assert!(x.contains("<Information Name=\"status\" Value=\"complete\"/>"));
+        assert!(!x.contains("PARTIAL") && !x.contains("partial"));
+        assert!(x.contains(&format!("Name=\"gsph_version\" Value=\"{GSPH_VERSION}\"")));
         assert!(x.contains("CollectionType=\"Temporal\""));
         assert_eq!(x.matches("GridType=\"Uniform\"").count(), 2);
         assert!(x.contains("<Time Value=\"0e0\"/>"));
@@ -187,6 +276,45 @@ mod tests {
             x.matches("AttributeType=\"Scalar\"").count(),
             2 * SCALAR_DATASETS.len()
         );
+        assert_eq!(x.matches("AttributeType=\"Vector\"").count(), 2);
+        assert_eq!(x.matches("AttributeType=\"Tensor\"").count(), 2);
+        assert!(x.contains("<Attribute Name=\"stress\" AttributeType=\"Tensor\" Center=\"Node\">\n        <Information Name=\"units\" Value=\"Pa\"/>\n        <DataItem Dimensions=\"3 3 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">snapshots.h5:/step_001234/stress<"));
+        assert!(x.contains("<Attribute Name=\"von_mises\" AttributeType=\"Scalar\" Center=\"Node\">\n        <Information Name=\"units\" Value=\"Pa\"/>"));
+        assert!(x.contains("<Attribute Name=\"m\" AttributeType=\"Scalar\" Center=\"Node\">\n        <Information Name=\"units\" Value=\"kg/m\"/>"));
+        // labels carry no units
+        assert!(x.contains(
+            "<Attribute Name=\"id\" AttributeType=\"Scalar\" Center=\"Node\">\n        <DataItem"
+        ));
+    }
+
+    #[test]
+    fn partial_documents_say_so_twice() {
+        let grids = [XdmfGrid {
+            step: 7,
+            time: 1e-6,
+            n: 2,
+        }];
+        let status = "partial: interrupted at step 7, t = 1e-6 s <SIGTERM> -- \"now\"";
+        let head = XdmfHeader {
+            h5_file: "snapshots.partial.h5",
+            dim: 3,
+            status,
+            materials: &[],
+        };
+        let x = xdmf_document(&head, &grids);
+        assert!(x.contains("<Information Name=\"material_names\" Value=\"\"/>"));
+        check_balanced_tags(&x).unwrap();
+        assert!(
+            x.contains("<!-- PARTIAL OUTPUT, not a finished run: partial: interrupted at step 7")
+        );
+        assert!(x.contains(
+            "<Information Name=\"status\" Value=\"partial: interrupted at step 7, t = 1e-6 s \
+             &lt;SIGTERM&gt; -- &quot;now&quot;\"/>"
+        ));
+        assert!(x.contains(">snapshots.partial.h5:/step_000007/stress<"));
+        assert!(x.contains("<Information Name=\"units\" Value=\"kg\"/>"));
+        let comment = x.lines().find(|l| l.starts_with("<!--")).unwrap();
+        assert!(!comment[4..comment.len() - 3].contains("--"), "{comment}");
     }
 
     #[test]

@@ -143,6 +143,13 @@ pub fn build_particles(scene: &Scene) -> Result<InitialParticles, SceneError> {
                 "{key}.spacing: spacing {dx:e} m (spacing / resolution_scale) makes about {total:.2e} particles, more than the limit {MAX_PARTICLES:.0e}"
             )));
         }
+        crate::memory::check_fits(
+            scene,
+            total,
+            crate::memory::available(),
+            &format!("{key}.spacing"),
+        )
+        .map_err(SceneError)?;
         let mut pts = lattice(
             scene.dim,
             &body.shape,

@@ -155,6 +155,29 @@ fn unexpected(v: &toml::Value) -> String {
     }
 }
 
+/// The error for an array given where a table is expected. Serde's derived structs and
+/// internally tagged enums accept a sequence and fill their fields by position
+/// (`options = [0.0, 0.0]` would set `av_alpha` and `av_beta`); a scene never means that.
+fn expected_table() -> PathError {
+    de::Error::custom("expected a table, found an array")
+}
+
+/// Whether `visitor` builds a struct or an internally tagged enum, which a TOML table
+/// describes: a derived struct visitor expects `struct NAME`, an internally tagged enum's
+/// `internally tagged enum NAME` (serde_derive's wording; `scene::library` tests pin it
+/// with `eos = [...]`). An internally tagged enum reaches the deserializer through
+/// `deserialize_any`, so the visitor's `expecting` is the only sign of what it wants.
+fn expects_table<'de, V: Visitor<'de>>(visitor: &V) -> bool {
+    struct Expecting<'a, V>(&'a V);
+    impl<'de, V: Visitor<'de>> fmt::Display for Expecting<'_, V> {
+        fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+            self.0.expecting(f)
+        }
+    }
+    let what = Expecting(visitor).to_string();
+    what.starts_with("struct ") || what.starts_with("internally tagged enum ")
+}
+
 struct ValueDe(toml::Value);
 
 impl<'de> de::Deserializer<'de> for ValueDe {
@@ -167,6 +190,7 @@ impl<'de> de::Deserializer<'de> for ValueDe {
             toml::Value::Float(x) => visitor.visit_f64(x),
             toml::Value::Boolean(b) => visitor.visit_bool(b),
             toml::Value::Datetime(d) => visitor.visit_string(d.to_string()),
+            toml::Value::Array(_) if expects_table(&visitor) => Err(expected_table()),
             toml::Value::Array(a) => {
                 let len = a.len();
                 let mut seq = Seq(a.into_iter().enumerate());
@@ -195,6 +219,18 @@ impl<'de> de::Deserializer<'de> for ValueDe {
         visitor.visit_newtype_struct(self)
     }
 
+    fn deserialize_struct<V: Visitor<'de>>(
+        self,
+        _name: &'static str,
+        _fields: &'static [&'static str],
+        visitor: V,
+    ) -> Result<V::Value, PathError> {
+        match self.0 {
+            toml::Value::Array(_) => Err(expected_table()),
+            other => ValueDe(other).deserialize_any(visitor),
+        }
+    }
+
     fn deserialize_enum<V: Visitor<'de>>(
         self,
         _name: &'static str,
@@ -209,7 +245,7 @@ impl<'de> de::Deserializer<'de> for ValueDe {
 
     serde::forward_to_deserialize_any! {
         bool i8 i16 i32 i64 i128 u8 u16 u32 u64 u128 f32 f64 char str string bytes byte_buf
-        unit unit_struct seq tuple tuple_struct map struct identifier ignored_any
+        unit unit_struct seq tuple tuple_struct map identifier ignored_any
     }
 }
 

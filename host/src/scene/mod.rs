@@ -8,6 +8,7 @@
 pub mod applies;
 mod build;
 mod de;
+pub mod library;
 mod periodic;
 pub mod pores;
 mod spec;
@@ -111,7 +112,14 @@ fn parse_inner(
     let blame = |msg: String, up: bool| {
         SceneError(format!("{}: {msg}", source_of(&msg, up, origin, overrides)))
     };
-    let mut scene = Scene::deserialize_table(value).map_err(|e| blame(e, true))?;
+    // `include` paths are relative to the scene file's directory (to the working directory
+    // for scene text that does not come from a file)
+    let file = Path::new(origin);
+    let base = file.parent().filter(|_| file.is_file());
+    let sources = library::resolve(&mut value, base).map_err(|e| blame(e, true))?;
+    let mut scene = Scene::deserialize_table(value)
+        .map_err(|e| blame(library::explain_unknown_key(e), true))?;
+    scene.material_sources = sources;
     let dropped = if mode == Mode::Strip {
         applies::strip_inapplicable(&mut scene)
     } else {

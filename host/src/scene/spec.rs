@@ -86,6 +86,11 @@ pub struct Scene {
     /// A moving observation window (seed 004 §3): see [`super::WindowSpec`].
     #[serde(default)]
     pub window: Option<super::WindowSpec>,
+    /// Where each of `materials` came from, in the same order (not a scene key): `scene`
+    /// (written in the scene), `library NAME` (the material library, `cases/materials/`),
+    /// `include FILE`, with the keys the scene overrode or removed (`super::library`).
+    #[serde(skip)]
+    pub material_sources: Vec<String>,
 }
 
 /// Quantities recorded during a run.
@@ -263,7 +268,9 @@ pub struct PeriodicSpec {
     pub hi: Vec<f64>,
 }
 
-/// A material.
+/// A material. In a scene file a `[[materials]]` table may also say `library = "NAME"`,
+/// `include = "FILE"` and `unset = [KEYS]`, which are resolved before this is read (see
+/// [`super::library`]).
 #[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct MaterialSpec {

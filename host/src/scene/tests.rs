@@ -131,8 +131,8 @@ fn schema_errors_name_the_key() {
             "scene.toml: colour: unknown key (known: name,",
         ),
         (
-            "rho0 = 6100.0",
-            "rho0 = 6100.0\ncolour = 1",
+            "name = \"metal\"",
+            "name = \"metal\"\ncolour = 1",
             "scene.toml: materials[0].colour: unknown key",
         ),
         (
@@ -141,18 +141,18 @@ fn schema_errors_name_the_key() {
             "scene.toml: bodies[1].colour: unknown key",
         ),
         (
-            "\"hugoniot\"",
-            "\"hugonio\"",
+            "name = \"metal\"",
+            "name = \"metal\"\neos = { type = \"hugonio\" }",
             "scene.toml: materials[0].eos.type: unknown type `hugonio` (known: linear,",
         ),
         (
-            "c0 = 5077.0",
-            "c0 = \"fast\"",
+            "name = \"metal\"",
+            "name = \"metal\"\neos = { c0 = \"fast\" }",
             "scene.toml: materials[0].eos.c0: invalid type: string \"fast\", expected f64",
         ),
         (
-            "rho0 = 6100.0",
-            "rho0 = \"dense\"",
+            "name = \"metal\"",
+            "name = \"metal\"\nrho0 = \"dense\"",
             "scene.toml: materials[0].rho0: invalid type: string \"dense\"",
         ),
         (
@@ -256,13 +256,19 @@ fn validation_errors_name_the_key() {
 
 #[test]
 fn errors_from_the_file_name_the_file() {
-    let e = parse_err(&FLYER.replace("rho0 = 6100.0", "rho0 = -6100.0"), &[]);
+    let e = parse_err(
+        &FLYER.replace("name = \"metal\"", "name = \"metal\"\nrho0 = -6100.0"),
+        &[],
+    );
     assert_eq!(
         e,
         "scene.toml: materials[0].rho0: must be positive and finite (got -6100)"
     );
     // An override elsewhere does not take the blame.
-    let e = parse_err(&FLYER.replace("rho0 = 6100.0", "rho0 = 0.0"), &["cfl=0.4"]);
+    let e = parse_err(
+        &FLYER.replace("name = \"metal\"", "name = \"metal\"\nrho0 = 0.0"),
+        &["cfl=0.4"],
+    );
     assert!(e.starts_with("scene.toml: materials[0].rho0: "), "{e}");
 }
 

@@ -558,9 +558,18 @@ fn material_known(s: &Scene, key: &str, name: &str) -> R {
         Ok(())
     } else {
         let known: Vec<&str> = s.materials.iter().map(|m| m.name.as_str()).collect();
+        let close = super::library::close_names(name);
+        let library = if close.is_empty() {
+            String::new()
+        } else {
+            format!("; in the material library: {}", close.join(", "))
+        };
         fail(
             key,
-            format!("unknown material `{name}` (known: {})", known.join(", ")),
+            format!(
+                "unknown material `{name}` (known: {}){library}",
+                known.join(", ")
+            ),
         )
     }
 }

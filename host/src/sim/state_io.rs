@@ -16,6 +16,10 @@
 use super::Sim;
 use crate::checkpoint::codec::{Codec, Dec, DecodeError, Enc};
 
+/// Most steps a checkpoint may claim (2^53: counted exactly in an f64 too); a forged
+/// `u64::MAX` would overflow on the next step.
+pub const MAX_STEP: u64 = 1 << 53;
+
 impl<const D: usize> Sim<D> {
     /// Appends the state to `e`.
     pub fn save_checkpoint(&self, e: &mut Enc) {
@@ -123,6 +127,37 @@ impl<const D: usize> Sim<D> {
         }
         if self.materials.len() <= self.mat.iter().copied().max().unwrap_or(0) as usize {
             return Err(DecodeError("a material index names no material".into()));
+        }
+        // a checksum proves the bytes are as written, not that they were written by gsph:
+        // the decoded values must be a state a run can reach
+        if !(self.t.is_finite() && self.t >= 0.0) {
+            return Err(DecodeError(format!("time t = {:e} s", self.t)));
+        }
+        if (self.step == 0) != (self.t == 0.0) || self.step > MAX_STEP {
+            return Err(DecodeError(format!(
+                "step {} at t = {:e} s",
+                self.step, self.t
+            )));
+        }
+        for i in 0..n {
+            let bad = if !(self.x[i].iter().all(|v| v.is_finite())) {
+                Some("position is not finite")
+            } else if !(self.v[i].iter().all(|v| v.is_finite())) {
+                Some("velocity is not finite")
+            } else if !(self.m[i].is_finite() && self.m[i] > 0.0) {
+                Some("mass is not positive")
+            } else if !(self.rho[i].is_finite() && self.rho[i] > 0.0) {
+                Some("density is not positive")
+            } else if !self.e[i].is_finite() {
+                Some("energy is not finite")
+            } else if !(self.h[i].is_finite() && self.h[i] > 0.0) {
+                Some("smoothing length is not positive")
+            } else {
+                None
+            };
+            if let Some(field) = bad {
+                return Err(DecodeError(format!("particle {}: {field}", self.ids[i])));
+            }
         }
         Ok(())
     }

@@ -193,7 +193,7 @@ impl<const D: usize> Window<D> {
         }
         self.feed_x += self.u_in * dt;
         self.steps += 1;
-        if self.steps % self.every == 0 {
+        if self.steps.is_multiple_of(self.every) {
             self.exchange(sim);
         }
         Ok(())
