@@ -462,6 +462,11 @@ fn execute(cmd: Command) -> Result<(), String> {
             out!("scene     {}", scene_name(&sc, &path));
             out!("dim       {}", sc.dim);
             out!("scheme    {}", sc.scheme);
+            // where each material came from: the scene, the library or an included file
+            for (k, m) in sc.materials.iter().enumerate() {
+                let source = sc.material_sources.get(k).map_or("scene", String::as_str);
+                out!("material  {}: {source}", m.name);
+            }
             out!("particles {}", parts.len());
             for (b, body) in sc.bodies.iter().enumerate() {
                 let n = parts.body.iter().filter(|&&k| k as usize == b).count();

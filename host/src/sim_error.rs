@@ -64,6 +64,8 @@ pub enum SimError {
     /// Another MPI rank failed (its message), or a collective step of the decomposition
     /// failed here.
     Distributed(String),
+    /// A wall cannot be set up (a particle starts behind it).
+    Walls(String),
     /// The scheme family cannot run an effect the scene needs.
     Unsupported {
         /// Scheme.
@@ -77,6 +79,7 @@ impl std::fmt::Display for SimError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             SimError::Neighbors(e) => write!(f, "{e}"),
+            SimError::Walls(e) => write!(f, "{e}"),
             SimError::Overlap { i, j, distance, at } => write!(
                 f,
                 "particles {i} and {j} overlap: {distance:.3e} m apart at ({:.4e}, {:.4e}, {:.4e}) (less than half the lattice spacing; do two bodies overlap?)",

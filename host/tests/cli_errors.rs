@@ -1,7 +1,8 @@
 //! Bad input through the real `gsph` binary: each case must exit non-zero with exactly one
-//! line on stderr, `error: ...`, naming the key, particle or step; never a panic; and a failed
-//! `run` must leave no result file and no `*.tmp` in its output directory. Positive controls
-//! check the DESIGN §6 outputs of a good run.
+//! line on stderr, `error: ...`, naming the key, particle or step; never a panic; a `run`
+//! refused before it starts leaves an earlier run's results alone, one that fails after it
+//! started leaves no result file; neither leaves a `*.tmp`. Positive controls check the
+//! DESIGN §6 outputs of a good run.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -175,6 +176,9 @@ fn cases() -> Vec<Case> {
         case("periodic length below twice the kernel support", strip(), "check", &["--set", "h_factor=2.6"], &["periodic.hi: the periodic length along axis 1 is 1e-3 m, below twice the kernel support, 2 x 2 h = 1.04e-3 m (h = h_factor 2.6 x spacing 1e-4 m of bodies[0])"]),
         case("array where a table is expected", f(), "check", &["--set", "options=[0.0, 0.0]"], &["--set options=[0.0, 0.0]: options: expected a table, found an array"]),
         case("unknown library material", f(), "check", &["--set", "materials.0.library=steel_434"], &["materials[0].library: `steel_434` is not in the material library (close: steel_4340"]),
+        case("snapshots above the limit", f(), "run", &["--set", "output.snapshots=1000000000"], &["output.snapshots: at most 100000 (got 1000000000)"]),
+        case("particle file missing", f(), "run", &["--set", "bodies.0.shape={ type = \"particles\", file = \"gone.csv\" }"], &["bodies[0].shape.file: gone.csv: cannot read"]),
+        case("STL shape in 1D", f(), "check", &["--set", "bodies.0.shape={ type = \"stl\", file = \"rod.stl\" }"], &["bodies[0].shape: an `stl` shape is a closed surface in 3D; the scene is 1D"]),
     ]
 }
 
@@ -262,6 +266,10 @@ fn check_of_the_flyer_plate_prints_counts_and_effects() {
     let out = String::from_utf8_lossy(&o.stdout);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(out.contains("particles 100"), "{out}");
+    assert!(
+        out.contains("\nmaterial  metal: library connolly2013_flyer_metal\n"),
+        "{out}"
+    );
     assert!(out.contains("effects   strength+plasticity+muscl"), "{out}");
     assert!(o.stderr.is_empty());
 }

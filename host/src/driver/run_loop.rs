@@ -146,6 +146,11 @@ fn run_dim_logged<const D: usize>(
     let reference = Reference::from_scene(scene, &parts.x, &parts.spacing)?;
     let mut sim = Sim::<D>::new(scene, parts)?;
     let ranks = crate::dist_size();
+    if ranks > 1 && !scene.walls.is_empty() {
+        return Err(RunError::Refused(format!(
+            "walls: rigid walls and symmetry planes run on one rank; this run has {ranks} MPI ranks"
+        )));
+    }
     if ranks > 1 && scene.window.is_some() {
         return Err(RunError::Refused(format!(
             "the moving window (`window`) runs on one rank; this run has {ranks} MPI ranks"

@@ -1,5 +1,6 @@
 //! Turns bodies into particles: lattices clipped to shapes, initial velocity and state.
 
+use super::import;
 use super::spec::*;
 use super::SceneError;
 use crate::materials::material_of;
@@ -32,6 +33,13 @@ pub struct InitialParticles {
     /// Porosity of each body as built, m = V_lattice / V_particles (1 without pores): the
     /// volume of the whole lattice over that of the particles kept outside the pores.
     pub porosity: Vec<f64>,
+    /// Equivalent plastic strain of each particle, or empty: 0 for every particle. Scenes
+    /// fill it (from a particle file, else 0).
+    pub eps_p: Vec<f64>,
+    /// Damage of each particle, or empty: 0 for every particle.
+    pub damage: Vec<f64>,
+    /// Temperature of each particle, K, or empty: each material's initial temperature.
+    pub temperature: Vec<f64>,
 }
 
 impl InitialParticles {
@@ -64,6 +72,16 @@ impl InitialParticles {
         self.mat.push(src.mat[i]);
         self.body.push(src.body[i]);
         self.spacing.push(src.spacing[i]);
+        // one per particle in `src`, or none
+        for (to, from) in [
+            (&mut self.eps_p, &src.eps_p),
+            (&mut self.damage, &src.damage),
+            (&mut self.temperature, &src.temperature),
+        ] {
+            if let Some(&v) = from.get(i) {
+                to.push(v);
+            }
+        }
     }
 }
 
@@ -84,7 +102,11 @@ fn at_most(v: f64, limit: f64) -> bool {
 /// Builds the particles once and checks that the run fits in memory (see [`MAX_PARTICLES`],
 /// [`MAX_CELLS`], [`MAX_NEIGHBOR_ENTRIES`]). Errors name the key.
 pub fn check_build(scene: &Scene) -> Result<(), SceneError> {
-    check_particles(scene, &build_particles(scene)?)
+    let parts = build_particles(scene)?;
+    // bodies read from a file without a `spacing`: the periodic length against the
+    // spacing their particles have
+    super::periodic::check_length_built(scene, &parts)?;
+    check_particles(scene, &parts)
 }
 
 /// Refuses particles spread over more neighbour-search cells, or needing more
@@ -137,26 +159,59 @@ pub fn build_particles(scene: &Scene) -> Result<InitialParticles, SceneError> {
         let mat = material_of(&scene.materials[mi]);
         let dx = body.spacing / scene.resolution_scale;
         let polar = body.lattice.as_deref() == Some("polar");
-        total += sites(scene.dim, &body.shape, dx, polar);
+        let shape_key = format!("{key}.shape");
+        // a file is opened (a CSV file's rows counted, an STL surface read) before the
+        // particles are counted against the limits
+        let (source, count_key) = match &body.shape {
+            ShapeSpec::Particles { file, step, .. } => {
+                let src = import::open_particles(&shape_key, file, *step, scene.dim)
+                    .map_err(SceneError)?;
+                total += src.rows() as f64;
+                (Source::File(src), format!("{key}.shape.file"))
+            }
+            ShapeSpec::Stl {
+                file,
+                scale,
+                offset,
+            } => {
+                let offset = offset.as_deref().map_or([0.0; 3], |o| [o[0], o[1], o[2]]);
+                let mesh =
+                    import::read_stl(&shape_key, file, *scale, offset).map_err(SceneError)?;
+                total += mesh.sites(dx);
+                (Source::Mesh(mesh), format!("{key}.spacing"))
+            }
+            _ => {
+                total += sites(scene.dim, &body.shape, dx, polar);
+                (Source::Lattice, format!("{key}.spacing"))
+            }
+        };
         if !at_most(total, MAX_PARTICLES as f64) {
-            return Err(SceneError(format!(
-                "{key}.spacing: spacing {dx:e} m (spacing / resolution_scale) makes about {total:.2e} particles, more than the limit {MAX_PARTICLES:.0e}"
-            )));
+            return Err(SceneError(match &source {
+                Source::File(src) => format!(
+                    "{count_key}: the file holds {} particles, about {total:.2e} with the bodies before it, more than the limit {MAX_PARTICLES:.0e}",
+                    src.rows()
+                ),
+                _ => format!(
+                    "{key}.spacing: spacing {dx:e} m (spacing / resolution_scale) makes about {total:.2e} particles, more than the limit {MAX_PARTICLES:.0e}"
+                ),
+            }));
         }
-        crate::memory::check_fits(
-            scene,
-            total,
-            crate::memory::available(),
-            &format!("{key}.spacing"),
-        )
-        .map_err(SceneError)?;
-        let mut pts = lattice(
-            scene.dim,
-            &body.shape,
-            dx,
-            polar,
-            body.lattice_origin.as_deref(),
-        );
+        crate::memory::check_fits(scene, total, crate::memory::available(), &count_key)
+            .map_err(SceneError)?;
+        let mut pts = match source {
+            Source::File(src) => {
+                file_body(&mut out, scene, b, mi, &mat, src)?;
+                continue;
+            }
+            Source::Mesh(mesh) => mesh.fill(dx),
+            Source::Lattice => lattice(
+                scene.dim,
+                &body.shape,
+                dx,
+                polar,
+                body.lattice_origin.as_deref(),
+            ),
+        };
         let full: f64 = pts.iter().map(|p| p.1).sum();
         if let Some(pores) = &body.pores {
             pts.retain(|(x, _)| !super::pores::inside(pores, x));
@@ -181,9 +236,79 @@ pub fn build_particles(scene: &Scene) -> Result<InitialParticles, SceneError> {
             out.mat.push(mi as u16);
             out.body.push(b as u16);
             out.spacing.push(dx);
+            out.eps_p.push(0.0);
+            out.damage.push(0.0);
+            out.temperature.push(mat.initial_temperature());
         }
     }
     Ok(out)
+}
+
+/// Where the particles of a body come from.
+enum Source {
+    /// A lattice clipped to a primitive shape.
+    Lattice,
+    /// A particle file (shape `particles`).
+    File(import::ParticleSource),
+    /// A closed STL surface filled with a lattice (shape `stl`).
+    Mesh(import::Mesh),
+}
+
+/// Appends the particles of body `b`, read from a file (`super::import`).
+fn file_body(
+    out: &mut InitialParticles,
+    scene: &Scene,
+    b: usize,
+    mi: usize,
+    mat: &Material,
+    src: import::ParticleSource,
+) -> Result<(), SceneError> {
+    let body = &scene.bodies[b];
+    let key = format!("bodies[{b}]");
+    let ShapeSpec::Particles { file_material, .. } = &body.shape else {
+        unreachable!("a particles body")
+    };
+    let f = import::read_particles(&format!("{key}.shape"), src, scene.dim, *file_material)
+        .map_err(SceneError)?;
+    let initial = match &body.initial {
+        Some(i) => Some(
+            initial_state(mat, Some(i))
+                .map_err(|msg| SceneError(format!("{key}.initial: {msg}")))?,
+        ),
+        None => None,
+    };
+    let name = &scene.materials[mi].name;
+    let mut ps =
+        import::file_body(&f, &key, body, scene.dim, mat, name, initial).map_err(SceneError)?;
+    let full: f64 = ps.iter().map(|p| p.m / p.rho).sum();
+    if let Some(pores) = &body.pores {
+        ps.retain(|p| !super::pores::inside(pores, &p.x));
+    }
+    let kept: f64 = ps.iter().map(|p| p.m / p.rho).sum();
+    out.porosity.push(full / kept.max(f64::MIN_POSITIVE));
+    if ps.is_empty() {
+        return Err(SceneError(format!(
+            "{key}: the body holds no particle (every particle of its file lies in a pore)"
+        )));
+    }
+    for p in ps {
+        out.v.push(match &body.velocity {
+            Some(_) => velocity(body.velocity.as_ref(), &p.x),
+            None => p.v,
+        });
+        out.x.push(p.x);
+        out.m.push(p.m);
+        out.rho.push(p.rho);
+        out.e.push(p.e);
+        out.s.push(p.s);
+        out.mat.push(mi as u16);
+        out.body.push(b as u16);
+        out.spacing.push(p.spacing);
+        out.eps_p.push(p.eps_p);
+        out.damage.push(p.damage);
+        out.temperature.push(p.temperature);
+    }
+    Ok(())
 }
 
 /// splitmix64 (Steele, Lea & Flood 2014): a well-mixed 64-bit hash of `z`.
@@ -210,9 +335,12 @@ fn jittered(mut x: [f64; 3], dim: usize, amount: f64, index: u64) -> [f64; 3] {
 }
 
 /// Number of lattice sites [`lattice`] visits for a shape (an upper bound on its particles;
-/// infinite or NaN where `dx` is absurdly small).
+/// infinite or NaN where `dx` is absurdly small). Bodies from files are counted from them.
 fn sites(dim: usize, shape: &ShapeSpec, dx: f64, polar: bool) -> f64 {
     match shape {
+        ShapeSpec::Particles { .. } | ShapeSpec::Stl { .. } => {
+            unreachable!("counted from the file")
+        }
         ShapeSpec::Segment { min, max } => (max - min) / dx,
         ShapeSpec::Box { min, max } => (0..dim).map(|a| (max[a] - min[a]) / dx + 1.0).product(),
         ShapeSpec::Disc { radius: r, .. } | ShapeSpec::Annulus { r_outer: r, .. } => {
@@ -236,6 +364,9 @@ fn lattice(
 ) -> Vec<([f64; 3], f64)> {
     let mut pts = Vec::new();
     match shape {
+        ShapeSpec::Particles { .. } | ShapeSpec::Stl { .. } => {
+            unreachable!("bodies from files are built by `super::import`")
+        }
         ShapeSpec::Segment { min, max } => {
             let n = ((max - min) / dx).round() as usize;
             let d = (max - min) / n as f64;

@@ -8,15 +8,19 @@
 pub mod applies;
 mod build;
 mod de;
+pub mod import;
 pub mod library;
 mod periodic;
 pub mod pores;
 mod spec;
+pub mod stl;
 mod validate;
+pub mod walls;
 mod window;
 
 pub use build::{build_particles, check_particles, InitialParticles};
 pub use spec::*;
+pub use walls::WallSpec;
 pub use window::{WindowGeometry, WindowSpec};
 
 use std::path::Path;
@@ -120,6 +124,8 @@ fn parse_inner(
     let mut scene = Scene::deserialize_table(value)
         .map_err(|e| blame(library::explain_unknown_key(e), true))?;
     scene.material_sources = sources;
+    // particle and STL files, like included material files, are relative to the scene file
+    import::resolve_files(&mut scene, base);
     let dropped = if mode == Mode::Strip {
         applies::strip_inapplicable(&mut scene)
     } else {

@@ -6,18 +6,50 @@
 //! `spacing = bodies[k].spacing / resolution_scale` as built. A length short of the minimum
 //! by round-off only (1e-9 relative) passes, so `L = 2R` written in the scene is accepted.
 
+use super::build::InitialParticles;
 use super::spec::Scene;
 use super::SceneError;
 use crate::sim::kernel_of;
 
-/// Refuses a periodic length below `2 × support × h` (checked after [`super::validate`]).
+/// Refuses a periodic length below `2 × support × h` (checked after [`super::validate`];
+/// bodies read from a file without a `spacing` are checked once built, by
+/// [`check_length_built`]).
 pub(super) fn check_length(s: &Scene) -> Result<(), SceneError> {
+    check_with(s, |b| {
+        let dx = s.bodies[b].spacing / s.resolution_scale;
+        dx.is_finite().then_some(dx)
+    })
+}
+
+/// [`check_length`] with the largest spacing of the particles of each body read from a file
+/// without a `spacing` (the others were checked before they were built).
+pub(super) fn check_length_built(s: &Scene, parts: &InitialParticles) -> Result<(), SceneError> {
+    if s.bodies.iter().all(|b| b.spacing.is_finite()) {
+        return Ok(());
+    }
+    check_with(s, |b| {
+        let dx = s.bodies[b].spacing / s.resolution_scale;
+        if dx.is_finite() {
+            return Some(dx);
+        }
+        parts
+            .body
+            .iter()
+            .zip(&parts.spacing)
+            .filter(|(&k, _)| k as usize == b)
+            .map(|(_, &d)| d)
+            .reduce(f64::max)
+    })
+}
+
+/// The check with `dx_of(body)`, the spacing of a body (`None`: not known yet).
+fn check_with(s: &Scene, dx_of: impl Fn(usize) -> Option<f64>) -> Result<(), SceneError> {
     let Some(p) = &s.periodic else {
         return Ok(());
     };
     // the first body with the largest spacing
-    let coarsest = s.bodies.iter().enumerate().fold(None, |best, (b, body)| {
-        let dx = body.spacing / s.resolution_scale;
+    let coarsest = (0..s.bodies.len()).fold(None, |best, b| {
+        let Some(dx) = dx_of(b) else { return best };
         match best {
             Some((_, d)) if d >= dx => best,
             _ => Some((b, dx)),

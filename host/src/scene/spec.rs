@@ -13,6 +13,10 @@ fn default_h_factor() -> f64 {
 fn default_skin() -> f64 {
     0.1
 }
+/// `spacing` left out of a body (see [`BodySpec::spacing`]).
+fn no_spacing() -> f64 {
+    f64::NAN
+}
 fn default_snapshots() -> usize {
     10
 }
@@ -73,6 +77,9 @@ pub struct Scene {
     /// Periodic boundaries.
     #[serde(default)]
     pub periodic: Option<PeriodicSpec>,
+    /// Rigid walls and symmetry planes ([`super::walls`]).
+    #[serde(default)]
+    pub walls: Vec<super::walls::WallSpec>,
     /// Materials.
     pub materials: Vec<MaterialSpec>,
     /// Bodies.
@@ -427,7 +434,10 @@ pub struct BodySpec {
     pub material: String,
     /// Shape.
     pub shape: ShapeSpec,
-    /// Lattice spacing, m (divided by `resolution_scale`).
+    /// Lattice spacing, m (divided by `resolution_scale`). Required, except for a
+    /// `particles` body whose file has an `m` column (each particle's spacing is then
+    /// `(m/rho)^(1/dim)`); left out, it reads as NaN.
+    #[serde(default = "no_spacing")]
     pub spacing: f64,
     /// Lattice: square (cartesian) or polar (concentric rings; disc and annulus only).
     #[serde(default)]
@@ -510,6 +520,35 @@ pub enum ShapeSpec {
         r_inner: f64,
         /// Outer radius, m.
         r_outer: f64,
+    },
+    /// Particles read from a file (relative to the scene file): a CSV file with a header
+    /// naming its columns (`x` and as many of `y`, `z` as the dimension needs; optional
+    /// state columns; `final.csv` of a run is one), or a `snapshots.h5` of a run. The body's
+    /// `velocity` and `initial`, where given, replace the file's columns. See
+    /// `super::import` and cases/README.md.
+    Particles {
+        /// The file.
+        file: String,
+        /// The step of the snapshot to read from an HDF5 file (default: its last).
+        #[serde(default)]
+        step: Option<u64>,
+        /// Only the rows whose `material` column is this index (the material's position
+        /// in the scene that wrote the file). Required when the file holds several.
+        #[serde(default)]
+        file_material: Option<u32>,
+    },
+    /// A closed triangulated surface read from an STL file (ASCII or binary; relative to
+    /// the scene file), 3D only: the box lattice over its bounding box at `spacing`, kept
+    /// inside the surface. Vertices are placed at `scale * vertex + offset`.
+    Stl {
+        /// The file.
+        file: String,
+        /// Factor on the file's coordinates (e.g. 1e-3 for a file in millimetres).
+        #[serde(default = "one")]
+        scale: f64,
+        /// Translation after scaling, m (default none).
+        #[serde(default)]
+        offset: Option<Vec<f64>>,
     },
 }
 

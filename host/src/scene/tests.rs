@@ -176,7 +176,7 @@ fn schema_errors_name_the_key() {
 
 #[test]
 fn validation_errors_name_the_key() {
-    let cases: [(&str, &str); 24] = [
+    let cases: [(&str, &str); 26] = [
         (
             "materials.0.rho0=-1",
             "materials[0].rho0: must be positive and finite (got -1)",
@@ -214,6 +214,14 @@ fn validation_errors_name_the_key() {
         ),
         ("output.snapshots=0", "output.snapshots: must be at least 1"),
         ("output.series=0", "output.series: must be at least 1"),
+        (
+            "output.snapshots=1000000000",
+            "output.snapshots: at most 100000 (got 1000000000)",
+        ),
+        (
+            "output.series=100000000",
+            "output.series: at most 10000000 (got 100000000;",
+        ),
         (
             "options.limiter=best",
             "options.limiter: unknown limiter `best`",

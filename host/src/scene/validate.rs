@@ -69,6 +69,13 @@ fn dims(key: &str, v: &[f64], dim: usize) -> R {
 /// Most materials, and most bodies, in a scene (particles store both indices as `u16`).
 pub const MAX_COUNT: usize = u16::MAX as usize + 1;
 
+/// Most snapshot intervals (`output.snapshots`): each snapshot time cuts the step that
+/// reaches it, so a huge count makes every step a snapshot (and the run never ends).
+pub const MAX_SNAPSHOTS: usize = 100_000;
+/// Most series samples (`output.series`): the series takes at most one row per step, but
+/// the driver walks the sample times one by one, so a huge count stalls every step.
+pub const MAX_SERIES: usize = 10_000_000;
+
 /// Known kernel names.
 pub const KERNELS: [&str; 3] = ["cubic_spline", "wendland_c2", "gaussian"];
 
@@ -199,8 +206,23 @@ fn validate_with(s: &Scene, bodies_required: bool) -> R {
             "must be at least 1 (initial and final state)",
         );
     }
+    if s.output.snapshots > MAX_SNAPSHOTS {
+        return fail(
+            "output.snapshots",
+            format!(
+                "at most {MAX_SNAPSHOTS} (got {}): every snapshot time ends a step, so more would make each step a snapshot and the run endless",
+                s.output.snapshots
+            ),
+        );
+    }
     if s.output.series == Some(0) {
         return fail("output.series", "must be at least 1");
+    }
+    if let Some(n) = s.output.series.filter(|&n| n > MAX_SERIES) {
+        return fail(
+            "output.series",
+            format!("at most {MAX_SERIES} (got {n}; the series takes at most one row per step)"),
+        );
     }
     if s.output.checkpoint_steps == Some(0) {
         return fail("output.checkpoint_steps", "must be at least 1");
@@ -285,6 +307,7 @@ fn validate_with(s: &Scene, bodies_required: bool) -> R {
             }
         }
     }
+    super::walls::validate(s)?;
     if s.materials.is_empty() {
         return fail("materials", "at least one material is required");
     }
@@ -347,8 +370,34 @@ fn validate_with(s: &Scene, bodies_required: bool) -> R {
     for (k, b) in s.bodies.iter().enumerate() {
         let key = format!("bodies[{k}]");
         material_known(s, &format!("{key}.material"), &b.material)?;
-        positive(&format!("{key}.spacing"), b.spacing)?;
+        let from_file = matches!(b.shape, ShapeSpec::Particles { .. });
+        if b.spacing.is_nan() && !from_file {
+            return fail(
+                &format!("{key}.spacing"),
+                "missing (this key is required; only a `particles` body whose file has an `m` column may leave it out)",
+            );
+        }
+        if !b.spacing.is_nan() {
+            positive(&format!("{key}.spacing"), b.spacing)?;
+        }
         validate_shape(&format!("{key}.shape"), &b.shape, s.dim)?;
+        if from_file {
+            if s.resolution_scale != 1.0 {
+                return fail(
+                    "resolution_scale",
+                    format!(
+                        "{key} is read from a file (shape `particles`): there is no lattice to refine; keep resolution_scale = 1 (got {})",
+                        num(s.resolution_scale)
+                    ),
+                );
+            }
+            if b.jitter != 0.0 {
+                return fail(
+                    &format!("{key}.jitter"),
+                    "not for a `particles` body (its positions come from the file)",
+                );
+            }
+        }
         if !(b.jitter >= 0.0 && b.jitter < 0.5) {
             return fail(
                 &format!("{key}.jitter"),
@@ -652,6 +701,30 @@ fn validate_shape(key: &str, sh: &ShapeSpec, dim: usize) -> R {
             positive(&format!("{key}.r_outer"), *r_outer)?;
             if r_outer <= r_inner {
                 return fail(&format!("{key}.r_outer"), "must exceed r_inner");
+            }
+        }
+        ShapeSpec::Particles { file, .. } => {
+            if file.trim().is_empty() {
+                return fail(&format!("{key}.file"), "must name a file");
+            }
+        }
+        ShapeSpec::Stl {
+            file,
+            scale,
+            offset,
+        } => {
+            if dim != 3 {
+                return fail(
+                    key,
+                    format!("an `stl` shape is a closed surface in 3D; the scene is {dim}D"),
+                );
+            }
+            if file.trim().is_empty() {
+                return fail(&format!("{key}.file"), "must name a file");
+            }
+            positive(&format!("{key}.scale"), *scale)?;
+            if let Some(o) = offset {
+                dims(&format!("{key}.offset"), o, 3)?;
             }
         }
     }

@@ -26,6 +26,9 @@ impl<const D: usize> Sim<D> {
     /// Removes the particles whose `keep` entry is false. Ids of the others are unchanged;
     /// driven particles stay driven. Panics if `keep.len() != self.len()`.
     pub fn retain(&mut self, keep: &[bool]) {
+        // wall mirrors are rebuilt with the lists (a mask may cover them or not)
+        self.drop_mirrors();
+        let keep = &keep[..keep.len().min(self.len())];
         assert_eq!(keep.len(), self.len(), "one mask entry per particle");
         let mut new_index = vec![usize::MAX; keep.len()];
         let mut n = 0;
@@ -67,9 +70,11 @@ impl<const D: usize> Sim<D> {
     }
 
     /// Appends the particles of `parts` (state as built: density, energy, deviator,
-    /// velocity; zero plastic strain and damage; room temperature), with new ids after the
+    /// velocity; plastic strain, damage and temperature where `parts` has them, else zero
+    /// plastic strain and damage and the initial temperature), with new ids after the
     /// largest one in use. Returns the first new id.
     pub fn append(&mut self, parts: &InitialParticles) -> u32 {
+        self.drop_mirrors();
         let first = self.ids.iter().max().map_or(0, |&m| m + 1);
         let has = |e: EffectSet| self.effects.contains(e);
         let (strength, plasticity, damage, heat) = (
@@ -100,14 +105,19 @@ impl<const D: usize> Sim<D> {
             if strength {
                 self.s.push(parts.s[i]);
             }
+            // from the scene's particles where given (a body read from a file), else the
+            // initial state
             if plasticity {
-                self.eps_p.push(0.0);
+                self.eps_p.push(parts.eps_p.get(i).copied().unwrap_or(0.0));
             }
             if damage {
-                self.damage.push(0.0);
+                self.damage
+                    .push(parts.damage.get(i).copied().unwrap_or(0.0));
             }
             if heat {
-                self.temp.push(mat.initial_temperature());
+                let t = parts.temperature.get(i).copied();
+                self.temp
+                    .push(t.unwrap_or_else(|| mat.initial_temperature()));
             }
             if layout.av {
                 self.av.push(AvRates::default());

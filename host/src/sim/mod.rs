@@ -22,6 +22,7 @@ pub use crate::sim_error::SimError;
 mod dist;
 mod edit;
 mod state_io;
+pub mod walls;
 pub use edit::HeldState;
 
 /// The step function for dimension `D` (looked up once per run; the specialisations are
@@ -224,8 +225,10 @@ pub struct Sim<const D: usize> {
     /// Neighbour-list rebuilds so far.
     pub rebuilds: u64,
     /// The particles this process owns: the first `owned` of the arrays. The rest are
-    /// ghost copies of other ranks' particles (feature `mpi`; none in one process).
+    /// ghost copies of other ranks' particles (feature `mpi`) or the mirrors of walls.
     pub owned: usize,
+    /// Rigid walls and symmetry planes and their mirror ghosts ([`walls`]).
+    pub mirrors: walls::Mirrors<D>,
     /// The domain decomposition ([`Sim::distribute`]); `None` in one process.
     #[cfg(feature = "mpi")]
     pub dist: Option<Box<crate::dist::Dist<D>>>,
@@ -388,12 +391,14 @@ impl<const D: usize> Sim<D> {
             pair_interactions: 0,
             rebuilds: 0,
             owned: 0,
+            mirrors: walls::Mirrors::new(&scene.walls),
             #[cfg(feature = "mpi")]
             dist: None,
         };
         // the per-particle state, effect storage and workspace: one code path with the
         // particles a moving window feeds in later
         sim.append(parts);
+        sim.check_walls().map_err(SimError::Walls)?;
         sim.rebuild()?;
         sim.check_overlap(&parts.spacing)?;
         Ok(sim)
@@ -450,6 +455,7 @@ impl<const D: usize> Sim<D> {
             self.rebuilds += 1;
             return Ok(());
         }
+        self.drop_mirrors();
         if self.reorder {
             let hmax = self.h.iter().cloned().fold(0.0, f64::max);
             let order = morton_order(&self.x, &self.ids, hmax, &self.periodic);
@@ -457,6 +463,7 @@ impl<const D: usize> Sim<D> {
         }
         self.build_x.clone_from(&self.x);
         self.build_h.clone_from(&self.h);
+        self.add_mirrors();
         self.build_lists()?;
         self.rebuilds += 1;
         Ok(())
@@ -592,9 +599,13 @@ impl<const D: usize> Sim<D> {
     /// Refuses particles nearer than half their spacing (`spacing` indexed by id).
     fn check_overlap(&self, spacing: &[f64]) -> Result<(), SimError> {
         let nb = self.lists.view();
-        for i in 0..self.len() {
+        // owned pairs (a particle's mirror is its own image through a wall)
+        for i in 0..self.owned {
             for &j in nb.of(i) {
                 let j = j as usize;
+                if j >= self.owned {
+                    continue;
+                }
                 let d = self.periodic.min_image(self.x[i] - self.x[j]).norm();
                 let (si, sj) = (spacing[self.ids[i] as usize], spacing[self.ids[j] as usize]);
                 if d < 0.5 * si.min(sj) {
@@ -749,7 +760,12 @@ impl<const D: usize> Sim<D> {
             None => &mut gsph_core::halo::NoHalo,
         };
         #[cfg(not(feature = "mpi"))]
-        let halo = &mut gsph_core::halo::NoHalo;
+        let halo: &mut dyn gsph_core::halo::Halo<D> = &mut gsph_core::halo::NoHalo;
+        let halo: &mut dyn gsph_core::halo::Halo<D> = if self.mirrors.is_empty() {
+            halo
+        } else {
+            &mut self.mirrors
+        };
         // ghosts (after the owned particles) hold values no one reads until the next
         // exchange refreshes them: only owned particles are checked
         let owned = self.owned;
@@ -770,6 +786,7 @@ impl<const D: usize> Sim<D> {
             self.x[i] = self.periodic.wrap(x0 + v0 * dt);
         }
         self.primed = ws.primed;
+        self.enforce_walls(dt);
         self.t += dt;
         self.step = step;
         self.pair_interactions += pairs;

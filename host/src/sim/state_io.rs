@@ -23,6 +23,12 @@ pub const MAX_STEP: u64 = 1 << 53;
 impl<const D: usize> Sim<D> {
     /// Appends the state to `e`.
     pub fn save_checkpoint(&self, e: &mut Enc) {
+        // owned particles only: a restart recreates the wall mirrors from them
+        if !self.mirrors.map.is_empty() {
+            let mut owned = self.clone();
+            owned.drop_mirrors();
+            return owned.save_checkpoint(e);
+        }
         e.put(&self.t);
         e.put(&self.step);
         e.put(&self.pair_interactions);
@@ -51,6 +57,8 @@ impl<const D: usize> Sim<D> {
         e.put(&self.av);
         e.put(&self.build_x);
         e.put(&self.build_h);
+        e.put(&self.mirrors.crossings);
+        e.put(&self.mirrors.friction_work);
     }
 
     /// Replaces the state of this simulation (built from the same scene) with the state
@@ -58,6 +66,7 @@ impl<const D: usize> Sim<D> {
     /// arrays may also be empty or full where the scheme fills them on its first step) and
     /// ids must be unique; on error `self` is left unusable.
     pub fn restore_checkpoint(&mut self, d: &mut Dec<'_>) -> Result<(), DecodeError> {
+        self.drop_mirrors();
         let n = self.len();
         self.t = d.get()?;
         self.step = d.get()?;
@@ -116,12 +125,15 @@ impl<const D: usize> Sim<D> {
         field(d, "av", &mut self.av, n, false)?;
         field(d, "build_x", &mut self.build_x, n, true)?;
         field(d, "build_h", &mut self.build_h, n, true)?;
+        self.mirrors.crossings = d.get()?;
+        self.mirrors.friction_work = d.get()?;
         let mut ids = self.ids.clone();
         ids.sort_unstable();
         if ids.windows(2).any(|w| w[0] == w[1]) {
             return Err(DecodeError("two particles have the same id".into()));
         }
         if !self.build_x.is_empty() {
+            self.add_mirrors();
             self.build_lists()
                 .map_err(|e| DecodeError(format!("neighbour lists: {e}")))?;
         }
