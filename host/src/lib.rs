@@ -22,6 +22,7 @@ pub mod materials;
 pub mod memory;
 pub mod monitor;
 pub mod monitor_elastic;
+pub mod monitor_rod;
 pub mod neighbors;
 pub mod outdir;
 pub mod output;

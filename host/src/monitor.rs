@@ -107,6 +107,7 @@ pub struct Monitor {
     damaging: Vec<bool>,
     heat: bool,
     elastic: Option<Elastic>,
+    rod: Option<crate::monitor_rod::Rod>,
 }
 
 impl Monitor {
@@ -173,12 +174,21 @@ impl Monitor {
                 .monitor
                 .as_ref()
                 .and_then(|m| Elastic::new(m, scene.dim, parts, materials)),
+            rod: scene
+                .monitor
+                .as_ref()
+                .and_then(|m| m.rod.as_ref())
+                .map(|r| crate::monitor_rod::Rod::new(r, scene.dim))
+                .transpose()?,
         })
     }
 
     /// True if the series needs a particle table at each sample.
     pub fn samples(&self) -> bool {
-        self.back_face.is_some() || self.front.is_some() || self.elastic.is_some()
+        self.back_face.is_some()
+            || self.front.is_some()
+            || self.elastic.is_some()
+            || self.rod.is_some()
     }
 
     /// Names of the series columns.
@@ -192,6 +202,9 @@ impl Monitor {
         }
         if let Some(el) = &self.elastic {
             names.extend(el.names());
+        }
+        if self.rod.is_some() {
+            names.extend(["rod_length".to_string(), "rod_impact_diameter".to_string()]);
         }
         names
     }
@@ -218,6 +231,10 @@ impl Monitor {
         }
         if let Some(el) = self.elastic.as_mut() {
             out.extend(el.sample(table));
+        }
+        if let Some(rod) = &self.rod {
+            let (l, d) = rod.measure(table);
+            out.extend([l, d]);
         }
         out
     }
@@ -274,6 +291,13 @@ impl Monitor {
         )];
         if let Some(el) = self.elastic.as_mut() {
             out.extend(el.measures(table));
+        }
+        if let Some(rod) = &self.rod {
+            let (l, d) = rod.measure(table);
+            out.extend([
+                ("rod_length".to_string(), l),
+                ("rod_impact_diameter".to_string(), d),
+            ]);
         }
         let mut out_static: Vec<(&'static str, f64)> = Vec::new();
         if let Some(bf) = &self.back_face {

@@ -258,6 +258,17 @@ fn bad_walls_are_refused_on_one_line() {
         assert!(e.contains(expect), "{set}: {e}");
         assert_eq!(e.lines().count(), 1);
     }
+    let cyl = vec![
+        "bodies.0.shape={ type = \"cylinder\", base = [0.0], axis = 0, radius = 1e-3, length = 1e-2 }"
+            .to_string(),
+    ];
+    let e = scene::parse(&text, "wall_bar.toml", &cyl)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("bodies[0].shape: a cylinder is a 3D shape; the scene is 1D"),
+        "{e}"
+    );
     let window = case_text("porous_cu_window.toml");
     let sets = vec!["walls=[{ point = [0.0, 0.0], normal = [1.0, 0.0] }]".to_string()];
     let e = scene::parse(&window, "porous_cu_window.toml", &sets).unwrap_err();
@@ -265,4 +276,100 @@ fn bad_walls_are_refused_on_one_line() {
         e.to_string().contains("walls: not with a moving window"),
         "{e}"
     );
+}
+
+/// A copper rod (the Taylor test's geometry, coarse) on a rigid wall, whole or as a
+/// quarter with two symmetry planes.
+fn rod(quarter: bool) -> (Scene, RunResult) {
+    let mut text = format!(
+        r#"
+dim = 3
+scheme = "tkc"
+t_end = 4e-6
+cfl = 0.3
+[[materials]]
+name = "cu"
+library = "ofhc_copper"
+[[bodies]]
+material = "cu"
+shape = {{ type = "cylinder", base = [0.0, 0.0, 0.0], axis = 2, radius = 3.8e-3, length = 12.0e-3, quarter = {quarter} }}
+spacing = 0.95e-3
+velocity = {{ type = "uniform", value = [0.0, 0.0, -190.0] }}
+[[walls]]
+point = [0.0, 0.0, 0.0]
+normal = [0.0, 0.0, 1.0]
+[monitor]
+rod = {{ base = [0.0, 0.0, 0.0], axis = 2 }}
+"#
+    );
+    if quarter {
+        for n in ["[1.0, 0.0, 0.0]", "[0.0, 1.0, 0.0]"] {
+            text.push_str(&format!(
+                "[[walls]]\npoint = [0.0, 0.0, 0.0]\nnormal = {n}\ntype = \"symmetry\"\n"
+            ));
+        }
+    }
+    let sc = parse(&text, &[]);
+    let r = go(&sc);
+    (sc, r)
+}
+
+#[test]
+fn a_quarter_rod_with_two_symmetry_planes_reproduces_the_whole_rod() {
+    let ((sw, w), (sq, q)) = (rod(false), rod(true));
+    let (pw, pq) = (
+        scene::build_particles(&sw).unwrap(),
+        scene::build_particles(&sq).unwrap(),
+    );
+    let key = |x: &[f64; 3]| {
+        (
+            (x[0] * 1e8).round() as i64,
+            (x[1] * 1e8).round() as i64,
+            (x[2] * 1e8).round() as i64,
+        )
+    };
+    let quadrant: std::collections::HashMap<_, usize> = (0..pw.len())
+        .filter(|&i| pw.x[i][0] > 0.0 && pw.x[i][1] > 0.0)
+        .map(|i| (key(&pw.x[i]), i))
+        .collect();
+    assert_eq!(
+        quadrant.len(),
+        pq.len(),
+        "the quarter is the whole's quadrant"
+    );
+    assert_eq!(4 * pq.len(), pw.len());
+    let at = |t: &gsph::output::ParticleTable| -> std::collections::HashMap<u32, usize> {
+        t.id.iter().enumerate().map(|(k, &i)| (i, k)).collect()
+    };
+    let (iw, iq) = (at(&w.table), at(&q.table));
+    let (mut dx, mut dp, mut pmax) = (0.0f64, 0.0f64, 0.0f64);
+    for j in 0..pq.len() {
+        let i = quadrant[&key(&pq.x[j])];
+        let (a, b) = (iw[&(i as u32)], iq[&(j as u32)]);
+        let (tw, tq) = (&w.table, &q.table);
+        let d = ((tw.x[a] - tq.x[b]).powi(2)
+            + (tw.y[a] - tq.y[b]).powi(2)
+            + (tw.z[a] - tq.z[b]).powi(2))
+        .sqrt();
+        dx = dx.max(d);
+        dp = dp.max((tw.p[a] - tq.p[b]).abs().max((tw.sxz[a] - tq.sxz[b]).abs()));
+        pmax = pmax.max(tw.p[a].abs());
+    }
+    let (lw, lq) = (num(&w, "rod_length"), num(&q, "rod_length"));
+    let (dw, dq) = (
+        num(&w, "rod_impact_diameter"),
+        num(&q, "rod_impact_diameter"),
+    );
+    eprintln!(
+        "quarter vs whole rod: {} particles, positions differ by {:.2e} spacings, pressure and shear by {:.2e} of the peak; length {lw:.6e} / {lq:.6e} m, impact diameter {dw:.6e} / {dq:.6e} m",
+        pq.len(),
+        dx / 0.95e-3,
+        dp / pmax
+    );
+    assert!(dx / 0.95e-3 < 1e-9, "{dx:e}");
+    assert!(dp / pmax < 1e-9, "{dp:e} of {pmax:e}");
+    assert!((lw / lq - 1.0).abs() < 1e-12 && (dw / dq - 1.0).abs() < 1e-12);
+    // the rod shortens and its impact face spreads
+    assert!(lq < 12.0e-3 && dq > 7.6e-3, "{lq} {dq}");
+    assert_eq!(num(&q, "wall_crossings"), 0.0);
 }

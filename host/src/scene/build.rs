@@ -343,6 +343,9 @@ fn sites(dim: usize, shape: &ShapeSpec, dx: f64, polar: bool) -> f64 {
         }
         ShapeSpec::Segment { min, max } => (max - min) / dx,
         ShapeSpec::Box { min, max } => (0..dim).map(|a| (max[a] - min[a]) / dx + 1.0).product(),
+        ShapeSpec::Cylinder { radius, length, .. } => {
+            (2.0 * (radius / dx).round().max(1.0)).powi(2) * (length / dx + 1.0)
+        }
         ShapeSpec::Disc { radius: r, .. } | ShapeSpec::Annulus { r_outer: r, .. } => {
             if polar {
                 std::f64::consts::PI * (r / dx + 1.0).powi(2)
@@ -395,6 +398,13 @@ fn lattice(
                 }
             }
         }
+        ShapeSpec::Cylinder {
+            base,
+            axis,
+            radius,
+            length,
+            quarter,
+        } => cylinder_sites(&mut pts, base, *axis, *radius, *length, *quarter, dx),
         ShapeSpec::Disc { center, radius } => {
             if polar {
                 polar_rings(&mut pts, center, 0.0, *radius, dx);
@@ -419,6 +429,41 @@ fn lattice(
         }
     }
     pts
+}
+
+/// The sites of a cylinder (see [`ShapeSpec::Cylinder`]): `2 m` sites of `r / m` across
+/// each transverse axis (`m = round(r / dx)`), `round(length / dx)` along the axis, the
+/// transverse ones kept where `r² < radius²` (and on the positive side with `quarter`).
+fn cylinder_sites(
+    pts: &mut Vec<([f64; 3], f64)>,
+    base: &[f64],
+    axis: usize,
+    radius: f64,
+    length: f64,
+    quarter: bool,
+    dx: f64,
+) {
+    let m = (radius / dx).round().max(1.0) as i64;
+    let dt = radius / m as f64;
+    let na = ((length / dx).round() as i64).max(1);
+    let da = length / na as f64;
+    let (t1, t2) = ((axis + 1) % 3, (axis + 2) % 3);
+    let from = if quarter { 0 } else { -m };
+    for ka in 0..na {
+        for k2 in from..m {
+            for k1 in from..m {
+                let (u, v) = ((k1 as f64 + 0.5) * dt, (k2 as f64 + 0.5) * dt);
+                if u * u + v * v >= radius * radius {
+                    continue;
+                }
+                let mut x = [0.0; 3];
+                x[axis] = base[axis] + (ka as f64 + 0.5) * da;
+                x[t1] = base[t1] + u;
+                x[t2] = base[t2] + v;
+                pts.push((x, dt * dt * da));
+            }
+        }
+    }
 }
 
 /// Cartesian lattice with a node at `c + o`: sites `o + i dx` relative to the centre

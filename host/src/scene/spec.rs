@@ -129,6 +129,20 @@ pub struct MonitorSpec {
     /// `min_distance_min` over the samples.
     #[serde(default)]
     pub close_pairs: Option<f64>,
+    /// A rod standing on a wall (the Taylor test): series columns and summary keys
+    /// `rod_length` and `rod_impact_diameter` (`crate::monitor_rod`).
+    #[serde(default)]
+    pub rod: Option<RodSpec>,
+}
+
+/// A rod whose axis is `axis` through `base`, standing on the plane `x[axis] = base[axis]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RodSpec {
+    /// Centre of the impact face at the start, m (3 components).
+    pub base: Vec<f64>,
+    /// The rod's axis: 0, 1 or 2.
+    pub axis: usize,
 }
 
 /// The position of a wave front driven from the low end of `axis`: particles are binned
@@ -504,6 +518,24 @@ pub enum ShapeSpec {
         min: Vec<f64>,
         /// Upper corner, m.
         max: Vec<f64>,
+    },
+    /// Circular cylinder along a coordinate axis (3D): a Cartesian lattice with an even
+    /// number of sites across each diameter (the axis lies between sites, so a quarter
+    /// model's symmetry planes do too), kept inside the radius; `quarter = true` keeps the
+    /// sites on the positive side of both transverse axes through `base` (a quarter model
+    /// with two symmetry planes, whose sites are exactly those of the whole cylinder).
+    Cylinder {
+        /// Centre of the base face, m.
+        base: Vec<f64>,
+        /// The cylinder's axis: 0, 1 or 2 (x, y, z).
+        axis: usize,
+        /// Radius, m.
+        radius: f64,
+        /// Length along `axis` from the base, m.
+        length: f64,
+        /// Keep only the quadrant on the positive side of the transverse axes.
+        #[serde(default)]
+        quarter: bool,
     },
     /// Disc (2D) or ball (3D).
     Disc {

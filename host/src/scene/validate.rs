@@ -681,6 +681,29 @@ fn validate_shape(key: &str, sh: &ShapeSpec, dim: usize) -> R {
                 }
             }
         }
+        ShapeSpec::Cylinder {
+            base,
+            axis,
+            radius,
+            length,
+            ..
+        } => {
+            if dim != 3 {
+                return fail(
+                    key,
+                    format!("a cylinder is a 3D shape; the scene is {dim}D"),
+                );
+            }
+            dims(&format!("{key}.base"), base, dim)?;
+            if *axis > 2 {
+                return fail(
+                    &format!("{key}.axis"),
+                    format!("must be 0, 1 or 2 (got {axis})"),
+                );
+            }
+            positive(&format!("{key}.radius"), *radius)?;
+            positive(&format!("{key}.length"), *length)?;
+        }
         ShapeSpec::Disc { center, radius } => {
             if dim == 1 {
                 return fail(key, "a disc needs 2 or 3 dimensions");
