@@ -15,6 +15,7 @@ pub mod pores;
 mod spec;
 pub mod stl;
 mod validate;
+mod validate_parts;
 pub mod walls;
 mod window;
 

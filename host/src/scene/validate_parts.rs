@@ -1,0 +1,237 @@
+//! Semantic checks of the parts of a scene: materials (EOS, strength), shapes, and the
+//! Poisson-ratio resolution ([`super::validate`] checks the scene as a whole with them).
+
+use super::spec::*;
+use super::validate::{dims, fail, finite, non_negative, num, positive, R};
+use gsph_core::material::Strength;
+
+pub(super) fn material_known(s: &Scene, key: &str, name: &str) -> R {
+    if s.materials.iter().any(|m| m.name == name) {
+        Ok(())
+    } else {
+        let known: Vec<&str> = s.materials.iter().map(|m| m.name.as_str()).collect();
+        let close = super::library::close_names(name);
+        let library = if close.is_empty() {
+            String::new()
+        } else {
+            format!("; in the material library: {}", close.join(", "))
+        };
+        fail(
+            key,
+            format!(
+                "unknown material `{name}` (known: {}){library}",
+                known.join(", ")
+            ),
+        )
+    }
+}
+
+pub(super) fn validate_eos(key: &str, e: &EosSpec) -> R {
+    match e {
+        EosSpec::Linear { c0, gamma } => {
+            positive(&format!("{key}.c0"), *c0)?;
+            finite(&format!("{key}.gamma"), *gamma)
+        }
+        EosSpec::Logarithmic { bulk_modulus } => {
+            positive(&format!("{key}.bulk_modulus"), *bulk_modulus)
+        }
+        EosSpec::MieGruneisen { c0, s1, gamma0 } => {
+            positive(&format!("{key}.c0"), *c0)?;
+            non_negative(&format!("{key}.s1"), *s1)?;
+            finite(&format!("{key}.gamma0"), *gamma0)
+        }
+        EosSpec::Hugoniot { c0, s1 } => {
+            positive(&format!("{key}.c0"), *c0)?;
+            non_negative(&format!("{key}.s1"), *s1)
+        }
+        EosSpec::TwoCurve { c_a, s_a, gamma } => {
+            positive(&format!("{key}.c_a"), *c_a)?;
+            non_negative(&format!("{key}.s_a"), *s_a)?;
+            finite(&format!("{key}.gamma"), *gamma)
+        }
+        EosSpec::Polynomial { k1, k2, k3 } => {
+            positive(&format!("{key}.k1"), *k1)?;
+            finite(&format!("{key}.k2"), *k2)?;
+            finite(&format!("{key}.k3"), *k3)
+        }
+    }
+}
+
+pub(super) fn validate_shape(key: &str, sh: &ShapeSpec, dim: usize) -> R {
+    match sh {
+        ShapeSpec::Segment { min, max } => {
+            if dim != 1 {
+                return fail(key, format!("a segment is a 1D shape; use a box in {dim}D"));
+            }
+            finite(&format!("{key}.min"), *min)?;
+            finite(&format!("{key}.max"), *max)?;
+            if max <= min {
+                return fail(
+                    &format!("{key}.max"),
+                    format!("must exceed min ({} <= {})", num(*max), num(*min)),
+                );
+            }
+        }
+        ShapeSpec::Box { min, max } => {
+            if dim == 1 {
+                return fail(key, "use a segment in 1D");
+            }
+            dims(&format!("{key}.min"), min, dim)?;
+            dims(&format!("{key}.max"), max, dim)?;
+            for a in 0..dim {
+                if max[a] <= min[a] {
+                    return fail(&format!("{key}.max[{a}]"), format!("must exceed min[{a}]"));
+                }
+            }
+        }
+        ShapeSpec::Cylinder {
+            base,
+            axis,
+            radius,
+            length,
+            ..
+        } => {
+            if dim != 3 {
+                return fail(
+                    key,
+                    format!("a cylinder is a 3D shape; the scene is {dim}D"),
+                );
+            }
+            dims(&format!("{key}.base"), base, dim)?;
+            if *axis > 2 {
+                return fail(
+                    &format!("{key}.axis"),
+                    format!("must be 0, 1 or 2 (got {axis})"),
+                );
+            }
+            positive(&format!("{key}.radius"), *radius)?;
+            positive(&format!("{key}.length"), *length)?;
+        }
+        ShapeSpec::Disc { center, radius } => {
+            if dim == 1 {
+                return fail(key, "a disc needs 2 or 3 dimensions");
+            }
+            dims(&format!("{key}.center"), center, dim)?;
+            positive(&format!("{key}.radius"), *radius)?;
+        }
+        ShapeSpec::Annulus {
+            center,
+            r_inner,
+            r_outer,
+        } => {
+            if dim != 2 {
+                return fail(key, "an annulus is a 2D shape");
+            }
+            dims(&format!("{key}.center"), center, dim)?;
+            non_negative(&format!("{key}.r_inner"), *r_inner)?;
+            positive(&format!("{key}.r_outer"), *r_outer)?;
+            if r_outer <= r_inner {
+                return fail(&format!("{key}.r_outer"), "must exceed r_inner");
+            }
+        }
+        ShapeSpec::Particles { file, .. } => {
+            if file.trim().is_empty() {
+                return fail(&format!("{key}.file"), "must name a file");
+            }
+        }
+        ShapeSpec::Stl {
+            file,
+            scale,
+            offset,
+        } => {
+            if dim != 3 {
+                return fail(
+                    key,
+                    format!("an `stl` shape is a closed surface in 3D; the scene is {dim}D"),
+                );
+            }
+            if file.trim().is_empty() {
+                return fail(&format!("{key}.file"), "must name a file");
+            }
+            positive(&format!("{key}.scale"), *scale)?;
+            if let Some(o) = offset {
+                dims(&format!("{key}.offset"), o, 3)?;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Replaces `poisson_ratio` by the shear modulus it implies with the EOS's bulk modulus
+/// at the reference state, `G = 3K(1 - 2 nu)/(2(1 + nu))`, `K = rho0 c²(rho0)`.
+pub fn resolve_poisson(s: &mut Scene) -> R {
+    for (k, m) in s.materials.iter_mut().enumerate() {
+        let Some(nu) = m.poisson_ratio else { continue };
+        let key = format!("materials[{k}].poisson_ratio");
+        if m.shear_modulus != 0.0 {
+            return fail(&key, "give either shear_modulus or poisson_ratio, not both");
+        }
+        if !(nu > -1.0 && nu < 0.5) {
+            return fail(&key, format!("must lie in (-1, 0.5) (got {nu})"));
+        }
+        let mat = crate::materials::material_of(m);
+        let bulk = m.rho0 * mat.eos(m.rho0, 0.0).c2;
+        m.shear_modulus = 3.0 * bulk * (1.0 - 2.0 * nu) / (2.0 * (1.0 + nu));
+        m.poisson_ratio = None;
+        if m.strength.is_none() {
+            m.strength = Some(StrengthSpec::Elastic {});
+        }
+    }
+    Ok(())
+}
+
+/// The parameters of the Johnson–Cook and JH1 models (checked on the core structs they
+/// become, so the field lists are written once, in `materials::strength_of`).
+pub(super) fn validate_strength(key: &str, strength: &StrengthSpec) -> R {
+    let k = |name: &str| format!("{key}.{name}");
+    match crate::materials::strength_of(strength) {
+        Strength::JohnsonCook(jc) => {
+            positive(&k("a"), jc.a)?;
+            non_negative(&k("b"), jc.b)?;
+            positive(&k("n"), jc.n)?;
+            non_negative(&k("c"), jc.c)?;
+            positive(&k("m"), jc.m)?;
+            positive(&k("eps_dot0"), jc.eps_dot0)?;
+            positive(&k("t_room"), jc.t_room)?;
+            positive(&k("specific_heat"), jc.specific_heat)?;
+            let (t_room, t_melt) = (jc.t_room, jc.t_melt);
+            if !t_melt.is_finite() || t_melt <= t_room {
+                return fail(
+                    &k("t_melt"),
+                    format!("must exceed t_room = {t_room} K (got {t_melt})"),
+                );
+            }
+            let chi = jc.taylor_quinney;
+            if !(0.0..=1.0).contains(&chi) {
+                return fail(
+                    &k("taylor_quinney"),
+                    format!("must lie in [0, 1] (got {chi})"),
+                );
+            }
+        }
+        Strength::Jh1(jh) => {
+            positive(&k("sigma_i1"), jh.sigma_i1)?;
+            positive(&k("p1"), jh.p1)?;
+            positive(&k("sigma_i2"), jh.sigma_i2)?;
+            let (p1, p2) = (jh.p1, jh.p2);
+            if !p2.is_finite() || p2 <= p1 {
+                return fail(&k("p2"), format!("must exceed p1 = {p1} Pa (got {p2})"));
+            }
+            non_negative(&k("sigma_f_max"), jh.sigma_f_max)?;
+            non_negative(&k("c_f"), jh.c_f)?;
+            let t = jh.tensile_limit;
+            if !t.is_finite() || t >= 0.0 {
+                return fail(
+                    &k("tensile_limit"),
+                    format!("must be negative (a hydrostatic tension; got {t})"),
+                );
+            }
+            positive(&k("eps_f_max"), jh.eps_f_max)?;
+            positive(&k("p_max"), jh.p_max)?;
+            non_negative(&k("c"), jh.c)?;
+            positive(&k("eps_dot0"), jh.eps_dot0)?;
+        }
+        _ => {}
+    }
+    Ok(())
+}
