@@ -65,10 +65,6 @@ impl Recorder<'_> {
     }
 }
 
-/// Most steps a run without `max_steps` may be expected to take (t_end over the first
-/// time step): beyond it the run would not end in any useful time.
-pub const MAX_ESTIMATED_STEPS: f64 = 1e9;
-
 pub(super) fn run_dim<const D: usize>(
     scene: &Scene,
     scene_name: &str,
@@ -181,17 +177,6 @@ fn run_dim_logged<const D: usize>(
     #[cfg(feature = "mpi")]
     sim.distribute()?;
     let root = crate::dist_rank() == 0;
-    // a run that cannot end in any reasonable number of steps is refused before it starts
-    // (every rank computes the same estimate: the time step is a global minimum)
-    if scene.max_steps.is_none() {
-        let dt0 = scene.dt.unwrap_or_else(|| sim.stable_dt(scene.cfl()));
-        let steps = (scene.t_end - sim.t) / dt0;
-        if steps > MAX_ESTIMATED_STEPS {
-            return Err(RunError::Refused(format!(
-                "t_end: about {steps:.2e} steps at the first time step ({dt0:.3e} s), more than {MAX_ESTIMATED_STEPS:.0e}; set max_steps to run it anyway"
-            )));
-        }
-    }
     let files = if root { opts.out.clone() } else { None };
     // everything is validated: lock the folder (refused if another run holds it), then
     // replace an earlier run's results
