@@ -84,28 +84,24 @@ pub(super) fn run_dim<const D: usize>(
     result
 }
 
-/// The checkpoint state of the driver between steps.
-struct Between<'a> {
-    next_out: usize,
-    next_series: usize,
+/// The checkpoint state of the driver between steps (`next`: the next snapshot and
+/// series indices).
+fn driver_state(
+    rec: &Recorder<'_>,
+    next: [usize; 2],
     energy0: f64,
     mom0: [f64; 3],
     frames: u64,
-    rec: &'a Recorder<'a>,
-}
-
-impl Between<'_> {
-    fn state(&self) -> DriverState {
-        DriverState {
-            next_out: self.next_out as u64,
-            next_series: self.next_series as u64,
-            kinetic_max: self.rec.kinetic_max,
-            energy0: self.energy0,
-            mom0: self.mom0,
-            frames: self.frames,
-            series: self.rec.series.clone(),
-            monitor: self.rec.monitor.accumulated(),
-        }
+) -> DriverState {
+    DriverState {
+        next_out: next[0] as u64,
+        next_series: next[1] as u64,
+        kinetic_max: rec.kinetic_max,
+        energy0,
+        mom0,
+        frames,
+        series: rec.series.clone(),
+        monitor: rec.monitor.accumulated(),
     }
 }
 
@@ -330,15 +326,8 @@ fn run_dim_logged<const D: usize>(
                 (write, stop)
             };
             if write {
-                let between = Between {
-                    next_out,
-                    next_series,
-                    energy0,
-                    mom0,
-                    frames: n_frames,
-                    rec: &rec,
-                };
-                write_checkpoint(c, &sim, &between.state(), writer.as_ref(), root)?;
+                let state = driver_state(&rec, [next_out, next_series], energy0, mom0, n_frames);
+                write_checkpoint(c, &sim, &state, writer.as_ref(), root)?;
             }
             if stop {
                 bar.finish();
@@ -366,15 +355,8 @@ fn run_dim_logged<const D: usize>(
                         &mut fallback
                     }
                 };
-                let between = Between {
-                    next_out,
-                    next_series,
-                    energy0,
-                    mom0,
-                    frames: n_frames,
-                    rec: &rec,
-                };
-                write_checkpoint(c, &sim, &between.state(), writer.as_ref(), root)?;
+                let state = driver_state(&rec, [next_out, next_series], energy0, mom0, n_frames);
+                write_checkpoint(c, &sim, &state, writer.as_ref(), root)?;
                 checkpoint = Some(dir.clone());
             }
             if let Some(w) = writer.take() {
