@@ -10,10 +10,10 @@ cd "$(dirname "$0")/.."
 command -v perf >/dev/null || { echo "profile: needs perf (apt-get install linux-perf)" >&2; exit 1; }
 schemes=("$@")
 [[ ${#schemes[@]} -gt 0 ]] || schemes=(av ts2 tkc)
-CARGO_PROFILE_RELEASE_DEBUG=true cargo build --release -q -p gsph --no-default-features \
+cargo build --profile profiling -q -p gsph --no-default-features \
   --features dim2,scheme-av,scheme-pm,scheme-ts,effects-strength,effects-muscl,effects-correction,effects-artificial-stress \
   --target-dir target/prof
-bin=target/prof/release/gsph
+bin=target/prof/profiling/gsph
 mkdir -p out/profile
 for s in "${schemes[@]}"; do
   perf record -q -F 1999 -o "out/profile/$s.data" -- "$bin" run cases/rings.toml --set "scheme=$s" \

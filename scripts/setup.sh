@@ -14,7 +14,10 @@ fi
 command -v pkg-config >/dev/null 2>&1 || need_apt+=(pkg-config)
 command -v mpirun >/dev/null 2>&1 || need_apt+=(openmpi-bin)
 command -v mpicc >/dev/null 2>&1 || need_apt+=(libopenmpi-dev)
-if ! ls /usr/lib/llvm-*/lib/libclang*.so* >/dev/null 2>&1 && ! ldconfig -p 2>/dev/null | grep -q 'libclang.*\.so'; then
+# bindgen loads libclang.so or libclang-N.so (libclang-cpp, which LLVM's other packages
+# bring, is not it)
+if ! ls /usr/lib/llvm-*/lib/libclang.so* /usr/lib/llvm-*/lib/libclang-[0-9]*.so* >/dev/null 2>&1 &&
+  ! ldconfig -p 2>/dev/null | grep -Eq 'libclang(-[0-9.]+)?\.so'; then
   need_apt+=(libclang-dev)
 fi
 # QEMU's Cortex-M boards (mps2-an386) run the firmware runner (scripts/firmware.sh).
