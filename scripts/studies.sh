@@ -3,7 +3,7 @@
 # ladder of resolutions, one thread per run so the wall times compare. Writes
 # out/studies/<case>/ (study.csv, study.md, error_vs_time.png/svg,
 # error_vs_particles.png/svg) and copies the plots and tables to docs/studies/ for the
-# README section "Choosing a scheme: accuracy against time".
+# docs/validation.md §2 (the studies) and docs/performance.md.
 #
 # 16 minutes on one thread of a shared 2-core machine (967 s, measured with a cargo build
 # running alongside). GSPH=path/to/gsph uses that binary and skips the build.

@@ -30,7 +30,7 @@ scripts/ffi.sh
 echo "== the Python package (pip install ./host/python, pytest, the plotting example)"
 scripts/python.sh
 echo "== one-specialisation build: runs what it contains, refuses the rest in one line"
-# README "Compile-time-selected builds". Dev profile, own target dir (about 2 minutes).
+# docs/performance.md "Compile-time-selected builds". Dev profile, own target dir (about 2 minutes).
 cargo build -q -p gsph --no-default-features --features cli,dim1,scheme-ts,effects-strength --target-dir target/one-spec
 one=target/one-spec/debug/gsph
 ok=$("$one" check cases/flyer_plate.toml --set scheme=ts1)

@@ -12,13 +12,15 @@ pub mod api;
 pub mod checkpoint;
 #[cfg(feature = "cli")]
 pub mod cli;
+pub mod codec;
+#[cfg(feature = "cli")]
 pub mod commands;
 #[cfg(feature = "mpi")]
 pub mod dist;
 pub mod driver;
 pub mod exec;
 pub mod interrupt;
-pub mod materials;
+
 pub mod memory;
 pub mod monitor;
 pub mod monitor_elastic;
@@ -38,6 +40,9 @@ pub mod specs;
 pub mod stability;
 pub mod study;
 pub mod window;
+
+/// Why a plot was refused or left out by a build without the cargo feature `plot`.
+pub const NO_PLOT: &str = "this gsph was built without plotting (cargo feature `plot`)";
 
 /// The number of MPI ranks of this run (1 without the feature `mpi` or outside `mpirun`).
 pub fn dist_size() -> usize {

@@ -2,7 +2,7 @@
 //! memory this machine has available: a scene that cannot fit is refused with both
 //! figures instead of being killed by the allocator (SIGABRT) minutes later.
 
-use crate::scene::Scene;
+use gsph_core::kernel::Kernel;
 
 /// Bytes of memory available to this process: `MemAvailable` of /proc/meminfo, lowered
 /// to the cgroup's limit (less its usage) where one is set. `None` where neither can be
@@ -38,9 +38,8 @@ pub fn available() -> Option<u64> {
 /// ts2): the 3D impact 3.8 kB per particle (estimate 6.1 kB), the 2D impact 1.5 kB
 /// (estimate 2.2 kB): about 1.5 times the measured need, room for a denser
 /// neighbourhood under compression.
-pub fn bytes_per_particle(scene: &Scene) -> f64 {
-    let kernel = crate::sim::kernel_of(&scene.kernel);
-    let neighbours = crate::sim::default_capacity(scene.dim, kernel, scene.h_factor) as f64;
+pub fn bytes_per_particle(dim: usize, kernel: Kernel, h_factor: f64) -> f64 {
+    let neighbours = crate::neighbors::default_capacity(dim, kernel, h_factor) as f64;
     1024.0 + 24.0 * neighbours
 }
 
@@ -48,10 +47,11 @@ fn gib(b: f64) -> String {
     format!("{:.1} GiB", b / (1u64 << 30) as f64)
 }
 
-/// Refuses `particles` particles of `scene` when their estimated memory exceeds what is
-/// available (`available`, bytes). `key` names what sets the count.
+/// Refuses `particles` particles of `each` bytes (see [`bytes_per_particle`]) when their
+/// estimated memory exceeds what is available (`available`, bytes). `key` names what sets
+/// the count.
 pub fn check_fits(
-    scene: &Scene,
+    each: f64,
     particles: f64,
     available: Option<u64>,
     key: &str,
@@ -59,12 +59,12 @@ pub fn check_fits(
     let Some(avail) = available else {
         return Ok(());
     };
-    let need = particles * bytes_per_particle(scene);
+    let need = particles * each;
     if need > avail as f64 {
         return Err(format!(
             "{key}: about {particles:.3e} particles need about {} of memory ({:.0} bytes each), more than the {} available on this machine; use a coarser spacing or a smaller resolution_scale (or more MPI ranks on more machines)",
             gib(need),
-            bytes_per_particle(scene),
+            each,
             gib(avail as f64)
         ));
     }
@@ -83,27 +83,15 @@ mod tests {
 
     #[test]
     fn a_run_larger_than_memory_is_refused_with_both_figures() {
-        let text = r#"
-dim = 1
-scheme = "ts1"
-t_end = 1e-6
-[[materials]]
-name = "m"
-rho0 = 1000.0
-eos = { type = "linear", c0 = 1000.0 }
-[[bodies]]
-material = "m"
-shape = { type = "segment", min = 0.0, max = 0.01 }
-spacing = 1e-4
-"#;
-        let sc = crate::scene::parse(text, "inline", &[]).unwrap();
-        check_fits(&sc, 100.0, Some(1 << 30), "bodies[0].spacing").unwrap();
-        let e = check_fits(&sc, 9e7, Some(1 << 30), "bodies[0].spacing").unwrap_err();
+        let each = bytes_per_particle(1, Kernel::CubicSpline, 1.2);
+        assert!(each > 1024.0 && each < 2048.0, "{each}");
+        check_fits(each, 100.0, Some(1 << 30), "bodies[0].spacing").unwrap();
+        let e = check_fits(each, 9e7, Some(1 << 30), "bodies[0].spacing").unwrap_err();
         assert!(
             e.starts_with("bodies[0].spacing: about 9.000e7 particles need about ")
                 && e.contains("more than the 1.0 GiB available"),
             "{e}"
         );
-        check_fits(&sc, 9e7, None, "k").unwrap();
+        check_fits(each, 9e7, None, "k").unwrap();
     }
 }

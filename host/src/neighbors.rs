@@ -10,6 +10,7 @@
 
 use crate::exec::Rayon;
 use gsph_core::exec::{Executor, Rows, Split};
+use gsph_core::kernel::Kernel;
 use gsph_core::math::Vector;
 use gsph_core::neighbors::{lower_pairs_of, owned_count, NeighborError, Neighbors, Periodic};
 use rayon::prelude::*;
@@ -403,6 +404,16 @@ pub fn morton_order<const D: usize>(
         .collect();
     order.par_sort_unstable();
     order.into_iter().map(|(_, _, i)| i).collect()
+}
+
+/// Default neighbour capacity for a dimension and kernel.
+pub fn default_capacity(dim: usize, kernel: Kernel, h_factor: f64) -> usize {
+    let r = kernel.support() * h_factor * 1.5; // room for compression and skin
+    match dim {
+        1 => (2.0 * r).ceil() as usize + 4,
+        2 => (std::f64::consts::PI * r * r).ceil() as usize + 8,
+        _ => (4.0 / 3.0 * std::f64::consts::PI * r * r * r).ceil() as usize + 16,
+    }
 }
 
 #[cfg(test)]

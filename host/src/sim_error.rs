@@ -92,7 +92,7 @@ impl std::fmt::Display for SimError {
                 "step {step} (t = {t:.6e} s): the fixed time step dt = {dt:.4e} s exceeds the stability limit h/(c_l + |v|) = {limit:.4e} s of particle {particle} (lower `dt`, or remove it for the CFL step)"
             ),
             SimError::NotCompiled { dim, scheme, effects } => {
-                // One line: what is missing, and the features that compile it (README
+                // One line: what is missing, and the features that compile it (docs/performance.md
                 // "Compile-time-selected builds").
                 let (family, effects) = (scheme.family(), effects.kernel_part());
                 let features = crate::specs::features(*dim, family, effects).join(",");

@@ -1,6 +1,6 @@
 //! The step specialisations compiled into this build ([`gsph_core::dispatch::CATALOGUE`])
 //! and the Cargo features that select one, for the message that refuses a scene a narrowed
-//! build cannot run (README "Compile-time-selected builds").
+//! build cannot run (docs/performance.md "Compile-time-selected builds").
 
 use gsph_core::dispatch::{Specialisation, CATALOGUE};
 use gsph_core::effects::EffectSet;

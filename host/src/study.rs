@@ -267,6 +267,116 @@ pub fn row_json(r: &StudyRow) -> serde_json::Value {
     })
 }
 
+/// Parses a comma-separated list of schemes.
+pub fn parse_schemes(s: &str) -> Result<Vec<Scheme>, String> {
+    s.split(',')
+        .map(|n| {
+            Scheme::from_name(n.trim()).ok_or_else(|| {
+                format!("--schemes: unknown scheme `{n}` (known: av, pm, ts1, ts2, tkc)")
+            })
+        })
+        .collect()
+}
+
+/// Parses the comma-separated list of positive numbers given to `flag`.
+pub(crate) fn parse_positive(flag: &str, s: &str) -> Result<Vec<f64>, String> {
+    s.split(',')
+        .map(|n| match n.trim().parse::<f64>() {
+            Ok(v) if v > 0.0 && v.is_finite() => Ok(v),
+            _ => Err(format!("{flag}: `{n}` is not a positive number")),
+        })
+        .collect()
+}
+
+/// Parses a comma-separated list of positive resolution scales.
+pub fn parse_resolutions(s: &str) -> Result<Vec<f64>, String> {
+    parse_positive("--resolutions", s)
+}
+
+/// Runs a study (which writes study.csv and study.md) and writes its plots: error against
+/// wall time and against particles (only with the feature `plot`).
+pub fn run_study(scene: &Path, opts: &StudyOptions) -> Result<Vec<StudyRow>, String> {
+    let (rows, metric) = study(scene, opts)?;
+    #[cfg(feature = "plot")]
+    write_study_plots(scene, opts, &rows, &metric)?;
+    #[cfg(not(feature = "plot"))]
+    {
+        let _ = metric;
+        eprintln!("study: plots left out: {}", crate::NO_PLOT);
+    }
+    Ok(rows)
+}
+
+/// The plots of [`run_study`].
+#[cfg(feature = "plot")]
+fn write_study_plots(
+    scene: &Path,
+    opts: &StudyOptions,
+    rows: &[StudyRow],
+    metric: &str,
+) -> Result<(), String> {
+    let name = scene
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let mut schemes: Vec<&str> = Vec::new();
+    for r in rows {
+        if !schemes.contains(&r.scheme.as_str()) {
+            schemes.push(&r.scheme);
+        }
+    }
+    use crate::plot::{Series, SeriesStyle, XyPlot};
+    let lines = |x: &dyn Fn(&StudyRow) -> f64| -> Vec<Series> {
+        schemes
+            .iter()
+            .map(|s| {
+                let mut pts: Vec<(f64, f64)> = rows
+                    .iter()
+                    .filter(|r| r.scheme == *s)
+                    .map(|r| (x(r), r.error))
+                    .collect();
+                pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+                Series {
+                    name: s.to_string(),
+                    points: pts,
+                    style: SeriesStyle::LineMarkers,
+                }
+            })
+            .collect()
+    };
+    for ext in ["png", "svg"] {
+        XyPlot {
+            title: format!("{name}: {metric} against wall time"),
+            x_label: "wall time (s)".into(),
+            y_label: metric.to_string(),
+            log_x: true,
+            log_y: true,
+            series: lines(&|r| r.wall_s),
+            highlight: rows
+                .iter()
+                .filter(|r| r.pareto)
+                .map(|r| (r.wall_s, r.error))
+                .collect(),
+            highlight_label: Some("Pareto front".into()),
+        }
+        .save(&opts.out.join(format!("error_vs_time.{ext}")))
+        .map_err(|e| e.to_string())?;
+        XyPlot {
+            title: format!("{name}: {metric} against particles"),
+            x_label: "particles".into(),
+            y_label: metric.to_string(),
+            log_x: true,
+            log_y: true,
+            series: lines(&|r| r.particles as f64),
+            highlight: Vec::new(),
+            highlight_label: None,
+        }
+        .save(&opts.out.join(format!("error_vs_particles.{ext}")))
+        .map_err(|e| e.to_string())?;
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

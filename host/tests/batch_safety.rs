@@ -7,8 +7,8 @@
 //! writes a checkpoint and exits 143; progress lines appear in a batch log; run.log and
 //! summary.json say who ran what.
 
-use gsph::checkpoint::codec::{fnv1a64, Dec};
 use gsph::checkpoint::{CHECKPOINT_BIN, CHECKPOINT_H5};
+use gsph::codec::{fnv1a64, Dec};
 use std::path::Path;
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};

@@ -1,7 +1,7 @@
 //! Seed 000 §4.2: the collapsing beryllium ring at reduced size (1,809 particles, half the
 //! coarse resolution of the seed) against the analytic stopping radii of an incompressible
 //! rigid-plastic shell (`gsph_core::exact::ShellCollapse`: 0.0500 m and 0.0781 m).
-//! Full-size runs (8,172 and 23,780 particles) are documented commands (README).
+//! Full-size runs (8,172 and 23,780 particles) are documented commands (docs/validation.md, scripts/validate.sh).
 
 use gsph_tests::{num, run_case};
 

@@ -244,8 +244,7 @@ fn study_json(
     metric: Option<String>,
     out: PathBuf,
 ) -> PyResult<String> {
-    let schemes =
-        gsph::commands::parse_schemes(&schemes.join(",")).map_err(ArgumentError::new_err)?;
+    let schemes = gsph::study::parse_schemes(&schemes.join(",")).map_err(ArgumentError::new_err)?;
     let opts = gsph::study::StudyOptions {
         schemes,
         resolutions,
@@ -254,7 +253,7 @@ fn study_json(
         out,
     };
     let rows = py
-        .detach(|| gsph::commands::run_study(&scene, &opts))
+        .detach(|| gsph::study::run_study(&scene, &opts))
         .map_err(GsphError::new_err)?;
     let list: Vec<serde_json::Value> = rows.iter().map(gsph::study::row_json).collect();
     Ok(serde_json::Value::Array(list).to_string())
@@ -280,7 +279,7 @@ fn hugoniot_json(
     let points = py
         .detach(|| {
             std::fs::create_dir_all(&out).map_err(|e| format!("{}: {e}", out.display()))?;
-            gsph::commands::run_hugoniot(&s, &opts, &out)
+            gsph::window::run_hugoniot(&s, &opts, &out)
         })
         .map_err(GsphError::new_err)?;
     Ok(gsph::window::hugoniot::to_json(&points).to_string())

@@ -2,7 +2,7 @@
 //! of each particle from the settings' `[[materials]]`.
 
 use super::{ApiError, ApiResult};
-use crate::materials::material_of;
+use crate::scene::materials::material_of;
 use crate::scene::{self, InitialParticles, Scene};
 use gsph_core::math::Sym3;
 
@@ -134,7 +134,7 @@ impl Particles<'_> {
         if let Some(p) = &scene.periodic {
             // as scene::periodic::check_length, with the caller's coarsest spacing
             let dx = out.spacing.iter().cloned().fold(0.0, f64::max);
-            let support = crate::sim::kernel_of(&scene.kernel).support();
+            let support = crate::scene::kernel_of(&scene.kernel).support();
             let min = 2.0 * support * scene.h_factor * dx;
             if let Some(&a) = p
                 .axes

@@ -24,13 +24,10 @@
 //! snapshot copy first: a checkpoint.h5 newer than checkpoint.bin holds every snapshot
 //! the older checkpoint needs.
 
-pub mod codec;
-pub mod setup;
-
+use crate::codec::{fnv1a64, Dec, DecodeError, Enc};
 use crate::output::atomic::{commit_tmp, tmp_path};
 use crate::output::{read_frame, read_snapshot_times, write_atomic, Frame, SnapshotWriter};
 use crate::sim::Sim;
-use codec::{fnv1a64, Dec, DecodeError, Enc};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 

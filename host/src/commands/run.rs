@@ -1,13 +1,148 @@
-//! Setting up `gsph run` with checkpoints: the scene with its source text, the policy from
-//! the flags and the scene keys, and the restart of a checkpointed run.
+//! `gsph run`: a scene run to t_end, with checkpoints and restarts (docs/checkpoint.md):
+//! the scene with its source text, the policy from the flags and the scene keys, and the
+//! restart of a checkpointed run bound to the run that wrote it.
 
-use super::{Checkpoint, Policy, SceneSource};
-use crate::driver::CheckpointOptions;
+use crate::checkpoint::{Checkpoint, Policy, SceneSource};
+use crate::driver::{run_checkpointed, CheckpointOptions, Outcome, RunError, RunOptions};
 use crate::scene::{self, Scene};
 use std::path::{Path, PathBuf};
 
+/// Arguments of `gsph run`.
+#[derive(clap::Args, Debug)]
+pub struct RunArgs {
+    /// Scene file (not with --restart).
+    #[arg(required_unless_present = "restart")]
+    pub scene: Option<PathBuf>,
+    /// Output directory (default `out/<scene name>`).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Override a scene key (dotted path), e.g. --set bodies.0.spacing=5e-4.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub set: Vec<String>,
+    /// Remove a scene key (dotted path), e.g. --unset options.riemann.
+    #[arg(long = "unset", value_name = "KEY")]
+    pub unset: Vec<String>,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// No progress bar.
+    #[arg(long)]
+    pub quiet: bool,
+    /// Write OUT/checkpoint.bin every K steps (docs/checkpoint.md).
+    #[arg(long, value_name = "K")]
+    pub checkpoint_every_steps: Option<u64>,
+    /// Write OUT/checkpoint.bin every S seconds of wall time.
+    #[arg(long, value_name = "S")]
+    pub checkpoint_every_seconds: Option<f64>,
+    /// Continue the run checkpointed in DIR to t_end; its outputs go to DIR.
+    #[arg(long, value_name = "DIR", conflicts_with_all = ["scene", "out", "set", "unset"])]
+    pub restart: Option<PathBuf>,
+    /// Write a checkpoint after step N and stop, as if interrupted (tests).
+    #[arg(long, value_name = "N", hide = true)]
+    pub stop_after_steps: Option<u64>,
+}
+
+/// Runs `gsph run`.
+pub fn command(args: RunArgs) -> Result<(), String> {
+    let RunArgs {
+        scene,
+        out,
+        set,
+        unset,
+        threads,
+        quiet,
+        checkpoint_every_steps,
+        checkpoint_every_seconds,
+        restart: restart_dir,
+        stop_after_steps,
+    } = args;
+    let set = scene::with_unsets(set, &unset);
+    let flags = Policy {
+        every_steps: checkpoint_every_steps,
+        every_seconds: checkpoint_every_seconds,
+        stop_after_steps,
+    };
+    check_flags(&flags)?;
+    let (sc, out, ckpt) = match (restart_dir, scene) {
+        (Some(dir), _) => restart(&dir, flags)?,
+        (None, Some(path)) => {
+            // nothing touches the output folder until the run is validated and
+            // holds its lock (the driver; under MPI rank 0 alone)
+            let (sc, source) = load(&path, &set)?;
+            let ranks = crate::dist_size();
+            if ranks > 1 && sc.window.is_some() {
+                return Err(format!(
+                    "{}: the moving window (`window`) runs on one rank; this run has {ranks} MPI ranks",
+                    path.display()
+                ));
+            }
+            let out = match out {
+                Some(o) => o,
+                None => crate::outdir::default_dir(&source.name, "")?,
+            };
+            let policy = merge(flags, &sc);
+            (
+                sc,
+                out,
+                CheckpointOptions {
+                    policy,
+                    source,
+                    resume: None,
+                },
+            )
+        }
+        (None, None) => return Err("a scene file or --restart DIR is needed".into()),
+    };
+    let name = ckpt.source.name.clone();
+    let origin = ckpt.source.origin.clone();
+    let pool = super::pool(threads)?;
+    crate::interrupt::install()?;
+    let opts = RunOptions {
+        out: Some(out.clone()),
+        progress: !quiet,
+    };
+    let outcome = pool
+        .install(|| run_checkpointed(&sc, &name, &opts, &ckpt))
+        .map_err(|e| match e {
+            RunError::Output(e) => format!("{}: cannot write output: {e}", out.display()),
+            e @ RunError::Interrupted { signal, .. } => {
+                super::EXIT_CODE.store(128 + signal, std::sync::atomic::Ordering::Relaxed);
+                format!("{origin}: {e}")
+            }
+            e @ RunError::Checkpoint(_) => e.to_string(),
+            e => format!("{origin}: {e}"),
+        })?;
+    let res = match outcome {
+        Outcome::Finished(res) => res,
+        Outcome::Stopped { step } => {
+            out!(
+                "{name}: stopped after step {step}; checkpoint in {}",
+                out.display()
+            );
+            return Ok(());
+        }
+    };
+    let s = &res.summary;
+    let g = |k: &str| s.get(k).cloned().unwrap_or_default();
+    out!(
+        "{name}: {} {}D, {} particles, {} steps, wall {:.3} s, energy error {:.3e}{}",
+        g("scheme").as_str().unwrap_or(""),
+        g("dim"),
+        g("particles"),
+        g("steps"),
+        g("wall_s").as_f64().unwrap_or(0.0),
+        g("energy_rel_error").as_f64().unwrap_or(0.0),
+        s.get("l1_error")
+            .and_then(|v| v.as_f64())
+            .map(|v| format!(", L1 error {v:.4e}"))
+            .unwrap_or_default()
+    );
+    out!("wrote {}", out.display());
+    Ok(())
+}
+
 /// Checks the checkpoint flags of `gsph run`.
-pub fn check_flags(p: &Policy) -> Result<(), String> {
+fn check_flags(p: &Policy) -> Result<(), String> {
     if p.every_steps == Some(0) {
         return Err("--checkpoint-every-steps must be at least 1".into());
     }
@@ -25,7 +160,7 @@ pub fn check_flags(p: &Policy) -> Result<(), String> {
 }
 
 /// The policy of a run: the flags where given, else the scene's `[output]` keys.
-pub fn merge(flags: Policy, scene: &Scene) -> Policy {
+fn merge(flags: Policy, scene: &Scene) -> Policy {
     Policy {
         every_steps: flags.every_steps.or(scene.output.checkpoint_steps),
         every_seconds: flags.every_seconds.or(scene.output.checkpoint_seconds),
@@ -39,7 +174,7 @@ pub fn load(path: &Path, overrides: &[String]) -> Result<(Scene, SceneSource), S
         .map_err(|e| format!("{}: cannot read scene: {e}", path.display()))?;
     let origin = path.display().to_string();
     let sc = scene::parse(&text, &origin, overrides).map_err(|e| e.to_string())?;
-    let name = crate::driver::scene_name(&sc, path);
+    let name = scene::scene_name(&sc, path);
     let source = SceneSource {
         origin,
         text,

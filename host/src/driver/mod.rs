@@ -1,4 +1,6 @@
-//! The run loop: time-step control, output schedule, diagnostics, progress, summary.
+//! Running a scene: [`run`], [`run_particles`] and [`run_checkpointed`]. The stepping loop
+//! is in `run_loop.rs`, what it records (series, profile) in `record.rs`, the files of the
+//! output directory in `files.rs`, summary.json in `summary.rs`.
 
 use crate::checkpoint::{Checkpoint, CheckpointError, Control, DriverState, Policy, SceneSource};
 use crate::monitor::Monitor;
@@ -14,6 +16,8 @@ use serde_json::{json, Map, Value};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+mod files;
+mod record;
 mod run_loop;
 mod summary;
 use run_loop::run_dim;
@@ -111,14 +115,7 @@ pub struct RunOptions {
     pub progress: bool,
 }
 
-/// Scene name: the `name` key or the file stem of `path`.
-pub fn scene_name(scene: &Scene, path: &Path) -> String {
-    scene.name.clone().unwrap_or_else(|| {
-        path.file_stem()
-            .map(|s| s.to_string_lossy().into_owned())
-            .unwrap_or_default()
-    })
-}
+pub use crate::scene::scene_name;
 
 /// What a run produced.
 #[derive(Debug, Clone)]

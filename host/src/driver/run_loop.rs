@@ -1,69 +1,11 @@
-//! The stepping loop of a run: output schedule, checkpoints, interruption, results.
+//! The stepping loop of a run: set-up (the simulation, monitor, moving window, a restored
+//! checkpoint), the snapshot and series schedule, checkpoints and interruption, and the
+//! end. What is recorded is in [`super::record`], the files in [`super::files`].
 
+use super::files::Files;
+use super::record::Recorder;
 use super::summary::{summary, Summed};
 use super::*;
-
-/// sigma_xx of every particle against the exact profile at time t, sorted by x
-/// (`x,sigma_xx,sigma_xx_exact`; the exact value is empty where it does not hold), or
-/// `None` for references that are not stress profiles.
-fn profile_csv(r: &Reference, table: &crate::output::ParticleTable, t: f64) -> Option<String> {
-    let rows = r.profile(table, t)?;
-    let mut s = String::from("x,sigma_xx,sigma_xx_exact\n");
-    for (x, sxx, ex) in rows {
-        s.push_str(&format!(
-            "{x:e},{sxx:e},{}\n",
-            ex.map(|v| format!("{v:e}")).unwrap_or_default()
-        ));
-    }
-    Some(s)
-}
-
-/// The series so far and the quantities sampled with it.
-struct Recorder<'a> {
-    series: String,
-    kinetic_max: f64,
-    monitor: Monitor,
-    reference: &'a Option<Reference>,
-    extra: &'a [&'static str],
-}
-
-impl Recorder<'_> {
-    fn push<const D: usize>(&mut self, sim: &Sim<D>, window: &Option<Window<D>>, dt: f64) {
-        let series = &mut self.series;
-        let (k, i) = sim.energy();
-        self.kinetic_max = self.kinetic_max.max(k);
-        let p = sim.momentum();
-        series.push_str(&format!(
-            "{:e},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e}",
-            sim.t,
-            sim.step,
-            dt,
-            k,
-            i,
-            k + i,
-            p[0],
-            p[1],
-            p[2]
-        ));
-        if !self.extra.is_empty() || self.monitor.samples() {
-            let table = sim.table();
-            let mut values = self
-                .reference
-                .as_ref()
-                .map_or_else(Vec::new, |r| r.series_values(&table, sim.t));
-            values.extend(self.monitor.sample(&table, sim.t));
-            for v in values {
-                series.push_str(&format!(",{v:e}"));
-            }
-        }
-        if let Some(w) = window {
-            for v in w.series_values(sim) {
-                series.push_str(&format!(",{v:e}"));
-            }
-        }
-        series.push('\n');
-    }
-}
 
 pub(super) fn run_dim<const D: usize>(
     scene: &Scene,
@@ -87,7 +29,7 @@ pub(super) fn run_dim<const D: usize>(
 /// The checkpoint state of the driver between steps (`next`: the next snapshot and
 /// series indices).
 fn driver_state(
-    rec: &Recorder<'_>,
+    rec: &Recorder,
     next: [usize; 2],
     energy0: f64,
     mom0: [f64; 3],
@@ -126,19 +68,23 @@ fn write_checkpoint<const D: usize>(
     Ok(())
 }
 
-fn run_dim_logged<const D: usize>(
+/// A run set up: the simulation (split over the MPI ranks), its moving window, the
+/// recorder, and what a restart restored (the driver state and the snapshots so far; else
+/// the initial state as the first snapshot).
+struct Setup<const D: usize> {
+    sim: Sim<D>,
+    window: Option<Window<D>>,
+    rec: Recorder,
+    resumed: Option<DriverState>,
+    frames: Vec<Frame>,
+}
+
+fn set_up<const D: usize>(
     scene: &Scene,
-    scene_name: &str,
     parts: &InitialParticles,
     opts: &RunOptions,
     ckpt: Option<&CheckpointOptions>,
-    log: &mut Option<RunLog>,
-) -> Result<Outcome, RunError> {
-    let t_total = Instant::now();
-    if opts.out.is_some() {
-        // before anything is built or cleared, on every MPI rank
-        SnapshotWriter::supported()?;
-    }
+) -> Result<Setup<D>, RunError> {
     let reference = Reference::from_scene(scene, &parts.x, &parts.spacing)?;
     let mut sim = Sim::<D>::new(scene, parts)?;
     let ranks = crate::dist_size();
@@ -153,138 +99,105 @@ fn run_dim_logged<const D: usize>(
         )));
     }
     let mut monitor = Monitor::new(scene, parts, &sim.materials)?;
-    let mut window = match &scene.window {
+    let window = match &scene.window {
         Some(w) => Some(Window::new(scene, w.geometry(scene)?, parts, &mut sim)),
         None => None,
     };
-    let resume = ckpt.and_then(|c| c.resume.as_ref());
-    let mut resumed = DriverState::default();
+    let mut resumed = None;
     let mut frames = Vec::new();
-    if let Some(ck) = resume {
+    if let Some(ck) = ckpt.and_then(|c| c.resume.as_ref()) {
         ck.restore_sim(&mut sim).map_err(ckpt_err)?;
         monitor
             .restore_accumulated(&ck.driver.monitor)
             .map_err(|e| RunError::Checkpoint(format!("{}: {e}", ck.dir.display())))?;
         frames = ck.frames().map_err(ckpt_err)?;
-        resumed = ck.driver.clone();
+        resumed = Some(ck.driver.clone());
     }
     // MPI: split the particles over the ranks; rank 0 alone writes files, every rank
     // takes part in the gathers behind them
     #[cfg(feature = "mpi")]
     sim.distribute()?;
-    let root = crate::dist_rank() == 0;
-    let files = if root { opts.out.clone() } else { None };
-    // everything is validated: lock the folder (refused if another run holds it), then
-    // replace an earlier run's results
-    let _lock = match &files {
-        Some(dir) => Some(OutLock::acquire(dir).map_err(RunError::Refused)?),
-        None => None,
+    let window_names = match window {
+        Some(_) => &Window::<D>::series_names()[..],
+        None => &[],
     };
-    let run_id = resume.map_or_else(crate::outdir::new_run_id, |c| c.run_id.clone());
-    let source = ckpt.map(|c| &c.source);
-    if let Some(dir) = &files {
-        clear_outputs(dir, resume.is_none())?;
-        let info = source.map_or_else(
-            || SceneInfo {
-                origin: scene_name,
-                ..Default::default()
-            },
-            |s| SceneInfo {
-                origin: &s.origin,
-                text: &s.text,
-                overrides: &s.overrides,
-            },
-        );
-        *log = Some(RunLog::start(dir, &run_id, &info, resume.map(|c| c.step))?);
-    }
-    let mut writer = match &files {
-        Some(dir) => {
-            let info = crate::output::RunInfo {
-                name: scene_name.into(),
-                scene: source.map_or_else(String::new, |s| s.text.clone()),
-                overrides: source.map_or_else(Vec::new, |s| s.overrides.clone()),
-                scheme: sim.scheme.name().into(),
-                effects: sim.effects.names().map(String::from).collect(),
-                materials: scene.materials.iter().map(|m| m.name.clone()).collect(),
-            };
-            Some(SnapshotWriter::create(dir, D, &info)?)
+    let mut rec = Recorder::new(reference, monitor, window_names);
+    match &resumed {
+        Some(r) => {
+            rec.series = r.series.clone();
+            rec.kinetic_max = r.kinetic_max;
         }
-        None => None,
-    };
+        None => {
+            rec.push(&sim, &window, 0.0);
+            if opts.out.is_some() {
+                frames.push(Frame {
+                    time: 0.0,
+                    step: 0,
+                    dim: D,
+                    table: sim.table(),
+                });
+            }
+        }
+    }
+    Ok(Setup {
+        sim,
+        window,
+        rec,
+        resumed,
+        frames,
+    })
+}
+
+fn run_dim_logged<const D: usize>(
+    scene: &Scene,
+    scene_name: &str,
+    parts: &InitialParticles,
+    opts: &RunOptions,
+    ckpt: Option<&CheckpointOptions>,
+    log: &mut Option<RunLog>,
+) -> Result<Outcome, RunError> {
+    let t_total = Instant::now();
+    if opts.out.is_some() {
+        // before anything is built or cleared, on every MPI rank
+        SnapshotWriter::supported()?;
+    }
+    let Setup {
+        mut sim,
+        mut window,
+        mut rec,
+        resumed,
+        frames,
+    } = set_up::<D>(scene, parts, opts, ckpt)?;
+    let resume = ckpt.and_then(|c| c.resume.as_ref());
+    let run_id = resume.map_or_else(crate::outdir::new_run_id, |c| c.run_id.clone());
+    // everything is validated: lock the folder, then replace an earlier run's results
+    let mut files = Files::open(scene, scene_name, opts, ckpt, &run_id, &sim, frames, log)?;
     let mut control = match (ckpt, &opts.out) {
         (Some(c), Some(dir)) if c.policy.active() => {
             Some(Control::new(c.policy, c.source.clone(), dir, &run_id))
         }
         _ => None,
     };
-    let (energy0, mom0) = if resume.is_some() {
-        (resumed.energy0, resumed.mom0)
-    } else {
-        let (k0, i0) = sim.energy();
-        (k0 + i0, sim.momentum())
+    let (energy0, mom0, mut next) = match &resumed {
+        Some(r) => (
+            r.energy0,
+            r.mom0,
+            [r.next_out as usize, r.next_series as usize],
+        ),
+        None => {
+            let (k0, i0) = sim.energy();
+            (k0 + i0, sim.momentum(), [1, 1])
+        }
     };
-    let n_out = scene.output.snapshots;
+    let root = crate::dist_rank() == 0;
+    let (t_end, n_out) = (scene.t_end, scene.output.snapshots);
     let n_series = scene.output.series.unwrap_or(200);
-    let mut series =
-        String::from("t,step,dt,kinetic,internal,total,momentum_x,momentum_y,momentum_z");
-    let extra = reference.as_ref().map_or(&[][..], |r| r.series_names());
-    let window_names = if window.is_some() {
-        &Window::<D>::series_names()[..]
-    } else {
-        &[]
-    };
-    let monitor_names = monitor.series_names();
-    for name in extra
-        .iter()
-        .copied()
-        .chain(monitor_names.iter().map(String::as_str))
-        .chain(window_names.iter().copied())
-    {
-        series.push(',');
-        series.push_str(name);
-    }
-    series.push('\n');
-    let mut rec = Recorder {
-        series,
-        kinetic_max: 0.0,
-        monitor,
-        reference: &reference,
-        extra,
-    };
-    let mut next_out = 1usize;
-    let mut next_series = 1usize;
-    if resume.is_some() {
-        rec.series = resumed.series;
-        rec.kinetic_max = resumed.kinetic_max;
-        next_out = resumed.next_out as usize;
-        next_series = resumed.next_series as usize;
-    } else {
-        rec.push(&sim, &window, 0.0);
-        if opts.out.is_some() {
-            frames.push(Frame {
-                time: 0.0,
-                step: 0,
-                dim: D,
-                table: sim.table(),
-            });
-        }
-    }
-    let mut n_frames = frames.len() as u64;
-    if let Some(w) = writer.as_mut() {
-        for f in &frames {
-            w.append(f)?;
-        }
-    }
-    drop(frames);
-    let mut bar = Progress::new(root && opts.progress, scene_name, sim.t);
-    let t_end = scene.t_end;
     let max_steps = scene.max_steps.unwrap_or(u64::MAX);
+    let mut bar = Progress::new(root && opts.progress, scene_name, sim.t);
     let t_loop = Instant::now();
-    while sim.t < t_end * (1.0 - 1e-12) {
-        if sim.step >= max_steps {
-            break;
-        }
-        let t_out = t_end * next_out as f64 / n_out as f64;
+    while sim.t < t_end * (1.0 - 1e-12) && sim.step < max_steps {
+        // one step, ending on the next snapshot time
+        let t_out = t_end * next[0] as f64 / n_out as f64;
         let mut dt = sim.next_dt(scene.cfl(), scene.dt)?;
         if sim.t + dt >= t_out {
             dt = t_out - sim.t;
@@ -293,28 +206,18 @@ fn run_dim_logged<const D: usize>(
             Some(w) => w.step(&mut sim, dt)?,
             None => sim.step(dt)?,
         }
-        if sim.t >= t_end * next_series as f64 / n_series as f64 {
+        if sim.t >= t_end * next[1] as f64 / n_series as f64 {
             rec.push(&sim, &window, dt);
-            while sim.t >= t_end * next_series as f64 / n_series as f64 {
-                next_series += 1;
+            while sim.t >= t_end * next[1] as f64 / n_series as f64 {
+                next[1] += 1;
             }
         }
         if sim.t >= t_out * (1.0 - 1e-12) {
-            if opts.out.is_some() {
-                let table = sim.table();
-                if let Some(w) = writer.as_mut() {
-                    w.append(&Frame {
-                        time: sim.t,
-                        step: sim.step,
-                        dim: D,
-                        table,
-                    })?;
-                }
-                n_frames += 1;
-            }
-            next_out += 1;
+            files.snapshot(&sim)?;
+            next[0] += 1;
         }
         bar.set(sim.t, t_end, sim.step, dt);
+        // checkpoints on their schedule, and a stop after a given step
         if let Some(c) = control.as_mut() {
             let (write, stop) = c.due(sim.step);
             // a wall-clock schedule differs between ranks: rank 0's decision holds
@@ -326,8 +229,8 @@ fn run_dim_logged<const D: usize>(
                 (write, stop)
             };
             if write {
-                let state = driver_state(&rec, [next_out, next_series], energy0, mom0, n_frames);
-                write_checkpoint(c, &sim, &state, writer.as_ref(), root)?;
+                let state = driver_state(&rec, next, energy0, mom0, files.frames);
+                write_checkpoint(c, &sim, &state, files.writer.as_ref(), root)?;
             }
             if stop {
                 bar.finish();
@@ -355,13 +258,11 @@ fn run_dim_logged<const D: usize>(
                         &mut fallback
                     }
                 };
-                let state = driver_state(&rec, [next_out, next_series], energy0, mom0, n_frames);
-                write_checkpoint(c, &sim, &state, writer.as_ref(), root)?;
+                let state = driver_state(&rec, next, energy0, mom0, files.frames);
+                write_checkpoint(c, &sim, &state, files.writer.as_ref(), root)?;
                 checkpoint = Some(dir.clone());
             }
-            if let Some(w) = writer.take() {
-                w.interrupt(sim.step, sim.t)?;
-            }
+            files.interrupt(sim.step, sim.t)?;
             return Err(RunError::Interrupted {
                 signal,
                 step: sim.step,
@@ -377,42 +278,18 @@ fn run_dim_logged<const D: usize>(
         sim: &sim,
         scene_name,
         run_id: &run_id,
-        source,
+        source: ckpt.map(|c| &c.source),
         wall,
         wall_total: t_total.elapsed().as_secs_f64(),
-        ranks,
+        ranks: crate::dist_size(),
         energy0,
         mom0,
         kinetic_max: rec.kinetic_max,
-        reference: &reference,
+        reference: &rec.reference,
         monitor: &mut rec.monitor,
         window: &window,
         table: &table,
     });
-    if let Some(dir) = &files {
-        write_csv(dir.join("final.csv"), &table)?;
-        write_atomic(dir.join("series.csv"), rec.series.as_bytes())?;
-        if let Some(p) = reference
-            .as_ref()
-            .and_then(|r| profile_csv(r, &table, sim.t))
-        {
-            write_atomic(dir.join("profile.csv"), p.as_bytes())?;
-        }
-        if let Some(w) = writer.take() {
-            w.finish()?;
-        }
-        let text = serde_json::to_string_pretty(&Value::Object(s.clone())).expect("json");
-        write_atomic(dir.join("summary.json"), text.as_bytes())?;
-        if let Some(log) = log {
-            log.append(&format!(
-                "finished {}: {} steps, t = {:e} s, wall {:.3} s\nsummary: {}",
-                crate::runlog::utc_now(),
-                sim.step,
-                sim.t,
-                wall,
-                serde_json::to_string(&Value::Object(s.clone())).expect("json")
-            ));
-        }
-    }
+    files.finish(&table, &rec, &s, (sim.step, sim.t, wall), log)?;
     Ok(Outcome::Finished(Box::new(RunResult { summary: s, table })))
 }

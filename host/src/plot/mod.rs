@@ -11,6 +11,7 @@ mod axis;
 pub mod colormap;
 pub mod fields;
 pub mod particles;
+pub mod runs;
 pub mod xy;
 
 #[cfg(test)]
@@ -25,6 +26,7 @@ use plotters::prelude::*;
 use plotters::style::FontStyle;
 
 pub use self::colormap::viridis;
+pub(crate) use self::fields::particle_spacing;
 pub use self::fields::{field_label, field_unit, field_values, known_fields, DERIVED_FIELDS};
 pub use self::particles::ParticlePlot;
 pub use self::xy::{Series, SeriesStyle, XyPlot};

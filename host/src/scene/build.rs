@@ -1,9 +1,9 @@
 //! Turns bodies into particles: lattices clipped to shapes, initial velocity and state.
 
 use super::import;
+use super::materials::material_of;
 use super::spec::*;
 use super::SceneError;
-use crate::materials::material_of;
 use gsph_core::material::{Material, Strength};
 use gsph_core::math::Sym3;
 
@@ -130,7 +130,7 @@ pub fn check_particles(scene: &Scene, parts: &InitialParticles) -> Result<(), Sc
         )));
     }
     let capacity = scene.neighbor_capacity.unwrap_or_else(|| {
-        crate::sim::default_capacity(dim, crate::sim::kernel_of(&scene.kernel), scene.h_factor)
+        crate::neighbors::default_capacity(dim, super::kernel_of(&scene.kernel), scene.h_factor)
     });
     let entries = parts.len() as f64 * capacity as f64;
     if !at_most(entries, MAX_NEIGHBOR_ENTRIES) {
@@ -196,7 +196,12 @@ pub fn build_particles(scene: &Scene) -> Result<InitialParticles, SceneError> {
                 ),
             }));
         }
-        crate::memory::check_fits(scene, total, crate::memory::available(), &count_key)
+        let each = crate::memory::bytes_per_particle(
+            scene.dim,
+            super::kernel_of(&scene.kernel),
+            scene.h_factor,
+        );
+        crate::memory::check_fits(each, total, crate::memory::available(), &count_key)
             .map_err(SceneError)?;
         let mut pts = match source {
             Source::File(src) => {

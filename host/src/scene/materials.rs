@@ -1,6 +1,6 @@
 //! Scene materials to core materials.
 
-use crate::scene::{EosSpec, MaterialSpec, StrengthSpec};
+use super::{EosSpec, MaterialSpec, StrengthSpec};
 use gsph_core::material::eos::{
     Eos, Hugoniot, Linear, Logarithmic, MieGruneisen, Polynomial, TwoCurve,
 };

@@ -10,6 +10,7 @@ mod build;
 mod de;
 pub mod import;
 pub mod library;
+pub mod materials;
 mod periodic;
 pub mod pores;
 mod spec;
@@ -24,7 +25,26 @@ pub use spec::*;
 pub use walls::WallSpec;
 pub use window::{WindowGeometry, WindowSpec};
 
+use gsph_core::kernel::Kernel;
 use std::path::Path;
+
+/// Scene name: the `name` key or the file stem of `path`.
+pub fn scene_name(scene: &Scene, path: &Path) -> String {
+    scene.name.clone().unwrap_or_else(|| {
+        path.file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default()
+    })
+}
+
+/// The kernel named in a scene (`kernel`; validated to be one of these).
+pub fn kernel_of(name: &str) -> Kernel {
+    match name {
+        "wendland_c2" => Kernel::WendlandC2,
+        "gaussian" => Kernel::Gaussian,
+        _ => Kernel::CubicSpline,
+    }
+}
 
 /// A scene error: one line naming the key (or position) and the cause.
 #[derive(Debug, Clone, PartialEq)]

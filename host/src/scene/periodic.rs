@@ -7,9 +7,9 @@
 //! by round-off only (1e-9 relative) passes, so `L = 2R` written in the scene is accepted.
 
 use super::build::InitialParticles;
+use super::kernel_of;
 use super::spec::Scene;
 use super::SceneError;
-use crate::sim::kernel_of;
 
 /// Refuses a periodic length below `2 × support × h` (checked after [`super::validate`];
 /// bodies read from a file without a `spacing` are checked once built, by

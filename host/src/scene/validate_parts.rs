@@ -169,7 +169,7 @@ pub fn resolve_poisson(s: &mut Scene) -> R {
         if !(nu > -1.0 && nu < 0.5) {
             return fail(&key, format!("must lie in (-1, 0.5) (got {nu})"));
         }
-        let mat = crate::materials::material_of(m);
+        let mat = super::materials::material_of(m);
         let bulk = m.rho0 * mat.eos(m.rho0, 0.0).c2;
         m.shear_modulus = 3.0 * bulk * (1.0 - 2.0 * nu) / (2.0 * (1.0 + nu));
         m.poisson_ratio = None;
@@ -184,7 +184,7 @@ pub fn resolve_poisson(s: &mut Scene) -> R {
 /// become, so the field lists are written once, in `materials::strength_of`).
 pub(super) fn validate_strength(key: &str, strength: &StrengthSpec) -> R {
     let k = |name: &str| format!("{key}.{name}");
-    match crate::materials::strength_of(strength) {
+    match super::materials::strength_of(strength) {
         Strength::JohnsonCook(jc) => {
             positive(&k("a"), jc.a)?;
             non_negative(&k("b"), jc.b)?;

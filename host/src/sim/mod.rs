@@ -121,24 +121,8 @@ pub fn resolve_effects(scene: &Scene, materials: &[Material]) -> EffectSet {
     e.closed()
 }
 
-/// The kernel named in a scene.
-pub fn kernel_of(name: &str) -> Kernel {
-    match name {
-        "wendland_c2" => Kernel::WendlandC2,
-        "gaussian" => Kernel::Gaussian,
-        _ => Kernel::CubicSpline,
-    }
-}
-
-/// Default neighbour capacity for a dimension and kernel.
-pub fn default_capacity(dim: usize, kernel: Kernel, h_factor: f64) -> usize {
-    let r = kernel.support() * h_factor * 1.5; // room for compression and skin
-    match dim {
-        1 => (2.0 * r).ceil() as usize + 4,
-        2 => (std::f64::consts::PI * r * r).ceil() as usize + 8,
-        _ => (4.0 / 3.0 * std::f64::consts::PI * r * r * r).ceil() as usize + 16,
-    }
-}
+pub use crate::neighbors::default_capacity;
+pub use crate::scene::kernel_of;
 
 /// A running simulation in dimension `D`. Cloning it saves the whole state (the moving
 /// window restarts its trials from a clone).
@@ -254,7 +238,7 @@ impl<const D: usize> Sim<D> {
         let materials: Vec<Material> = scene
             .materials
             .iter()
-            .map(crate::materials::material_of)
+            .map(crate::scene::materials::material_of)
             .collect();
         let scheme = Scheme::from_name(&scene.scheme).expect("validated scheme");
         let effects = resolve_effects(scene, &materials);

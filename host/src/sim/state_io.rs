@@ -14,7 +14,7 @@
 //! and a restart then does not depend on that property of the schemes.
 
 use super::Sim;
-use crate::checkpoint::codec::{Codec, Dec, DecodeError, Enc};
+use crate::codec::{Codec, Dec, DecodeError, Enc};
 
 /// Most steps a checkpoint may claim (2^53: counted exactly in an f64 too); a forged
 /// `u64::MAX` would overflow on the next step.

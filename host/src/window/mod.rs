@@ -271,3 +271,5 @@ impl<const D: usize> Window<D> {
 }
 pub mod hugoniot;
 pub mod plot;
+mod run;
+pub use run::run_hugoniot;

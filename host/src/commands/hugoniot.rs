@@ -1,0 +1,101 @@
+//! `gsph hugoniot`: the shock Hugoniot of a moving-window scene ([`crate::window`]).
+
+use crate::scene::{self, scene_name};
+use std::path::PathBuf;
+
+/// Arguments of `gsph hugoniot`.
+#[derive(clap::Args, Debug)]
+pub struct HugoniotArgs {
+    /// Scene file with a `[window]` section.
+    pub scene: PathBuf,
+    /// Particle velocities u_p, m/s, comma-separated.
+    #[arg(long, default_value = "50,75,100,125,150,200")]
+    pub up: String,
+    /// Initial bracket of u_s, m/s, `LO,HI` (default from the full-compaction bound B = m u_p/(m-1): 0.85 B and max(2 B, B + 300)); widened if it misses the root.
+    #[arg(long)]
+    pub bracket: Option<String>,
+    /// Bisection stops below this bracket width, m/s.
+    #[arg(long, default_value_t = 1.0)]
+    pub tolerance: f64,
+    /// Feed lengths entering during each trial (seed: 3).
+    #[arg(long, default_value_t = 3.0)]
+    pub samples: f64,
+    /// Feed lengths over which the production profiles are averaged.
+    #[arg(long, default_value_t = 4.5)]
+    pub average: f64,
+    /// Override a scene key (dotted path).
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub set: Vec<String>,
+    /// Remove a scene key (dotted path).
+    #[arg(long = "unset", value_name = "KEY")]
+    pub unset: Vec<String>,
+    /// Output directory (default `out/<scene name>_hugoniot`).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// No per-trial progress lines.
+    #[arg(long)]
+    pub quiet: bool,
+}
+
+/// Runs `gsph hugoniot`.
+pub fn command(args: HugoniotArgs) -> Result<(), String> {
+    let HugoniotArgs {
+        scene: path,
+        up,
+        bracket,
+        tolerance,
+        samples,
+        average,
+        set,
+        unset,
+        out,
+        threads,
+        quiet,
+    } = args;
+    let set = scene::with_unsets(set, &unset);
+    let sc = scene::load(&path, &set).map_err(|e| e.to_string())?;
+    if sc.window.is_none() {
+        return Err(format!(
+            "{}: no [window] section: `gsph hugoniot` needs a moving-window scene",
+            path.display()
+        ));
+    }
+    let name = scene_name(&sc, &path);
+    let bracket = match bracket {
+        None => None,
+        Some(b) => match crate::study::parse_positive("--bracket", &b)?[..] {
+            [lo, hi] if lo < hi => Some((lo, hi)),
+            _ => return Err(format!("--bracket: `{b}` must be LO,HI with LO < HI")),
+        },
+    };
+    for (flag, v) in [
+        ("--tolerance", tolerance),
+        ("--samples", samples),
+        ("--average", average),
+    ] {
+        if !(v.is_finite() && v > 0.0) {
+            return Err(format!("{flag}: must be positive (got {v})"));
+        }
+    }
+    let opts = crate::window::hugoniot::HugoniotOptions {
+        ups: crate::study::parse_positive("--up", &up)?,
+        bracket,
+        tolerance,
+        samples,
+        average,
+        verbose: !quiet,
+        ..Default::default()
+    };
+    let out = match out {
+        Some(o) => o,
+        None => crate::outdir::default_dir(&name, "_hugoniot")?,
+    };
+    let pool = super::pool(threads)?;
+    pool.install(|| crate::window::run_hugoniot(&sc, &opts, &out))
+        .map_err(|e| format!("{}: {e}", path.display()))?;
+    out!("wrote {}", out.display());
+    Ok(())
+}

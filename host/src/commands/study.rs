@@ -1,0 +1,67 @@
+//! `gsph study`: a scene for a grid of schemes and resolutions ([`crate::study`]).
+
+use crate::scene::{self, scene_name};
+use std::path::PathBuf;
+
+/// Arguments of `gsph study`.
+#[derive(clap::Args, Debug)]
+pub struct StudyArgs {
+    /// Scene file.
+    pub scene: PathBuf,
+    /// Schemes, comma-separated.
+    #[arg(long, default_value = "av,pm,ts1,ts2,tkc")]
+    pub schemes: String,
+    /// Resolution scales, comma-separated.
+    #[arg(long, default_value = "1,2,4")]
+    pub resolutions: String,
+    /// Summary key used as the error (default: l1_error, radius_error or energy_rel_error).
+    #[arg(long)]
+    pub metric: Option<String>,
+    /// Override a scene key in every run.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub set: Vec<String>,
+    /// Remove a scene key in every run (dotted path), e.g. --unset options.riemann.
+    #[arg(long = "unset", value_name = "KEY")]
+    pub unset: Vec<String>,
+    /// Output directory (default `out/<scene name>_study`).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    pub threads: Option<usize>,
+}
+
+/// Runs `gsph study`.
+pub fn command(args: StudyArgs) -> Result<(), String> {
+    let StudyArgs {
+        scene: path,
+        schemes,
+        resolutions,
+        metric,
+        set,
+        unset,
+        out,
+        threads,
+    } = args;
+    let set = scene::with_unsets(set, &unset);
+    let sc = scene::load(&path, &set).map_err(|e| e.to_string())?;
+    let name = scene_name(&sc, &path);
+    let opts = crate::study::StudyOptions {
+        schemes: crate::study::parse_schemes(&schemes)?,
+        resolutions: crate::study::parse_resolutions(&resolutions)?,
+        overrides: set,
+        metric,
+        out: match out {
+            Some(o) => o,
+            None => crate::outdir::default_dir(&name, "_study")?,
+        },
+    };
+    let pool = super::pool(threads)?;
+    pool.install(|| crate::study::run_study(&path, &opts))?;
+    out!(
+        "{}",
+        std::fs::read_to_string(opts.out.join("study.md")).unwrap_or_default()
+    );
+    out!("wrote {}", opts.out.display());
+    Ok(())
+}
