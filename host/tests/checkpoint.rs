@@ -244,7 +244,15 @@ fn killed_runs_leave_a_restartable_checkpoint() {
         child.wait().unwrap();
         kills += 1;
         // a kill inside a checkpoint write leaves its temp file
-        mid_write += usize::from(b.join("checkpoint.bin.tmp").exists());
+        // (`.checkpoint.bin.XXXXXX.tmp`, output::atomic)
+        mid_write += std::fs::read_dir(&b)
+            .unwrap()
+            .filter(|e| {
+                let n = e.as_ref().unwrap().file_name();
+                let n = n.to_string_lossy();
+                n.starts_with(".checkpoint.bin.") && n.ends_with(".tmp")
+            })
+            .count();
         if b.join(CHECKPOINT_BIN).exists() {
             // never a half-written checkpoint: it reads back and goes forward
             let ck = Checkpoint::read(&b).unwrap_or_else(|e| panic!("after kill {kills}: {e}"));

@@ -1,8 +1,12 @@
 //! Atomic file writing: a failed run never leaves a file that looks complete.
 //!
-//! Data are written to `<name>.tmp` in the destination's directory, synced to disk, then renamed
-//! over the destination (rename within one directory is atomic on POSIX file systems). A temp file
-//! whose writer is dropped without committing is removed.
+//! [`AtomicFile`] writes to a uniquely named temp file in the destination's directory
+//! (`tempfile`: `.<name>.XXXXXX.tmp`, so two writers of one name never write into each
+//! other's temp file), syncs it to disk, then renames it over the destination (rename within
+//! one directory is atomic on POSIX file systems) and syncs the directory. A temp file whose
+//! writer is dropped without committing is removed (by `tempfile`, also on unwinding).
+//! [`tmp_path`] and [`commit_tmp`] serve files that a library writes by name (HDF5
+//! snapshots and checkpoints): a fixed sibling `<name>.tmp`.
 
 use std::ffi::OsString;
 use std::fs::{self, File};
@@ -52,26 +56,34 @@ pub fn write_atomic(path: impl AsRef<Path>, bytes: &[u8]) -> io::Result<()> {
     f.commit()
 }
 
-/// A buffered file written under a temp name and renamed to its final name by
+/// A buffered file written under a unique temp name and renamed to its final name by
 /// [`AtomicFile::commit`].
 ///
 /// Dropping it without committing removes the temp file.
 #[derive(Debug)]
 pub struct AtomicFile {
     path: PathBuf,
-    tmp: PathBuf,
-    writer: Option<BufWriter<File>>,
+    writer: Option<BufWriter<tempfile::NamedTempFile>>,
 }
 
 impl AtomicFile {
-    /// Creates (truncating) the temp file for `path`.
+    /// Creates a temp file for `path` in its directory.
     pub fn create(path: impl AsRef<Path>) -> io::Result<Self> {
         let path = path.as_ref().to_path_buf();
-        let tmp = tmp_path(&path);
-        let file = File::create(&tmp)?;
+        let dir = match path.parent() {
+            Some(d) if !d.as_os_str().is_empty() => d,
+            _ => Path::new("."),
+        };
+        let name = path
+            .file_name()
+            .map(|n| n.to_string_lossy())
+            .unwrap_or_default();
+        let file = tempfile::Builder::new()
+            .prefix(&format!(".{name}."))
+            .suffix(".tmp")
+            .tempfile_in(dir)?;
         Ok(Self {
             path,
-            tmp,
             writer: Some(BufWriter::new(file)),
         })
     }
@@ -81,35 +93,30 @@ impl AtomicFile {
         &self.path
     }
 
-    /// The temp path being written.
+    /// The temp path being written (empty once committed).
     pub fn tmp_path(&self) -> &Path {
-        &self.tmp
+        self.writer
+            .as_ref()
+            .map_or(Path::new(""), |w| w.get_ref().path())
     }
 
-    /// Flushes, syncs and renames the temp file to the final path.
+    /// Flushes, syncs and renames the temp file to the final path (the temp file is
+    /// removed if any of it fails).
     pub fn commit(mut self) -> io::Result<()> {
         let writer = self
             .writer
             .take()
             .ok_or_else(|| io::Error::other("already committed"))?;
-        let result = writer
+        let file = writer
             .into_inner()
-            .map_err(io::IntoInnerError::into_error)
-            .and_then(|f| f.sync_all())
-            .and_then(|()| fs::rename(&self.tmp, &self.path));
-        match result {
-            Ok(()) => {
-                sync_parent_dir(&self.path);
-                Ok(())
-            }
-            Err(e) => {
-                let _ = fs::remove_file(&self.tmp);
-                Err(e)
-            }
-        }
+            .map_err(io::IntoInnerError::into_error)?;
+        file.as_file().sync_all()?;
+        file.persist(&self.path).map_err(|e| e.error)?;
+        sync_parent_dir(&self.path);
+        Ok(())
     }
 
-    fn writer(&mut self) -> io::Result<&mut BufWriter<File>> {
+    fn writer(&mut self) -> io::Result<&mut BufWriter<tempfile::NamedTempFile>> {
         self.writer
             .as_mut()
             .ok_or_else(|| io::Error::other("already committed"))
@@ -123,15 +130,6 @@ impl Write for AtomicFile {
 
     fn flush(&mut self) -> io::Result<()> {
         self.writer()?.flush()
-    }
-}
-
-impl Drop for AtomicFile {
-    fn drop(&mut self) {
-        if let Some(w) = self.writer.take() {
-            drop(w);
-            let _ = fs::remove_file(&self.tmp);
-        }
     }
 }
 
@@ -174,7 +172,14 @@ mod tests {
         let mut f = AtomicFile::create(&p).unwrap();
         f.write_all(b"hello").unwrap();
         assert!(f.tmp_path().exists());
+        assert_eq!(f.tmp_path().parent(), Some(dir.path()));
         assert!(!p.exists());
+        // a second writer of the same name writes its own temp file
+        let mut f2 = AtomicFile::create(&p).unwrap();
+        assert_ne!(f.tmp_path(), f2.tmp_path());
+        f2.write_all(b"other").unwrap();
+        drop(f2);
+        assert!(f.tmp_path().exists());
         f.commit().unwrap();
         assert_eq!(fs::read(&p).unwrap(), b"hello");
 

@@ -439,6 +439,20 @@ fn a_csv_body_equals_the_box_it_copies() {
     let bom = built(d, &format!("{AL_2D}{}", particles_body("bom.csv", "")));
     assert_eq!(bom.x, boxed.x);
     assert_eq!(bom.m, boxed.m);
+    // quoted names and values, comment lines and blank lines, as spreadsheets and other
+    // codes export them (read with the csv crate)
+    let quoted: String = csv_of(&boxed, &["x", "y", "vx", "vy", "m", "rho"])
+        .lines()
+        .map(|l| {
+            let q: Vec<String> = l.split(',').map(|f| format!("\"{f}\"")).collect();
+            format!("# a comment\n{}\n\n", q.join(","))
+        })
+        .collect();
+    std::fs::write(d.join("quoted.csv"), quoted).unwrap();
+    let q = built(d, &format!("{AL_2D}{}", particles_body("quoted.csv", "")));
+    assert_eq!(q.x, boxed.x);
+    assert_eq!(q.v, boxed.v);
+    assert_eq!(q.m, boxed.m);
     // positions only: mass rho0 spacing², the body's velocity
     std::fs::write(d.join("xy.csv"), csv_of(&boxed, &["x", "y"])).unwrap();
     let xy = built(

@@ -1,0 +1,198 @@
+//! The CSV particle files of [`super`]: the header's columns, the rows read with the
+//! `csv` crate, and the row count taken before reading (for the memory estimate).
+
+use super::*;
+
+/// Data lines of a CSV file (lines that are neither blank nor comments, less the header),
+/// counted without keeping them.
+pub(super) fn count_rows(path: &Path) -> Result<usize, String> {
+    let file = std::fs::File::open(path).map_err(|e| format!("cannot read: {e}"))?;
+    let mut r = BufReader::new(file);
+    let mut line = Vec::new();
+    let mut n = 0usize;
+    let mut lineno = 0usize;
+    loop {
+        line.clear();
+        lineno += 1;
+        let got = r
+            .read_until(b'\n', &mut line)
+            .map_err(|e| format!("line {lineno}: cannot read: {e}"))?;
+        if got == 0 {
+            break;
+        }
+        let t = line.trim_ascii();
+        if !t.is_empty() && t[0] != b'#' {
+            n += 1;
+        }
+    }
+    Ok(n.saturating_sub(1))
+}
+
+/// What a column of a CSV header is.
+#[derive(Clone, Copy, PartialEq)]
+enum Slot {
+    State(usize),
+    Material,
+    Ignored,
+}
+
+/// The header of a CSV particle file: the slot of each field.
+fn parse_header(line: &str, lineno: usize, dim: usize) -> Result<Vec<Slot>, String> {
+    let mut slots = Vec::new();
+    let mut seen: Vec<&str> = Vec::new();
+    for (k, raw) in line.split(',').enumerate() {
+        let name = raw.trim().trim_matches('"').trim();
+        let at = format!("line {lineno}, column {}", k + 1);
+        if name.is_empty() {
+            return Err(format!("{at}: empty column name"));
+        }
+        if seen.contains(&name) {
+            return Err(format!("{at}: column `{name}` appears twice"));
+        }
+        seen.push(name);
+        let slot = if let Some(c) = STATE_COLUMNS.iter().position(|&s| s == name) {
+            Slot::State(c)
+        } else if name == "material" {
+            Slot::Material
+        } else if IGNORED_COLUMNS.contains(&name) {
+            Slot::Ignored
+        } else {
+            return Err(format!(
+                "{at}: unknown column `{name}` (known: {}, material; skipped: {})",
+                STATE_COLUMNS.join(", "),
+                IGNORED_COLUMNS.join(", ")
+            ));
+        };
+        slots.push(slot);
+    }
+    let has = |c: usize| slots.contains(&Slot::State(c));
+    for (a, axis) in ["x", "y", "z"].iter().enumerate().take(dim) {
+        if !has(X + a) {
+            return Err(format!(
+                "line {lineno}: no column `{axis}` (a {dim}D scene needs {}; the header names {})",
+                ["x", "y", "z"][..dim].join(", "),
+                seen.join(", ")
+            ));
+        }
+    }
+    let dev: Vec<usize> = (S..S + 6).filter(|&c| has(c)).collect();
+    if !dev.is_empty() && dev.len() < 6 {
+        let missing: Vec<&str> = (S..S + 6)
+            .filter(|c| !dev.contains(c))
+            .map(|c| STATE_COLUMNS[c])
+            .collect();
+        return Err(format!(
+            "line {lineno}: the deviator columns sxx, syy, szz, sxy, sxz, syz come all six or none (the deviator is the full symmetric tensor in every dimension); missing {}",
+            missing.join(", ")
+        ));
+    }
+    Ok(slots)
+}
+
+/// Parses a CSV particle file (see the module docs) with the `csv` crate: fields may be
+/// quoted, lines end in LF or CRLF, `#` starts a comment line, a UTF-8 byte-order mark is
+/// skipped; errors name the line.
+pub(super) fn parse_csv(path: &Path, shown: &str, dim: usize) -> Result<FileParticles, String> {
+    let file = std::fs::File::open(path).map_err(|e| format!("cannot read: {e}"))?;
+    let mut reader = csv::ReaderBuilder::new()
+        .has_headers(false)
+        .flexible(true)
+        .comment(Some(b'#'))
+        .trim(csv::Trim::All)
+        .from_reader(BufReader::new(file));
+    let mut slots: Option<(u64, Vec<Slot>)> = None;
+    let mut cols: [Option<Vec<f64>>; 18] = Default::default();
+    let mut material: Option<Vec<u32>> = None;
+    let mut lines = Vec::new();
+    let mut record = csv::StringRecord::new();
+    loop {
+        let at = reader.position().line();
+        match reader.read_record(&mut record) {
+            Ok(false) => break,
+            Ok(true) => {}
+            Err(e) => {
+                let lineno = e.position().map_or(at, |p| p.line());
+                return Err(match e.kind() {
+                    csv::ErrorKind::Utf8 { .. } => {
+                        format!("line {lineno}: not UTF-8 text (is this a CSV file?)")
+                    }
+                    _ => format!("line {lineno}: {e}"),
+                });
+            }
+        }
+        let lineno = record.position().map_or(at, |p| p.line());
+        if record.iter().all(str::is_empty) {
+            continue; // a blank line (or one of blank fields)
+        }
+        let Some((header_line, slots)) = &slots else {
+            // a byte-order mark (spreadsheets write one) is not part of the first name
+            let fields: Vec<&str> = record.iter().collect();
+            let first = fields.join(",");
+            let s = parse_header(first.trim_start_matches('\u{feff}'), lineno as usize, dim)?;
+            for slot in &s {
+                match slot {
+                    Slot::State(c) => cols[*c] = Some(Vec::new()),
+                    Slot::Material => material = Some(Vec::new()),
+                    Slot::Ignored => {}
+                }
+            }
+            slots = Some((lineno, s));
+            continue;
+        };
+        if record.len() != slots.len() {
+            return Err(format!(
+                "line {lineno}: {} field{}, but the header (line {header_line}) names {} columns",
+                record.len(),
+                if record.len() == 1 { "" } else { "s" },
+                slots.len()
+            ));
+        }
+        for (field, slot) in record.iter().zip(slots) {
+            let name = |s: &Slot| match s {
+                Slot::State(c) => STATE_COLUMNS[*c],
+                _ => "material",
+            };
+            let number = || {
+                field.parse::<f64>().map_err(|_| {
+                    let shown: String = field.chars().take(40).collect();
+                    format!(
+                        "line {lineno}, column `{}`: `{shown}` is not a number",
+                        name(slot)
+                    )
+                })
+            };
+            match slot {
+                Slot::State(c) => cols[*c].as_mut().expect("column kept").push(number()?),
+                Slot::Material => {
+                    let v = number()?;
+                    if !(v >= 0.0 && v <= u32::MAX as f64 && v.fract() == 0.0) {
+                        return Err(format!(
+                            "line {lineno}, column `material`: `{field}` is not a material index (0, 1, ...)"
+                        ));
+                    }
+                    material.as_mut().expect("column kept").push(v as u32);
+                }
+                Slot::Ignored => {}
+            }
+        }
+        lines.push(lineno as usize);
+        if lines.len() > super::super::build::MAX_PARTICLES {
+            return Err(format!(
+                "more than {:.0e} particle rows (the limit of a scene)",
+                super::super::build::MAX_PARTICLES as f64
+            ));
+        }
+    }
+    if slots.is_none() {
+        return Err("no header line (an empty file?)".into());
+    }
+    if lines.is_empty() {
+        return Err("no particle rows after the header".into());
+    }
+    Ok(FileParticles {
+        shown: shown.to_string(),
+        cols,
+        material,
+        rows: Rows::Lines(lines),
+    })
+}
