@@ -259,3 +259,65 @@ fn every_path_architecture_md_names_exists() {
     }
     assert!(named >= 30, "docs/architecture.md names only {named} paths");
 }
+
+/// Every field of the scene's serde structs (a scene key) is named in docs/user-guide.md.
+#[test]
+fn every_scene_key_is_in_the_user_guide() {
+    let repo = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let guide = std::fs::read_to_string(repo.join("docs/user-guide.md")).unwrap();
+    let mut keys = BTreeSet::new();
+    for f in [
+        "spec.rs",
+        "walls.rs",
+        "window.rs",
+        "periodic.rs",
+        "pores.rs",
+    ] {
+        let text = std::fs::read_to_string(src().join("scene").join(f)).unwrap();
+        let text = text.split("#[cfg(test)]").next().unwrap();
+        let mut skip = false;
+        for line in text.lines().map(str::trim) {
+            if line.starts_with("#[serde(skip") {
+                skip = true;
+                continue;
+            }
+            // `pub name: Type,` fields and `name: f64,` fields of enum variants
+            let field = line.strip_prefix("pub ").unwrap_or(line);
+            if let Some((name, rest)) = field.split_once(':') {
+                let plain = !name.is_empty()
+                    && name
+                        .chars()
+                        .all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_')
+                    && !rest.starts_with(':')
+                    && rest.trim_end().ends_with(',');
+                if plain && !skip {
+                    keys.insert(name.to_string());
+                }
+            }
+            if !line.starts_with("#[") && !line.starts_with("///") {
+                skip = false;
+            }
+        }
+    }
+    // the resolved window geometry (scene/window.rs `WindowGeometry`) is not read from a
+    // scene
+    for derived in ["dx", "x_l", "x_r"] {
+        keys.remove(derived);
+    }
+    assert!(keys.len() > 60, "read only {} keys", keys.len());
+    let named = |k: &str| {
+        [
+            format!("`{k}`"),
+            format!("{k} ="),
+            format!("[{k}]"),
+            format!("[[{k}]]"),
+        ]
+        .iter()
+        .any(|form| guide.contains(form.as_str()))
+    };
+    let missing: Vec<&String> = keys.iter().filter(|k| !named(k)).collect();
+    assert!(
+        missing.is_empty(),
+        "scene keys missing from docs/user-guide.md: {missing:?}"
+    );
+}
