@@ -50,6 +50,20 @@ shape = { type = "disc", center = [0.0, 0.0], radius = 0.4e-3 }
 spacing = 1e-3
 "#;
 
+/// A 1D bar of the library's Tillotson aluminium (fluid).
+const TILLOTSON_BAR: &str = r#"
+dim = 1
+scheme = "ts1"
+t_end = 1e-6
+[[materials]]
+name = "al"
+library = "al_tillotson"
+[[bodies]]
+material = "al"
+shape = { type = "segment", min = 0.0, max = 0.01 }
+spacing = 1e-3
+"#;
+
 fn gsph(dir: &Path, args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_gsph"))
         .args(args)
@@ -179,6 +193,8 @@ fn cases() -> Vec<Case> {
         case("snapshots above the limit", f(), "run", &["--set", "output.snapshots=1000000000"], &["output.snapshots: at most 100000 (got 1000000000)"]),
         case("particle file missing", f(), "run", &["--set", "bodies.0.shape={ type = \"particles\", file = \"gone.csv\" }"], &["bodies[0].shape.file: gone.csv: cannot read"]),
         case("STL shape in 1D", f(), "check", &["--set", "bodies.0.shape={ type = \"stl\", file = \"rod.stl\" }"], &["bodies[0].shape: an `stl` shape is a closed surface in 3D; the scene is 1D"]),
+        case("Tillotson e_cv not above e_iv", TILLOTSON_BAR.to_string(), "check", &["--set", "materials.0.eos.e_cv=2e6"], &["materials[0].eos.e_cv: must exceed e_iv = 3e6 J/kg (got 2e6)"]),
+        case("Tillotson negative A", TILLOTSON_BAR.to_string(), "run", &["--set", "materials.0.eos.big_a=-1e9"], &["materials[0].eos.big_a: must be positive and finite (got -1e9)"]),
     ]
 }
 

@@ -1,8 +1,10 @@
-//! The six equations of state on arbitrary `f64` input.
+//! The seven equations of state on arbitrary `f64` input.
 //!
 //! Contract: no input panics. With parameters the scene validator accepts, bounded to a
 //! generous physical range (rho0 1e-3..1e6 kg/m³, c0 1e-3..1e5 m/s, slopes 0..100,
-//! Grüneisen coefficients -100..100, moduli up to 1e14 Pa), every density 1e-12..1e12
+//! Grüneisen coefficients -100..100, moduli up to 1e14 Pa; Tillotson: a, b, alpha, beta
+//! 0..100, E0 1e-3..1e12 J/kg, E_iv 0..1e12 J/kg, E_cv - E_iv 1e-3..1e12 J/kg), every
+//! density 1e-12..1e12
 //! rho0 with |e| <= 1e12 J/kg gives a finite pressure and a finite, positive c² (far beyond
 //! these bounds plain overflow of `c0² rho` or `k3 z³` is possible). Non-finite or
 //! non-positive input may give non-finite output.
@@ -12,7 +14,7 @@ use common::{fit, fit_log};
 use gsph_core::material::eos::*;
 use libfuzzer_sys::fuzz_target;
 
-fn models(a: &[f64; 5]) -> [Eos; 6] {
+fn models(a: &[f64; 5]) -> [Eos; 7] {
     let rho0 = fit_log(a[0], 1e-3, 1e6);
     let c0 = fit_log(a[1], 1e-3, 1e5);
     let s = fit(a[2], 0.0, 100.0);
@@ -42,6 +44,18 @@ fn models(a: &[f64; 5]) -> [Eos; 6] {
             k1: k,
             k2: fit(a[1], -1e14, 1e14),
             k3: fit(a[2], -1e14, 1e14),
+        }),
+        Eos::Tillotson(Tillotson {
+            rho0,
+            a: s,
+            b: fit(a[3], 0.0, 100.0),
+            big_a: k,
+            big_b: fit(a[1], -1e14, 1e14),
+            alpha: s,
+            beta: fit(a[3], 0.0, 100.0),
+            e0: fit_log(a[1], 1e-3, 1e12),
+            e_iv: fit(a[4], 0.0, 1e12),
+            e_cv: fit(a[4], 0.0, 1e12) + fit_log(a[0], 1e-3, 1e12),
         }),
     ]
 }
@@ -81,6 +95,18 @@ fuzz_target!(|input: (bool, [f64; 5], f64, f64)| {
                 k1: a[4],
                 k2: a[1],
                 k3: a[2],
+            }),
+            Eos::Tillotson(Tillotson {
+                rho0: a[0],
+                a: a[2],
+                b: a[3],
+                big_a: a[4],
+                big_b: a[1],
+                alpha: a[2],
+                beta: a[3],
+                e0: a[1],
+                e_iv: a[4],
+                e_cv: a[0],
             }),
         ];
         for m in raw {

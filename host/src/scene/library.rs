@@ -43,6 +43,7 @@ macro_rules! library {
 /// The library, in name order (every `cases/materials/*.toml`; a test checks the list).
 pub const LIBRARY: &[Entry] = library![
     "al_6061_t6",
+    "al_tillotson",
     "beryllium",
     "connolly2013_beryllium",
     "connolly2013_flyer_metal",

@@ -21,6 +21,7 @@ pub fn model_summary(m: &MaterialSpec) -> String {
         EosSpec::Hugoniot { .. } => "hugoniot",
         EosSpec::TwoCurve { .. } => "two_curve",
         EosSpec::Polynomial { .. } => "polynomial",
+        EosSpec::Tillotson { .. } => "tillotson",
     };
     let strength = match &m.strength {
         Some(StrengthSpec::Fluid {}) => "fluid",

@@ -474,3 +474,46 @@ fn cases_resolve_to_the_scenes_they_were() {
     }
     assert_eq!(n, 21);
 }
+
+#[test]
+fn al_tillotson_is_a_tillotson_fluid_and_bad_tillotson_parameters_are_refused() {
+    let s = parse(&bar("", "al_tillotson"), "scene.toml", &[]).unwrap();
+    let m = &s.materials[0];
+    assert_eq!(model_summary(m), "tillotson + fluid");
+    let EosSpec::Tillotson {
+        big_a, e_iv, e_cv, ..
+    } = m.eos
+    else {
+        panic!("{m:?}")
+    };
+    assert_eq!((big_a, e_iv, e_cv), (75.2e9, 3.0e6, 13.9e6));
+    // the scene EOS becomes the core one: P(rho0, 0) = 0, c0² = A/rho0
+    let core = crate::materials::material_of(m);
+    assert!(matches!(core.eos, gsph_core::material::Eos::Tillotson(_)));
+    let st = core.eos.eval(2700.0, 0.0);
+    assert_eq!((st.p, st.c2), (0.0, 75.2e9 / 2700.0));
+    // bad parameters: one line naming the key
+    let lib = |eos: &str| {
+        format!("[[materials]]\nname = \"al\"\nlibrary = \"al_tillotson\"\neos = {{ {eos} }}\n")
+    };
+    assert_eq!(
+        parse_err(&bar(&lib("e_cv = 2.0e6"), "al"), &[]),
+        "scene.toml: materials[0].eos.e_cv: must exceed e_iv = 3e6 J/kg (got 2e6)"
+    );
+    assert_eq!(
+        parse_err(&bar(&lib("e_cv = 3.0e6"), "al"), &[]),
+        "scene.toml: materials[0].eos.e_cv: must exceed e_iv = 3e6 J/kg (got 3e6)"
+    );
+    assert_eq!(
+        parse_err(&bar(&lib("big_a = -1.0e9"), "al"), &[]),
+        "scene.toml: materials[0].eos.big_a: must be positive and finite (got -1e9)"
+    );
+    assert_eq!(
+        parse_err(&bar(&lib("e0 = 0.0"), "al"), &[]),
+        "scene.toml: materials[0].eos.e0: must be positive and finite (got 0)"
+    );
+    assert_eq!(
+        parse_err(&bar(&lib("alpha = -5.0"), "al"), &[]),
+        "scene.toml: materials[0].eos.alpha: must be non-negative and finite (got -5)"
+    );
+}

@@ -2,7 +2,7 @@
 
 use super::{EosSpec, MaterialSpec, StrengthSpec};
 use gsph_core::material::eos::{
-    Eos, Hugoniot, Linear, Logarithmic, MieGruneisen, Polynomial, TwoCurve,
+    Eos, Hugoniot, Linear, Logarithmic, MieGruneisen, Polynomial, Tillotson, TwoCurve,
 };
 use gsph_core::material::strength::{Jh1, JohnsonCook};
 use gsph_core::material::{Material, Strength};
@@ -29,6 +29,29 @@ pub fn material_of(m: &MaterialSpec) -> Material {
         }
         .into(),
         EosSpec::Polynomial { k1, k2, k3 } => Polynomial { rho0, k1, k2, k3 }.into(),
+        EosSpec::Tillotson {
+            a,
+            b,
+            big_a,
+            big_b,
+            alpha,
+            beta,
+            e0,
+            e_iv,
+            e_cv,
+        } => Tillotson {
+            rho0,
+            a,
+            b,
+            big_a,
+            big_b,
+            alpha,
+            beta,
+            e0,
+            e_iv,
+            e_cv,
+        }
+        .into(),
     };
     let strength = match &m.strength {
         Some(spec) => strength_of(spec),

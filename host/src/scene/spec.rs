@@ -370,6 +370,31 @@ pub enum EosSpec {
         #[serde(default)]
         k3: f64,
     },
+    /// Tillotson's metallic EOS (Tillotson 1962; Melosh 1989; Benz & Asphaug 1999):
+    /// `P = [a + b/w] rho e + A mu + B mu²` compressed or cold (`e <= e_iv`),
+    /// `P = a rho e + [b rho e/w + A mu exp(-beta z)] exp(-alpha z²)` expanded and hot
+    /// (`e >= e_cv`), linear in `e` between; `w = e/(e0 eta²) + 1`, `eta = rho/rho0`,
+    /// `mu = eta - 1`, `z = 1/eta - 1` (core `material::eos::tillotson`).
+    Tillotson {
+        /// Tillotson `a`, dimensionless.
+        a: f64,
+        /// Tillotson `b`, dimensionless.
+        b: f64,
+        /// Tillotson `A` (bulk modulus at rho0), Pa.
+        big_a: f64,
+        /// Tillotson `B` (coefficient of mu²), Pa.
+        big_b: f64,
+        /// Tillotson `alpha` (in `exp(-alpha z²)`), dimensionless.
+        alpha: f64,
+        /// Tillotson `beta` (in `exp(-beta z)`), dimensionless.
+        beta: f64,
+        /// Tillotson `E0`, J/kg.
+        e0: f64,
+        /// Energy of incipient vaporisation `E_iv`, J/kg.
+        e_iv: f64,
+        /// Energy of complete vaporisation `E_cv` (above `e_iv`), J/kg.
+        e_cv: f64,
+    },
 }
 
 /// Strength models.

@@ -54,6 +54,38 @@ pub(super) fn validate_eos(key: &str, e: &EosSpec) -> R {
             finite(&format!("{key}.k2"), *k2)?;
             finite(&format!("{key}.k3"), *k3)
         }
+        EosSpec::Tillotson {
+            a,
+            b,
+            big_a,
+            big_b,
+            alpha,
+            beta,
+            e0,
+            e_iv,
+            e_cv,
+        } => {
+            non_negative(&format!("{key}.a"), *a)?;
+            non_negative(&format!("{key}.b"), *b)?;
+            positive(&format!("{key}.big_a"), *big_a)?;
+            finite(&format!("{key}.big_b"), *big_b)?;
+            non_negative(&format!("{key}.alpha"), *alpha)?;
+            non_negative(&format!("{key}.beta"), *beta)?;
+            positive(&format!("{key}.e0"), *e0)?;
+            non_negative(&format!("{key}.e_iv"), *e_iv)?;
+            finite(&format!("{key}.e_cv"), *e_cv)?;
+            if e_cv <= e_iv {
+                return fail(
+                    &format!("{key}.e_cv"),
+                    format!(
+                        "must exceed e_iv = {} J/kg (got {})",
+                        num(*e_iv),
+                        num(*e_cv)
+                    ),
+                );
+            }
+            Ok(())
+        }
     }
 }
 

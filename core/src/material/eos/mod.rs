@@ -9,13 +9,13 @@
 //! `P` along `de = P/rho² drho`.
 //!
 //! One file per model: [`linear`], [`logarithmic`], [`mie_gruneisen`], [`hugoniot`],
-//! [`two_curve`], [`polynomial`].
+//! [`two_curve`], [`polynomial`], [`tillotson`].
 //!
 //! ## Sound-speed floor
 //! Where a model can reach `c² <= 0` (the linear EOS with `gamma != 1`, Mie–Grüneisen,
-//! two-curve Mie–Grüneisen, polynomial) the state is mechanically unstable: it lies past
-//! the spinodal in deep tension (or, for the polynomial, at compressions where a negative
-//! `k3` makes the fit meaningless), where a real solid would already have spalled. The
+//! two-curve Mie–Grüneisen, polynomial, Tillotson) the state is mechanically unstable: it
+//! lies past the spinodal in deep tension (or, for the polynomial, at compressions where a
+//! negative `k3` makes the fit meaningless), where a real solid would already have spalled. The
 //! Riemann solvers need a real, positive impedance `rho c`, so there, and only there,
 //! `c²` is floored at [`C2_FLOOR_FRACTION`] times the model's reference `c0²`. The
 //! logarithmic and Hugoniot models have `c² > 0` everywhere and are not floored.
@@ -35,6 +35,7 @@ pub mod linear;
 pub mod logarithmic;
 pub mod mie_gruneisen;
 pub mod polynomial;
+pub mod tillotson;
 pub mod two_curve;
 
 pub use hugoniot::Hugoniot;
@@ -42,6 +43,7 @@ pub use linear::Linear;
 pub use logarithmic::Logarithmic;
 pub use mie_gruneisen::MieGruneisen;
 pub use polynomial::Polynomial;
+pub use tillotson::Tillotson;
 pub use two_curve::TwoCurve;
 
 use crate::math::{real, Real};
@@ -102,6 +104,9 @@ pub enum Eos {
     TwoCurve(TwoCurve),
     /// `P = k1 z + k2 z² + k3 z³`, `z = rho/rho0 - 1` (seed 000 eq 39).
     Polynomial(Polynomial),
+    /// Tillotson's metallic EOS: compressed, cold and hot expanded states and an
+    /// interpolation between (Tillotson 1962; Melosh 1989; Benz & Asphaug 1999).
+    Tillotson(Tillotson),
 }
 
 impl Eos {
@@ -116,6 +121,7 @@ impl Eos {
             Eos::Hugoniot(m) => m.eval(rho, e),
             Eos::TwoCurve(m) => m.eval(rho, e),
             Eos::Polynomial(m) => m.eval(rho, e),
+            Eos::Tillotson(m) => m.eval(rho, e),
         }
     }
 
@@ -125,7 +131,9 @@ impl Eos {
     /// state (`K_S = rho c²` the isentropic bulk modulus; a weak shock is isentropic to
     /// second order, so `dUs/dup` at `up = 0` is fixed by `K'`):
     /// linear `(1 + gamma)/4` (`K_S' = gamma`; 1/2 for the barotropic `gamma = 1`),
-    /// logarithmic 1/4 (`K_S = B`), polynomial `1/2 + k2/(2 k1)` (compression branch).
+    /// logarithmic 1/4 (`K_S = B`), polynomial `1/2 + k2/(2 k1)` (compression branch),
+    /// Tillotson `1/2 + B/(2A) + (a + b)/4` (`K_S = eta (A + 2 B mu) + (a + b) P` along
+    /// the isentrope from `(rho0, 0)`, where `e` is of second order: `K_S' = 1 + 2B/A + a + b`).
     /// The test `weak_shock_slope_matches_the_exact_hugoniot` checks each against the
     /// Rankine–Hugoniot shock of the EOS itself.
     pub fn hugoniot_slope(&self) -> Real {
@@ -136,6 +144,7 @@ impl Eos {
             Eos::Linear(m) => 0.25 * (1.0 + m.gamma),
             Eos::Logarithmic(_) => 0.25,
             Eos::Polynomial(m) => 0.5 + 0.5 * m.k2 / m.k1,
+            Eos::Tillotson(m) => 0.5 + 0.5 * m.big_b / m.big_a + 0.25 * (m.a + m.b),
         }
     }
 
@@ -149,6 +158,7 @@ impl Eos {
             Eos::Hugoniot(m) => m.rho0,
             Eos::TwoCurve(m) => m.rho0,
             Eos::Polynomial(m) => m.rho0,
+            Eos::Tillotson(m) => m.rho0,
         }
     }
 }
@@ -169,7 +179,8 @@ impl_from!(
     MieGruneisen,
     Hugoniot,
     TwoCurve,
-    Polynomial
+    Polynomial,
+    Tillotson
 );
 
 /// Helpers shared by the models' unit tests.
@@ -272,7 +283,7 @@ mod tests {
     /// [`Eos::hugoniot_slope`] to first order in `eta`.
     #[test]
     fn weak_shock_slope_matches_the_exact_hugoniot() {
-        let cases: [Eos; 8] = [
+        let cases: [Eos; 10] = [
             Linear {
                 rho0: 8960.0,
                 c0: 4148.0,
@@ -322,6 +333,32 @@ mod tests {
                 c_a: 3940.0,
                 s_a: 1.49,
                 gamma: 2.0,
+            }
+            .into(),
+            Tillotson {
+                rho0: 2700.0,
+                a: 0.5,
+                b: 1.63,
+                big_a: 75.2e9,
+                big_b: 65.0e9,
+                alpha: 5.0,
+                beta: 5.0,
+                e0: 5.0e6,
+                e_iv: 3.0e6,
+                e_cv: 13.9e6,
+            }
+            .into(),
+            Tillotson {
+                rho0: 7860.0,
+                a: 0.5,
+                b: 1.5,
+                big_a: 127.9e9,
+                big_b: 105.0e9,
+                alpha: 5.0,
+                beta: 5.0,
+                e0: 9.5e6,
+                e_iv: 1.42e6,
+                e_cv: 8.45e6,
             }
             .into(),
         ];
