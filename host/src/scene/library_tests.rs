@@ -488,7 +488,7 @@ fn al_tillotson_is_a_tillotson_fluid_and_bad_tillotson_parameters_are_refused() 
     };
     assert_eq!((big_a, e_iv, e_cv), (75.2e9, 3.0e6, 13.9e6));
     // the scene EOS becomes the core one: P(rho0, 0) = 0, c0² = A/rho0
-    let core = crate::materials::material_of(m);
+    let core = crate::scene::materials::material_of(m);
     assert!(matches!(core.eos, gsph_core::material::Eos::Tillotson(_)));
     let st = core.eos.eval(2700.0, 0.0);
     assert_eq!((st.p, st.c2), (0.0, 75.2e9 / 2700.0));
