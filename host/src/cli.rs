@@ -41,7 +41,7 @@ pub enum Command {
 }
 
 /// The `gsph` program: with the feature `mpi`, MPI is initialised when a launcher started
-/// the process (`mpirun`, `srun`: see [`crate::dist::launched`]; a plain `gsph run` stays
+/// the process (`mpirun`, `srun`: see `dist::launched`; a plain `gsph run` stays
 /// one process and pays nothing; only the main thread calls MPI), then [`main_with_args`].
 /// Returns the exit code; under MPI a failure on any rank aborts them all.
 pub fn run(args: impl IntoIterator<Item = std::ffi::OsString>) -> i32 {

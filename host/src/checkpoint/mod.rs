@@ -12,7 +12,7 @@
 //! | 24 | 8 | FNV-1a 64 of the payload (u64) |
 //! | 32 | … | payload |
 //!
-//! Payload, in order ([`codec`]: integers and floats fixed-width, floats as bit patterns;
+//! Payload, in order ([`crate::codec`]: integers and floats fixed-width, floats as bit patterns;
 //! strings and arrays prefixed by their length as u64): the gsph version; the run id
 //! (also in summary.json: a checkpoint resumes only the run that wrote it); the scene
 //! origin, text, overrides and name; the checkpoint policy (steps, 0 for none; seconds,
