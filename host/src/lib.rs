@@ -23,8 +23,6 @@ pub mod interrupt;
 
 pub mod memory;
 pub mod monitor;
-pub mod monitor_elastic;
-pub mod monitor_rod;
 pub mod neighbors;
 pub mod outdir;
 pub mod output;

@@ -8,7 +8,7 @@
 //! percent to spare, so that a change that moves them by more fails.
 
 use gsph::driver::{run, RunOptions};
-use gsph::monitor_rod::read_outline;
+use gsph::monitor::rod::read_outline;
 use gsph::scene;
 use std::path::Path;
 

@@ -160,8 +160,8 @@ pub fn series(
 
 /// `gsph plot rod`: the final outline of each run's rod (from its `final.csv`; r from the
 /// axis `axis` through `base` against the height above the base plane, in millimetres,
-/// slabs one particle spacing thick, see [`crate::monitor_rod::Rod::profile`]), with a
-/// measured outline (`outline`, see [`crate::monitor_rod::read_outline`]) drawn dashed.
+/// slabs one particle spacing thick, see [`crate::monitor::rod::Rod::profile`]), with a
+/// measured outline (`outline`, see [`crate::monitor::rod::read_outline`]) drawn dashed.
 pub fn rod(
     dirs: &[PathBuf],
     labels: &[String],
@@ -180,8 +180,8 @@ pub fn rod(
             dirs.len()
         ));
     }
-    let measured = outline.map(crate::monitor_rod::read_outline).transpose()?;
-    let rod = crate::monitor_rod::Rod::at(base, axis);
+    let measured = outline.map(crate::monitor::rod::read_outline).transpose()?;
+    let rod = crate::monitor::rod::Rod::at(base, axis);
     let mut series = Vec::new();
     for (k, dir) in dirs.iter().enumerate() {
         let table = crate::output::read_csv(dir.join("final.csv"))?;

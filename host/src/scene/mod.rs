@@ -10,6 +10,7 @@ mod build;
 mod de;
 pub mod import;
 pub mod library;
+mod material_spec;
 pub mod materials;
 mod periodic;
 pub mod pores;

@@ -3,9 +3,12 @@
 //! smallest density. Series columns are sampled on the series schedule; summary keys are
 //! computed from the final state (peaks: over the sampled series).
 
-use crate::monitor_elastic::Elastic;
+pub mod elastic;
+pub mod rod;
+
 use crate::output::table::ParticleTable;
 use crate::scene::{InitialParticles, Scene, SceneError};
+use elastic::Elastic;
 use gsph_core::material::Material;
 
 /// The particles of a back face and the running peak of their velocity.
@@ -107,7 +110,7 @@ pub struct Monitor {
     damaging: Vec<bool>,
     heat: bool,
     elastic: Option<Elastic>,
-    rod: Option<crate::monitor_rod::Rod>,
+    rod: Option<rod::Rod>,
 }
 
 impl Monitor {
@@ -178,7 +181,7 @@ impl Monitor {
                 .monitor
                 .as_ref()
                 .and_then(|m| m.rod.as_ref())
-                .map(|r| crate::monitor_rod::Rod::new(r, scene.dim))
+                .map(|r| rod::Rod::new(r, scene.dim))
                 .transpose()?,
         })
     }

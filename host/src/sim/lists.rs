@@ -1,0 +1,183 @@
+//! The neighbour lists of a [`Sim`]: Morton renumbering, building, the staleness test
+//! that decides a rebuild, and the overlap check of the initial particles.
+
+use super::*;
+
+impl<const D: usize> Sim<D> {
+    /// Renumbers the particles in Morton order (see [`morton_order`]), then builds the
+    /// neighbour lists at the current positions.
+    pub(super) fn rebuild(&mut self) -> Result<(), SimError> {
+        #[cfg(feature = "mpi")]
+        if self.dist.is_some() {
+            self.rebuild_distributed()?;
+            self.rebuilds += 1;
+            return Ok(());
+        }
+        self.drop_mirrors();
+        if self.reorder {
+            let hmax = self.h.iter().cloned().fold(0.0, f64::max);
+            let order = morton_order(&self.x, &self.ids, hmax, &self.periodic);
+            self.permute(&order);
+        }
+        self.build_x.clone_from(&self.x);
+        self.build_h.clone_from(&self.h);
+        self.add_mirrors();
+        self.build_lists()?;
+        self.rebuilds += 1;
+        Ok(())
+    }
+
+    /// Builds the neighbour lists at the positions and smoothing lengths of the last
+    /// rebuild (`build_x`, `build_h`) and sizes the pair buffers.
+    pub(super) fn build_lists(&mut self) -> Result<(), SimError> {
+        crate::neighbors::build(
+            &self.build_x,
+            &self.build_h,
+            &self.ids,
+            self.kernel.support(),
+            self.skin,
+            &self.periodic,
+            self.capacity,
+            &mut self.lists,
+        )
+        .map_err(|e| SimError::Neighbors(overflow_by_id(e, &self.ids)))?;
+        let pairs = self.lists.unordered_pairs();
+        let layout = Layout::of(self.scheme.family(), self.effects);
+        self.geom.resize(pairs, PairGeom::default());
+        if layout.art {
+            self.fac.resize(pairs, 0.0);
+        }
+        if layout.ts_star {
+            self.ts_star.resize(pairs, TsStar::default());
+        }
+        if layout.pm_star {
+            self.pm_star.resize(pairs, PmStar::default());
+        }
+        Ok(())
+    }
+
+    /// Moves particle `order[k]` to place `k` in every per-particle array.
+    pub(super) fn permute(&mut self, order: &[u32]) {
+        self.renumbered += 1;
+        fn apply<T: Copy>(v: &mut Vec<T>, order: &[u32]) {
+            if v.len() == order.len() {
+                *v = order.iter().map(|&i| v[i as usize]).collect();
+            }
+        }
+        let mut place = vec![0usize; order.len()];
+        for (k, &i) in order.iter().enumerate() {
+            place[i as usize] = k;
+        }
+        for d in self.driven.iter_mut() {
+            d.0 = place[d.0];
+        }
+        apply(&mut self.ids, order);
+        apply(&mut self.x, order);
+        apply(&mut self.v, order);
+        apply(&mut self.m, order);
+        apply(&mut self.mat, order);
+        apply(&mut self.rho, order);
+        apply(&mut self.e, order);
+        apply(&mut self.p, order);
+        apply(&mut self.c, order);
+        apply(&mut self.cl, order);
+        apply(&mut self.h, order);
+        apply(&mut self.s, order);
+        apply(&mut self.eps_p, order);
+        apply(&mut self.damage, order);
+        apply(&mut self.temp, order);
+        apply(&mut self.sums, order);
+        apply(&mut self.grad, order);
+        apply(&mut self.grad_stress, order);
+        apply(&mut self.corr, order);
+        apply(&mut self.av, order);
+        apply(&mut self.art, order);
+        apply(&mut self.aux, order);
+        apply(&mut self.build_x, order);
+        apply(&mut self.build_h, order);
+    }
+
+    /// Rebuilds the neighbour lists (renumbering the particles, see [`Sim::reorder`]) when
+    /// some pair may have entered the kernel support since the last build. [`Sim::step`]
+    /// calls it first; a caller that holds particle indices across a step (the moving
+    /// window) calls it before taking them.
+    pub fn maintain(&mut self) -> Result<(), SimError> {
+        if self.lists_stale() {
+            let (step, t) = (self.step + 1, self.t);
+            self.rebuild().map_err(|e| match e {
+                SimError::Neighbors(n) => SimError::Rebuild { step, t, cause: n },
+                other => other,
+            })?;
+        }
+        Ok(())
+    }
+
+    /// True when some pair may have entered the kernel support since the last build.
+    pub(super) fn lists_stale(&self) -> bool {
+        if self.build_x.len() != self.x.len() {
+            #[cfg(feature = "mpi")]
+            if self.dist.is_some() {
+                return crate::dist::any(true);
+            }
+            return true;
+        }
+        // max and min are exact, so the parallel (and the distributed) reduction is the
+        // serial one
+        let (dmax2, growth, hmin) = (0..self.owned)
+            .into_par_iter()
+            .with_min_len(1024)
+            .map(|i| {
+                let d = self.periodic.min_image(self.x[i] - self.build_x[i]);
+                (
+                    d.norm_squared(),
+                    self.h[i] / self.build_h[i] - 1.0,
+                    self.build_h[i],
+                )
+            })
+            .reduce(
+                || (0.0f64, 0.0f64, f64::INFINITY),
+                |a, b| (a.0.max(b.0), a.1.max(b.1), a.2.min(b.2)),
+            );
+        #[cfg(feature = "mpi")]
+        let (dmax2, growth, hmin) = if self.dist.is_some() {
+            if crate::dist::any(false) {
+                return true;
+            }
+            (
+                crate::dist::all_max(dmax2),
+                crate::dist::all_max(growth),
+                crate::dist::all_min(hmin),
+            )
+        } else {
+            (dmax2, growth, hmin)
+        };
+        2.0 * dmax2.sqrt() >= self.kernel.support() * hmin * (self.skin - growth)
+    }
+
+    /// Refuses particles nearer than half their spacing (`spacing` indexed by id).
+    pub(super) fn check_overlap(&self, spacing: &[f64]) -> Result<(), SimError> {
+        let nb = self.lists.view();
+        // owned pairs (a particle's mirror is its own image through a wall)
+        for i in 0..self.owned {
+            for &j in nb.of(i) {
+                let j = j as usize;
+                if j >= self.owned {
+                    continue;
+                }
+                let d = self.periodic.min_image(self.x[i] - self.x[j]).norm();
+                let (si, sj) = (spacing[self.ids[i] as usize], spacing[self.ids[j] as usize]);
+                if d < 0.5 * si.min(sj) {
+                    let mut at = [0.0; 3];
+                    at[..D].copy_from_slice(self.x[i].as_slice());
+                    return Err(SimError::Overlap {
+                        i: self.ids[i],
+                        j: self.ids[j],
+                        distance: d,
+                        at,
+                    });
+                }
+            }
+        }
+        Ok(())
+    }
+}
