@@ -195,6 +195,7 @@ fn cases() -> Vec<Case> {
         case("STL shape in 1D", f(), "check", &["--set", "bodies.0.shape={ type = \"stl\", file = \"rod.stl\" }"], &["bodies[0].shape: an `stl` shape is a closed surface in 3D; the scene is 1D"]),
         case("Tillotson e_cv not above e_iv", TILLOTSON_BAR.to_string(), "check", &["--set", "materials.0.eos.e_cv=2e6"], &["materials[0].eos.e_cv: must exceed e_iv = 3e6 J/kg (got 2e6)"]),
         case("Tillotson negative A", TILLOTSON_BAR.to_string(), "run", &["--set", "materials.0.eos.big_a=-1e9"], &["materials[0].eos.big_a: must be positive and finite (got -1e9)"]),
+        case("t_end no run could reach", f(), "run", &["--set", "t_end=1e300"], &["t_end: 1e300 s would take about 1.0e308 steps of about 1.0e-8 s", "set max_steps to run it anyway"]),
     ]
 }
 

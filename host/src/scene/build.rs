@@ -246,6 +246,7 @@ pub fn build_particles(scene: &Scene) -> Result<InitialParticles, SceneError> {
             out.temperature.push(mat.initial_temperature());
         }
     }
+    super::validate_parts::check_step_count(scene)?;
     Ok(out)
 }
 

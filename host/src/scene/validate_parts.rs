@@ -267,3 +267,57 @@ pub(super) fn validate_strength(key: &str, strength: &StrengthSpec) -> R {
     }
     Ok(())
 }
+
+/// Most steps a run without `max_steps` may be expected to take: beyond it the run would
+/// not end in any useful time (a year of steps at 30 µs each).
+pub const MAX_ESTIMATED_STEPS: f64 = 1e9;
+
+/// Refuses a `t_end` that no run could reach: the steps it needs at the fixed `dt`, or at
+/// the time step of the scene's materials at rest on its finest lattice (`cfl` ×
+/// `h_factor` × spacing over the largest longitudinal sound speed at the reference
+/// density, an overestimate of the step a run takes), above [`MAX_ESTIMATED_STEPS`],
+/// unless `max_steps` bounds the run. The reference state, not the initial one, sets the
+/// estimate, so a scene whose initial state blows up in its first step is not refused here
+/// (it fails at that step, naming the particle). Bodies from particle files (no spacing)
+/// are left out; a scene of file bodies only is not checked. Called once the particles are
+/// counted (`build_particles`), so that a spacing too fine for memory is refused as such.
+pub(super) fn check_step_count(s: &Scene) -> R {
+    if s.max_steps.is_some() {
+        return Ok(());
+    }
+    let dt = match s.dt {
+        Some(dt) => dt,
+        None => {
+            let c = s
+                .materials
+                .iter()
+                .map(|m| {
+                    let mat = super::materials::material_of(m);
+                    let c2 = mat.eos.eval(m.rho0, 0.0).c2;
+                    (c2 + 4.0 * mat.shear_modulus / (3.0 * m.rho0)).sqrt()
+                })
+                .fold(0.0f64, f64::max);
+            let dx = s
+                .bodies
+                .iter()
+                .map(|b| b.spacing / s.resolution_scale)
+                .filter(|d| d.is_finite() && *d > 0.0)
+                .fold(f64::INFINITY, f64::min);
+            if !(c.is_finite() && c > 0.0 && dx.is_finite()) {
+                return Ok(());
+            }
+            s.cfl() * s.h_factor * dx / c
+        }
+    };
+    let steps = s.t_end / dt;
+    if steps > MAX_ESTIMATED_STEPS {
+        return fail(
+            "t_end",
+            format!(
+                "{} s would take about {steps:.1e} steps of about {dt:.1e} s (the materials' sound speed at rest on the finest spacing), more than {MAX_ESTIMATED_STEPS:.0e}; shorten t_end, or set max_steps to run it anyway",
+                num(s.t_end)
+            ),
+        );
+    }
+    Ok(())
+}
