@@ -161,6 +161,16 @@ fn plot_rod_refuses_bad_outlines_and_arguments_on_one_line() {
         assert!(err.contains(&want), "{args:?}: {err} (want {want})");
         assert!(!Path::new(&png).exists(), "{args:?} wrote a picture");
     }
+    // a colour range may start with a negative number (not taken for a flag)
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_gsph"))
+        .args(["plot", "particles", &d, "--range", "-2e8,NaN"])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("--range: expected MIN,MAX (finite numbers, MIN < MAX), got `-2e8,NaN`"),
+        "{err}"
+    );
     // the side view of `gsph plot particles --axes` takes two different axes
     for axes in ["x,x", "x", "x,w", "x,y,z"] {
         let o = std::process::Command::new(env!("CARGO_BIN_EXE_gsph"))

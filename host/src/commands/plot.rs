@@ -19,8 +19,8 @@ pub enum PlotCommand {
         /// Snapshot nearest this time, s.
         #[arg(long)]
         time: Option<f64>,
-        /// Colour range `MIN,MAX`.
-        #[arg(long)]
+        /// Colour range `MIN,MAX` (MIN may be negative: `--range -2e8,2e8`).
+        #[arg(long, allow_hyphen_values = true)]
         range: Option<String>,
         /// Draw this material index in black (e.g. a projectile).
         #[arg(long)]
