@@ -80,7 +80,7 @@ fn check_metric(scene_path: &Path, opts: &StudyOptions, key: &str) -> Result<(),
     set.push("max_steps=1".into());
     let (sc, _) =
         scene::load_for_scheme(scene_path, &set, scheme.name()).map_err(|e| e.to_string())?;
-    let name = crate::driver::scene_name(&sc, scene_path);
+    let name = crate::scene::scene_name(&sc, scene_path);
     let r = run(
         &sc,
         &name,
@@ -139,7 +139,7 @@ pub fn study(scene_path: &Path, opts: &StudyOptions) -> Result<(Vec<StudyRow>, S
                     );
                 }
             }
-            let name = crate::driver::scene_name(&sc, scene_path);
+            let name = crate::scene::scene_name(&sc, scene_path);
             eprintln!(
                 "study: run {}/{total}: {} at resolution {res}",
                 rows.len() + 1,
@@ -276,21 +276,6 @@ pub fn parse_schemes(s: &str) -> Result<Vec<Scheme>, String> {
             })
         })
         .collect()
-}
-
-/// Parses the comma-separated list of positive numbers given to `flag`.
-pub(crate) fn parse_positive(flag: &str, s: &str) -> Result<Vec<f64>, String> {
-    s.split(',')
-        .map(|n| match n.trim().parse::<f64>() {
-            Ok(v) if v > 0.0 && v.is_finite() => Ok(v),
-            _ => Err(format!("{flag}: `{n}` is not a positive number")),
-        })
-        .collect()
-}
-
-/// Parses a comma-separated list of positive resolution scales.
-pub fn parse_resolutions(s: &str) -> Result<Vec<f64>, String> {
-    parse_positive("--resolutions", s)
 }
 
 /// Runs a study (which writes study.csv and study.md) and writes its plots: error against

@@ -10,13 +10,9 @@ use std::path::PathBuf;
 pub struct CheckArgs {
     /// Scene file.
     pub scene: PathBuf,
-    /// Override a scene key (dotted path), e.g. --set scheme=ts2.
-    #[arg(long = "set", value_name = "KEY=VALUE")]
-    pub set: Vec<String>,
-    /// Remove a scene key (dotted path), e.g. --unset options.riemann to run a scene
-    /// that asks for the two-shock solver with scheme av.
-    #[arg(long = "unset", value_name = "KEY")]
-    pub unset: Vec<String>,
+    /// Scene overrides.
+    #[command(flatten)]
+    pub overrides: super::Overrides,
 }
 
 /// Sets the scene up as a run would (neighbour lists, overlap check, specialisation), so
@@ -33,10 +29,9 @@ fn probe(sc: &scene::Scene, parts: &scene::InitialParticles) -> Result<(), SimEr
 pub fn command(args: CheckArgs) -> Result<(), String> {
     let CheckArgs {
         scene: path,
-        set,
-        unset,
+        overrides,
     } = args;
-    let set = scene::with_unsets(set, &unset);
+    let set = overrides.list();
     let sc = scene::load(&path, &set).map_err(|e| e.to_string())?;
     let at = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
     let parts = build_particles(&sc).map_err(|e| at(&e))?;

@@ -23,12 +23,9 @@ pub struct HugoniotArgs {
     /// Feed lengths over which the production profiles are averaged.
     #[arg(long, default_value_t = 4.5)]
     pub average: f64,
-    /// Override a scene key (dotted path).
-    #[arg(long = "set", value_name = "KEY=VALUE")]
-    pub set: Vec<String>,
-    /// Remove a scene key (dotted path).
-    #[arg(long = "unset", value_name = "KEY")]
-    pub unset: Vec<String>,
+    /// Scene overrides.
+    #[command(flatten)]
+    pub overrides: super::Overrides,
     /// Output directory (default `out/<scene name>_hugoniot`).
     #[arg(long)]
     pub out: Option<PathBuf>,
@@ -49,13 +46,12 @@ pub fn command(args: HugoniotArgs) -> Result<(), String> {
         tolerance,
         samples,
         average,
-        set,
-        unset,
+        overrides,
         out,
         threads,
         quiet,
     } = args;
-    let set = scene::with_unsets(set, &unset);
+    let set = overrides.list();
     let sc = scene::load(&path, &set).map_err(|e| e.to_string())?;
     if sc.window.is_none() {
         return Err(format!(
@@ -66,7 +62,7 @@ pub fn command(args: HugoniotArgs) -> Result<(), String> {
     let name = scene_name(&sc, &path);
     let bracket = match bracket {
         None => None,
-        Some(b) => match crate::study::parse_positive("--bracket", &b)?[..] {
+        Some(b) => match super::parse_positive("--bracket", &b)?[..] {
             [lo, hi] if lo < hi => Some((lo, hi)),
             _ => return Err(format!("--bracket: `{b}` must be LO,HI with LO < HI")),
         },
@@ -81,7 +77,7 @@ pub fn command(args: HugoniotArgs) -> Result<(), String> {
         }
     }
     let opts = crate::window::hugoniot::HugoniotOptions {
-        ups: crate::study::parse_positive("--up", &up)?,
+        ups: super::parse_positive("--up", &up)?,
         bracket,
         tolerance,
         samples,

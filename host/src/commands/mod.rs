@@ -49,14 +49,43 @@ pub fn pool(threads: Option<usize>) -> Result<rayon::ThreadPool, String> {
     b.build().map_err(|e| format!("cannot start threads: {e}"))
 }
 
-/// Parses the comma-separated list of finite numbers given to `flag`.
-pub fn parse_finite(flag: &str, s: &str) -> Result<Vec<f64>, String> {
+/// Parses the comma-separated list given to `flag`: each item a number for which `ok`
+/// holds, else an error naming the flag, the item and `what` it must be.
+fn parse_numbers(flag: &str, s: &str, ok: fn(f64) -> bool, what: &str) -> Result<Vec<f64>, String> {
     s.split(',')
         .map(|n| match n.trim().parse::<f64>() {
-            Ok(v) if v.is_finite() => Ok(v),
-            _ => Err(format!("{flag}: `{n}` is not a finite number")),
+            Ok(v) if ok(v) => Ok(v),
+            _ => Err(format!("{flag}: `{n}` is not {what}")),
         })
         .collect()
+}
+
+/// Parses the comma-separated list of finite numbers given to `flag`.
+pub fn parse_finite(flag: &str, s: &str) -> Result<Vec<f64>, String> {
+    parse_numbers(flag, s, f64::is_finite, "a finite number")
+}
+
+/// Parses the comma-separated list of positive numbers given to `flag`.
+pub fn parse_positive(flag: &str, s: &str) -> Result<Vec<f64>, String> {
+    parse_numbers(flag, s, |v| v > 0.0 && v.is_finite(), "a positive number")
+}
+
+/// Scene overrides of a command: `--set KEY=VALUE` and `--unset KEY`, applied in order.
+#[derive(clap::Args, Debug)]
+pub struct Overrides {
+    /// Override a scene key (dotted path), e.g. --set bodies.0.spacing=5e-4.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub set: Vec<String>,
+    /// Remove a scene key (dotted path), e.g. --unset options.riemann.
+    #[arg(long = "unset", value_name = "KEY")]
+    pub unset: Vec<String>,
+}
+
+impl Overrides {
+    /// The overrides as the scene loader takes them (`KEY=VALUE`, and each unset).
+    pub fn list(self) -> Vec<String> {
+        crate::scene::with_unsets(self.set, &self.unset)
+    }
 }
 
 /// A comma-separated list of labels (none when not given).

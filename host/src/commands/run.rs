@@ -16,12 +16,9 @@ pub struct RunArgs {
     /// Output directory (default `out/<scene name>`).
     #[arg(long)]
     pub out: Option<PathBuf>,
-    /// Override a scene key (dotted path), e.g. --set bodies.0.spacing=5e-4.
-    #[arg(long = "set", value_name = "KEY=VALUE")]
-    pub set: Vec<String>,
-    /// Remove a scene key (dotted path), e.g. --unset options.riemann.
-    #[arg(long = "unset", value_name = "KEY")]
-    pub unset: Vec<String>,
+    /// Scene overrides.
+    #[command(flatten)]
+    pub overrides: super::Overrides,
     /// Worker threads (default: all cores).
     #[arg(long)]
     pub threads: Option<usize>,
@@ -47,8 +44,7 @@ pub fn command(args: RunArgs) -> Result<(), String> {
     let RunArgs {
         scene,
         out,
-        set,
-        unset,
+        overrides,
         threads,
         quiet,
         checkpoint_every_steps,
@@ -56,7 +52,7 @@ pub fn command(args: RunArgs) -> Result<(), String> {
         restart: restart_dir,
         stop_after_steps,
     } = args;
-    let set = scene::with_unsets(set, &unset);
+    let set = overrides.list();
     let flags = Policy {
         every_steps: checkpoint_every_steps,
         every_seconds: checkpoint_every_seconds,
@@ -169,7 +165,7 @@ fn merge(flags: Policy, scene: &Scene) -> Policy {
 }
 
 /// Loads a scene file with its overrides, keeping the text for checkpoints.
-pub fn load(path: &Path, overrides: &[String]) -> Result<(Scene, SceneSource), String> {
+fn load(path: &Path, overrides: &[String]) -> Result<(Scene, SceneSource), String> {
     let text = std::fs::read_to_string(path)
         .map_err(|e| format!("{}: cannot read scene: {e}", path.display()))?;
     let origin = path.display().to_string();
@@ -186,7 +182,7 @@ pub fn load(path: &Path, overrides: &[String]) -> Result<(Scene, SceneSource), S
 
 /// A restart of the run checkpointed in `dir`: its scene, its output directory (`dir`) and
 /// the checkpoint options (the flags where given, else the policy stored in the checkpoint).
-pub fn restart(dir: &Path, flags: Policy) -> Result<(Scene, PathBuf, CheckpointOptions), String> {
+fn restart(dir: &Path, flags: Policy) -> Result<(Scene, PathBuf, CheckpointOptions), String> {
     let ck = Checkpoint::read(dir).map_err(|e| e.to_string())?;
     let sc = scene::parse(&ck.source.text, &ck.source.origin, &ck.source.overrides)
         .map_err(|e| format!("{}: the checkpoint's scene: {e}", dir.display()))?;

@@ -17,12 +17,9 @@ pub struct StudyArgs {
     /// Summary key used as the error (default: l1_error, radius_error or energy_rel_error).
     #[arg(long)]
     pub metric: Option<String>,
-    /// Override a scene key in every run.
-    #[arg(long = "set", value_name = "KEY=VALUE")]
-    pub set: Vec<String>,
-    /// Remove a scene key in every run (dotted path), e.g. --unset options.riemann.
-    #[arg(long = "unset", value_name = "KEY")]
-    pub unset: Vec<String>,
+    /// Scene overrides.
+    #[command(flatten)]
+    pub overrides: super::Overrides,
     /// Output directory (default `out/<scene name>_study`).
     #[arg(long)]
     pub out: Option<PathBuf>,
@@ -38,17 +35,16 @@ pub fn command(args: StudyArgs) -> Result<(), String> {
         schemes,
         resolutions,
         metric,
-        set,
-        unset,
+        overrides,
         out,
         threads,
     } = args;
-    let set = scene::with_unsets(set, &unset);
+    let set = overrides.list();
     let sc = scene::load(&path, &set).map_err(|e| e.to_string())?;
     let name = scene_name(&sc, &path);
     let opts = crate::study::StudyOptions {
         schemes: crate::study::parse_schemes(&schemes)?,
-        resolutions: crate::study::parse_resolutions(&resolutions)?,
+        resolutions: super::parse_positive("--resolutions", &resolutions)?,
         overrides: set,
         metric,
         out: match out {

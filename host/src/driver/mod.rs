@@ -115,8 +115,6 @@ pub struct RunOptions {
     pub progress: bool,
 }
 
-pub use crate::scene::scene_name;
-
 /// What a run produced.
 #[derive(Debug, Clone)]
 pub struct RunResult {

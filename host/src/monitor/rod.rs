@@ -39,22 +39,30 @@ impl Rod {
         Rod { base, axis }
     }
 
+    /// Particle `i`'s height above the base plane, its distance from the axis, and half its
+    /// spacing `(m/rho)^(1/3)`, m.
+    fn place(&self, t: &ParticleTable, i: usize) -> (f64, f64, f64) {
+        let (a, b, c) = (self.axis, (self.axis + 1) % 3, (self.axis + 2) % 3);
+        let x = [t.x[i], t.y[i], t.z[i]];
+        let r = ((x[b] - self.base[b]).powi(2) + (x[c] - self.base[c]).powi(2)).sqrt();
+        (x[a] - self.base[a], r, 0.5 * (t.m[i] / t.rho[i]).cbrt())
+    }
+
     /// The outline of the rod: for each slab `bin` m thick along the axis, counted from the
     /// rod's near end (as in [`Rod::measure`], so a rod that has bounced off the wall is
     /// drawn standing on it), the height of the slab's middle above that end and the
     /// largest distance from the axis of its particles plus half a spacing, both m; slabs
     /// without particles are left out.
     pub fn profile(&self, t: &ParticleTable, bin: f64) -> Vec<(f64, f64)> {
-        let (a, b, c) = (self.axis, (self.axis + 1) % 3, (self.axis + 2) % 3);
-        let half = |i: usize| 0.5 * (t.m[i] / t.rho[i]).cbrt();
-        let along = |i: usize| [t.x[i], t.y[i], t.z[i]][a] - self.base[a];
-        let lo = (0..t.len())
-            .map(|i| along(i) - half(i))
+        let places: Vec<(f64, f64, f64)> = (0..t.len()).map(|i| self.place(t, i)).collect();
+        let lo = places
+            .iter()
+            .map(|&(along, _, half)| along - half)
             .filter(|v| v.is_finite())
             .fold(f64::INFINITY, f64::min);
         let mut slabs: Vec<Option<f64>> = Vec::new();
-        for i in 0..t.len() {
-            let h = along(i) - lo;
+        for &(along, r, half) in &places {
+            let h = along - lo;
             if !(h.is_finite() && bin > 0.0) {
                 continue;
             }
@@ -62,9 +70,7 @@ impl Rod {
             if k >= slabs.len() {
                 slabs.resize(k + 1, None);
             }
-            let x = [t.x[i], t.y[i], t.z[i]];
-            let r = ((x[b] - self.base[b]).powi(2) + (x[c] - self.base[c]).powi(2)).sqrt();
-            let r = r + half(i);
+            let r = r + half;
             slabs[k] = Some(slabs[k].map_or(r, |s: f64| s.max(r)));
         }
         let mid = |k: usize| (k as f64 + 0.5) * bin;
@@ -83,27 +89,21 @@ impl Rod {
     /// length is exact and the diameter reads 8.30 mm at D0/10 and 7.94 mm at D0/20 for
     /// D0 = 7.62 mm (the outermost sites lie almost on the circle).
     pub fn measure(&self, t: &ParticleTable) -> (f64, f64) {
-        let (a, b, c) = (self.axis, (self.axis + 1) % 3, (self.axis + 2) % 3);
-        let x = |i: usize| [t.x[i], t.y[i], t.z[i]];
-        let half = |i: usize| 0.5 * (t.m[i] / t.rho[i]).cbrt();
+        let places: Vec<(f64, f64, f64)> = (0..t.len()).map(|i| self.place(t, i)).collect();
         let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
         let mut near = (f64::INFINITY, 0.0);
-        for i in 0..t.len() {
-            let along = x(i)[a] - self.base[a];
-            lo = lo.min(along - half(i));
-            hi = hi.max(along + half(i));
+        for &(along, _, half) in &places {
+            lo = lo.min(along - half);
+            hi = hi.max(along + half);
             if along < near.0 {
-                near = (along, half(i));
+                near = (along, half);
             }
         }
-        let mut radius = 0.0f64;
-        for i in 0..t.len() {
-            let p = x(i);
-            if p[a] - self.base[a] < near.0 + 2.0 * near.1 {
-                let r = ((p[b] - self.base[b]).powi(2) + (p[c] - self.base[c]).powi(2)).sqrt();
-                radius = radius.max(r + half(i));
-            }
-        }
+        let radius = places
+            .iter()
+            .filter(|&&(along, _, _)| along < near.0 + 2.0 * near.1)
+            .map(|&(_, r, half)| r + half)
+            .fold(0.0f64, f64::max);
         ((hi - lo).max(0.0), 2.0 * radius)
     }
 }

@@ -123,8 +123,8 @@ pub fn resolve_effects(scene: &Scene, materials: &[Material]) -> EffectSet {
     e.closed()
 }
 
-pub use crate::neighbors::default_capacity;
-pub use crate::scene::kernel_of;
+use crate::neighbors::default_capacity;
+use crate::scene::kernel_of;
 
 /// A running simulation in dimension `D`. Cloning it saves the whole state (the moving
 /// window restarts its trials from a clone).
