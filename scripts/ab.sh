@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Two gsph binaries side by side (e.g. before and after a change that touches a scheme, a
+# pass or the neighbour search): whether each scheme's final.csv is bitwise the same on the
+# flyer plate, the 1D Riemann problem and a short 3D impact, then the stepping wall time
+# (`wall_s`) on the colliding rings, 300 steps, one thread, the two binaries alternating.
+#   scripts/ab.sh OLD_GSPH NEW_GSPH [REPEATS]     (about 3 minutes with 3 repeats)
+# Build the old one from a worktree: git worktree add /tmp/old REV &&
+#   (cd /tmp/old && cargo build --release -p gsph) and pass /tmp/old/target/release/gsph.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+old=$1 new=$2 reps=${3:-3}
+o=$(mktemp -d)
+echo "== final.csv, old against new"
+for c in flyer_plate riemann_al; do
+  for s in av pm ts1 ts2 tkc; do
+    for b in old new; do "${!b}" run cases/$c.toml --set scheme=$s --out "$o/${b}_${c}_$s" --quiet >/dev/null; done
+    cmp -s "$o/old_${c}_$s/final.csv" "$o/new_${c}_$s/final.csv" && r=identical || r=DIFFERENT
+    echo "$c $s: $r"
+  done
+done
+for b in old new; do
+  "${!b}" run cases/steel_sic_impact_3d.toml --set resolution_scale=0.5 --set max_steps=40 --out "$o/${b}_3d" --quiet >/dev/null
+done
+cmp -s "$o/old_3d/final.csv" "$o/new_3d/final.csv" && r=identical || r=DIFFERENT
+echo "steel_sic_impact_3d (6,250 particles, 40 steps, ts2): $r"
+echo "== wall_s, rings, 300 steps, one thread (repeat scheme binary seconds)"
+for rep in $(seq "$reps"); do
+  for s in av ts2 tkc; do
+    # alternate which binary goes first, so neither always runs on a cooler machine
+    order=(old new); (( rep % 2 == 0 )) && order=(new old)
+    for b in "${order[@]}"; do
+      "${!b}" run cases/rings.toml --set scheme=$s --set max_steps=300 --unset monitor \
+        --set output.snapshots=1 --threads 1 --quiet --out "$o/r_${b}_$s" >/dev/null
+      echo "$rep $s $b $(python3 -c "import json,sys;print(json.load(open(sys.argv[1]))['wall_s'])" "$o/r_${b}_$s/summary.json")"
+    done
+  done
+done
+rm -rf "$o"
