@@ -64,6 +64,30 @@ shape = { type = "segment", min = 0.0, max = 0.01 }
 spacing = 1e-3
 "#;
 
+/// A 2D strip on the floor of a 45° wedge, near its apex (walls that meet at an angle other
+/// than 90° within the kernel's reach of a particle).
+const WEDGE_2D: &str = r#"
+dim = 2
+scheme = "ts2"
+t_end = 1e-7
+[[materials]]
+name = "steel"
+rho0 = 7850.0
+shear_modulus = 80.0e9
+eos = { type = "linear", c0 = 4600.0 }
+strength = { type = "von_mises", yield_stress = 2.0e9 }
+[[bodies]]
+material = "steel"
+shape = { type = "box", min = [2.0e-4, 0.0], max = [4.2e-3, 1.0e-4] }
+spacing = 1.0e-4
+[[walls]]
+point = [0.0, 0.0]
+normal = [0.0, 1.0]
+[[walls]]
+point = [0.0, 0.0]
+normal = [1.0, -1.0]
+"#;
+
 fn gsph(dir: &Path, args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_gsph"))
         .args(args)
@@ -122,6 +146,21 @@ fn cases() -> Vec<Case> {
         "",
         1,
     );
+    let wall_bar = || case_text("wall_bar.toml");
+    // the bar's wall and 49 more behind it, 1 µm apart
+    let fifty_walls = {
+        let t = wall_bar();
+        let cut = t.find("[[walls]]").expect("a wall");
+        let walls: String = (0..50)
+            .map(|k| {
+                format!(
+                    "[[walls]]\npoint = [{:e}]\nnormal = [1.0]\n",
+                    -1e-6 * k as f64
+                )
+            })
+            .collect();
+        format!("{}{walls}", &t[..cut])
+    };
     let second_metal = flyer_with(
         "[[bodies]]",
         "[[materials]]\nname = \"metal\"\nrho0 = 1.0\neos = { type = \"linear\", c0 = 1.0 }\n\n[[bodies]]",
@@ -196,6 +235,9 @@ fn cases() -> Vec<Case> {
         case("Tillotson e_cv not above e_iv", TILLOTSON_BAR.to_string(), "check", &["--set", "materials.0.eos.e_cv=2e6"], &["materials[0].eos.e_cv: must exceed e_iv = 3e6 J/kg (got 2e6)"]),
         case("Tillotson negative A", TILLOTSON_BAR.to_string(), "run", &["--set", "materials.0.eos.big_a=-1e9"], &["materials[0].eos.big_a: must be positive and finite (got -1e9)"]),
         case("t_end no run could reach", f(), "run", &["--set", "t_end=1e300"], &["t_end: 1e300 s would take about 1.0e308 steps of about 1.0e-8 s", "set max_steps to run it anyway"]),
+        case("two coincident walls", wall_bar(), "run", &["--set", "walls=[{point=[0.0],normal=[1.0]},{point=[0.0],normal=[1.0]}]"], &["walls: walls[0] and walls[1] are the same plane with the same normal"]),
+        case("50 parallel walls closer than the kernel's reach", fifty_walls, "run", &[], &["walls[0] and walls[1] are parallel and 1.000e-6 m apart, less than the kernel's reach"]),
+        case("walls meeting at 45° near the particles", WEDGE_2D.to_string(), "run", &[], &["walls[0] and walls[1] meet at 45.0°, not at a right angle, within the kernel's reach"]),
     ]
 }
 

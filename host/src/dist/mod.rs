@@ -91,6 +91,13 @@ pub fn all_sum_u64(v: u64) -> u64 {
     out
 }
 
+/// The global sum (in rank order of the reduction: not the bits of a serial sum).
+pub fn all_sum_f64(v: f64) -> f64 {
+    let mut out = v;
+    world().all_reduce_into(&v, &mut out, SystemOperation::sum());
+    out
+}
+
 /// Element-wise global sums of integer vectors.
 pub fn all_sum_vec(v: &[u64]) -> Vec<u64> {
     let mut out = vec![0u64; v.len()];

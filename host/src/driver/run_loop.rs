@@ -88,11 +88,6 @@ fn set_up<const D: usize>(
     let reference = Reference::from_scene(scene, &parts.x, &parts.spacing)?;
     let mut sim = Sim::<D>::new(scene, parts)?;
     let ranks = crate::dist_size();
-    if ranks > 1 && !scene.walls.is_empty() {
-        return Err(RunError::Refused(format!(
-            "walls: rigid walls and symmetry planes run on one rank; this run has {ranks} MPI ranks"
-        )));
-    }
     if ranks > 1 && scene.window.is_some() {
         return Err(RunError::Refused(format!(
             "the moving window (`window`) runs on one rank; this run has {ranks} MPI ranks"
@@ -170,7 +165,9 @@ fn run_dim_logged<const D: usize>(
     } = set_up::<D>(scene, parts, opts, ckpt)?;
     let resume = ckpt.and_then(|c| c.resume.as_ref());
     let run_id = resume.map_or_else(crate::outdir::new_run_id, |c| c.run_id.clone());
-    // everything is validated: lock the folder, then replace an earlier run's results
+    // everything is validated: a signal now stops the run after a step (with a
+    // checkpoint); lock the folder, then replace an earlier run's results
+    crate::interrupt::set_up_done();
     let mut files = Files::open(scene, scene_name, opts, ckpt, &run_id, &sim, frames, log)?;
     let mut control = match (ckpt, &opts.out) {
         (Some(c), Some(dir)) if c.policy.active() => {

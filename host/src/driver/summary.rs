@@ -62,11 +62,9 @@ pub(super) fn summary<const D: usize>(x: Summed<'_, D>) -> Map<String, Value> {
     let pairs = sim.pair_interactions;
     s.insert("pair_interactions".into(), json!(pairs));
     if !sim.mirrors.is_empty() {
-        s.insert("wall_crossings".into(), json!(sim.mirrors.crossings));
-        s.insert(
-            "wall_friction_work".into(),
-            json!(sim.mirrors.friction_work),
-        );
+        let (crossings, friction_work) = sim.wall_totals();
+        s.insert("wall_crossings".into(), json!(crossings));
+        s.insert("wall_friction_work".into(), json!(friction_work));
     }
     s.insert("neighbor_rebuilds".into(), json!(sim.rebuilds));
     s.insert("bytes_per_particle".into(), json!(sim.bytes_per_particle()));

@@ -29,6 +29,11 @@ impl<const D: usize> Sim<D> {
             keep[i] = true;
         }
         self.retain(&keep);
+        // counters of the whole run (a restart restored them on every rank): rank 0's
+        if rank != 0 {
+            self.mirrors.crossings = 0;
+            self.mirrors.friction_work = 0.0;
+        }
         self.dist = Some(Box::new(Dist::new()));
         self.rebuild()
     }
@@ -180,7 +185,8 @@ impl<const D: usize> Sim<D> {
         let t0 = Instant::now();
         let mut d = self.dist.take().expect("a distributed sim");
         let (rank, size) = (d.rank, d.size);
-        // 1. owned particles only
+        // 1. owned particles only (no wall mirrors, no ghosts)
+        self.drop_mirrors();
         if self.owned < self.len() {
             let keep: Vec<bool> = (0..self.len()).map(|i| i < self.owned).collect();
             self.retain(&keep);
@@ -251,9 +257,11 @@ impl<const D: usize> Sim<D> {
         d.rebuild.bytes += bytes;
         d.rebuild.calls += 1;
         self.dist = Some(d);
-        // 6. lists over owned and ghost particles; a failure on one rank fails all
+        // 6. the walls' mirrors of owned and ghost particles (collective), then lists
+        // over all of them; a failure on one rank fails all
         self.build_x.clone_from(&self.x);
         self.build_h.clone_from(&self.h);
+        self.add_mirrors()?;
         let built = self.build_lists();
         let msg = built.as_ref().err().map(|e| e.to_string());
         match dist::agree(msg.map_or(Ok(()), Err)) {
@@ -282,6 +290,7 @@ impl<const D: usize> Sim<D> {
             }
         }
         s.owned = s.len();
+        (s.mirrors.crossings, s.mirrors.friction_work) = self.wall_totals();
         // a checkpoint of it rebuilds its lists at these positions on restore
         s.build_x.clone_from(&s.x);
         s.build_h.clone_from(&s.h);

@@ -14,6 +14,7 @@ impl<const D: usize> Sim<D> {
             return Ok(());
         }
         self.drop_mirrors();
+        self.owned = self.len();
         if self.reorder {
             let hmax = self.h.iter().cloned().fold(0.0, f64::max);
             let order = morton_order(&self.x, &self.ids, hmax, &self.periodic);
@@ -21,7 +22,7 @@ impl<const D: usize> Sim<D> {
         }
         self.build_x.clone_from(&self.x);
         self.build_h.clone_from(&self.h);
-        self.add_mirrors();
+        self.add_mirrors()?;
         self.build_lists()?;
         self.rebuilds += 1;
         Ok(())

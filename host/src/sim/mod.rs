@@ -377,7 +377,7 @@ impl<const D: usize> Sim<D> {
             pair_interactions: 0,
             rebuilds: 0,
             owned: 0,
-            mirrors: walls::Mirrors::new(&scene.walls),
+            mirrors: walls::Mirrors::new(&scene.walls).map_err(SimError::Walls)?,
             #[cfg(feature = "mpi")]
             dist: None,
         };
@@ -563,15 +563,26 @@ impl<const D: usize> Sim<D> {
         // driven particles move at exactly their prescribed velocity: x0 + v0 dt from
         // where the step started, whatever the step computed for them
         let x_start: Vec<Vector<D>> = self.driven.iter().map(|&(i, _)| sys.x[i]).collect();
+        // the ranks' ghosts (feature `mpi`), then the walls' mirrors
         #[cfg(feature = "mpi")]
-        let halo: &mut dyn gsph_core::halo::Halo<D> = match self.dist.as_deref_mut() {
-            Some(d) => d,
-            None => &mut gsph_core::halo::NoHalo,
-        };
+        let mut both;
+        #[cfg(feature = "mpi")]
+        let halo: &mut dyn gsph_core::halo::Halo<D> =
+            match (self.dist.as_deref_mut(), self.mirrors.is_empty()) {
+                (Some(d), true) => d,
+                (Some(dist), false) => {
+                    both = walls::Both {
+                        dist,
+                        mirrors: &mut self.mirrors,
+                    };
+                    &mut both
+                }
+                (None, true) => &mut gsph_core::halo::NoHalo,
+                (None, false) => &mut self.mirrors,
+            };
         #[cfg(not(feature = "mpi"))]
-        let halo: &mut dyn gsph_core::halo::Halo<D> = &mut gsph_core::halo::NoHalo;
         let halo: &mut dyn gsph_core::halo::Halo<D> = if self.mirrors.is_empty() {
-            halo
+            &mut gsph_core::halo::NoHalo
         } else {
             &mut self.mirrors
         };

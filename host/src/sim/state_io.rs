@@ -133,7 +133,9 @@ impl<const D: usize> Sim<D> {
             return Err(DecodeError("two particles have the same id".into()));
         }
         if !self.build_x.is_empty() {
-            self.add_mirrors();
+            self.owned = self.len();
+            self.add_mirrors()
+                .map_err(|e| DecodeError(format!("walls: {e}")))?;
             self.build_lists()
                 .map_err(|e| DecodeError(format!("neighbour lists: {e}")))?;
         }

@@ -1,0 +1,58 @@
+//! A signal during the set-up of `gsph run` (issue 25): before the run touches its output
+//! folder, SIGTERM and SIGINT end the process at once with 128 + the signal's number, and
+//! leave that folder as it was. Before, the handler only set a flag that the first step
+//! read, so a long set-up (20 parallel walls: 12 minutes) ignored SIGTERM, and the run then
+//! replaced the folder's earlier results before stopping.
+
+use std::path::Path;
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+#[test]
+fn a_signal_during_set_up_ends_the_run_at_once_and_touches_nothing() {
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("../cases/steel_sic_impact.toml");
+    for (signal, code) in [("-TERM", 143), ("-INT", 130)] {
+        let tmp = tempfile::tempdir().unwrap();
+        let out = tmp.path().join("out");
+        std::fs::create_dir(&out).unwrap();
+        std::fs::write(out.join("summary.json"), "{\"earlier\": true}").unwrap();
+        // about 470,000 particles: a set-up of seconds (the lattice, the overlap check,
+        // the neighbour lists), far longer than the signal's delay
+        let child = Command::new(env!("CARGO_BIN_EXE_gsph"))
+            .args(["run", &scene.display().to_string(), "--out"])
+            .arg(&out)
+            .args(["--quiet", "--set", "resolution_scale=3"])
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(Duration::from_millis(200));
+        let t0 = Instant::now();
+        let sent = Command::new("kill")
+            .args([signal, &child.id().to_string()])
+            .status()
+            .unwrap();
+        assert!(sent.success());
+        let o = child.wait_with_output().unwrap();
+        eprintln!(
+            "{signal}: exit {:?} {:.3} s after the signal",
+            o.status.code(),
+            t0.elapsed().as_secs_f64()
+        );
+        assert_eq!(
+            o.status.code(),
+            Some(code),
+            "{}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        let mut names: Vec<String> = std::fs::read_dir(&out)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        names.sort();
+        assert_eq!(names, ["summary.json"], "the folder was touched");
+        assert_eq!(
+            std::fs::read_to_string(out.join("summary.json")).unwrap(),
+            "{\"earlier\": true}"
+        );
+    }
+}
