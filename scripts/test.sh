@@ -40,6 +40,16 @@ if refused=$("$one" check cases/riemann_al_2d.toml 2>&1); then
 fi
 echo "$refused"
 grep -qx 'error: cases/riemann_al_2d.toml: this gsph was built without the specialisation 2D tkc (strength+plasticity+correction+muscl+periodic) `step_2d_pm_strength_plasticity_correction_muscl_periodic` (it contains 3 of 504); rebuild with `--features dim2,scheme-pm,effects-strength,effects-correction,effects-muscl,effects-periodic` or the default features' <<<"$refused"
+echo "== target/release/gsph: the default build (no MPI), as the README says; several copies under mpirun refuse"
+# ffi.sh and python.sh built it with the default features; this is a no-op then
+cargo build --release -q -p gsph
+target/release/gsph --version | grep -qx 'features: cli, hdf5, plot'
+if copies=$(OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 \
+  mpirun --oversubscribe -np 2 target/release/gsph check cases/flyer_plate.toml 2>&1); then
+  echo "a gsph built without MPI ran as two copies under mpirun"; exit 1
+fi
+grep -q 'error: this gsph was built without MPI, and an MPI launcher started it as rank 0 of 2' <<<"$copies"
+echo "$copies" | head -1
 echo "== docs"
 RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps -q
 RUSTDOCFLAGS="-D warnings" cargo doc -p gsph --features mpi --no-deps -q

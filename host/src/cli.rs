@@ -4,9 +4,39 @@
 use crate::commands::{self, EXIT_CODE};
 use clap::{Parser, Subcommand};
 
+/// `gsph --version`: the version, the cargo features and the step specialisations this
+/// build was compiled with.
+fn long_version() -> &'static str {
+    static TEXT: std::sync::OnceLock<String> = std::sync::OnceLock::new();
+    TEXT.get_or_init(|| {
+        let (have, all) = crate::specs::compiled();
+        format!(
+            "{}\nfeatures: {}\nspecialisations: {have} of {all}",
+            env!("CARGO_PKG_VERSION"),
+            crate::build_features().join(", ")
+        )
+    })
+}
+
+/// Why a build without the feature `mpi` refuses to run as one of several copies an MPI
+/// launcher started (`launcher`: [`crate::launcher`]): each copy would run the whole scene
+/// alone and write the same folder. `None`: no launcher, or a launcher of one process.
+#[cfg_attr(feature = "mpi", allow(dead_code))]
+fn copies_refusal(launcher: Option<(Option<usize>, Option<usize>)>) -> Option<String> {
+    let (rank, size) = launcher?;
+    if rank.unwrap_or(0) == 0 && size.unwrap_or(1) <= 1 {
+        return None;
+    }
+    let of = size.map_or(String::new(), |n| format!(" of {n}"));
+    Some(format!(
+        "this gsph was built without MPI, and an MPI launcher started it as rank {}{of}: each copy would run the whole scene alone; build with `--features mpi` (cargo build --release -p gsph --features mpi) or start it without mpirun",
+        rank.unwrap_or(0)
+    ))
+}
+
 /// Godunov SPH for solids under shock and impact.
 #[derive(Parser, Debug)]
-#[command(name = "gsph", version, about)]
+#[command(name = "gsph", version, long_version = long_version(), about)]
 pub struct Cli {
     /// What to do.
     #[command(subcommand)]
@@ -84,6 +114,14 @@ pub fn main_with_args(args: impl IntoIterator<Item = std::ffi::OsString>) -> i32
             return 0;
         }
     };
+    #[cfg(not(feature = "mpi"))]
+    if let Some(msg) = copies_refusal(crate::launcher()) {
+        // one line, from the first copy (the others exit with the same code)
+        if crate::launcher().is_some_and(|(rank, _)| rank.unwrap_or(0) == 0) {
+            eprintln!("error: {msg}");
+        }
+        return 2;
+    }
     let ranks = crate::dist_size();
     if ranks > 1 && !matches!(cli.command, Command::Run(_)) {
         if crate::dist_rank() == 0 {
@@ -116,5 +154,33 @@ pub fn main_with_args(args: impl IntoIterator<Item = std::ffi::OsString>) -> i32
             eprintln!("{who}error: {}", msg.replace('\n', " "));
             code
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn several_copies_started_by_a_launcher_are_refused() {
+        assert_eq!(copies_refusal(None), None);
+        assert_eq!(copies_refusal(Some((Some(0), Some(1)))), None);
+        assert_eq!(copies_refusal(Some((Some(0), None))), None);
+        let e = copies_refusal(Some((Some(0), Some(4)))).unwrap();
+        assert!(e.contains("built without MPI") && e.contains("rank 0 of 4"), "{e}");
+        assert!(e.contains("--features mpi"), "{e}");
+        let e = copies_refusal(Some((Some(3), None))).unwrap();
+        assert!(e.contains("rank 3:"), "{e}");
+    }
+
+    #[test]
+    fn the_long_version_lists_features_and_specialisations() {
+        let v = long_version();
+        assert!(v.starts_with(env!("CARGO_PKG_VERSION")), "{v}");
+        let features = crate::build_features().join(", ");
+        assert!(v.contains(&format!("\nfeatures: {features}\n")), "{v}");
+        assert_eq!(cfg!(feature = "mpi"), features.contains("mpi"), "{v}");
+        let (have, all) = crate::specs::compiled();
+        assert!(v.ends_with(&format!("specialisations: {have} of {all}")), "{v}");
     }
 }

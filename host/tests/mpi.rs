@@ -31,6 +31,15 @@ fn scratch(name: &str) -> PathBuf {
 /// One mpirun at a time: the tests share two cores in CI.
 static ONE_AT_A_TIME: std::sync::Mutex<()> = std::sync::Mutex::new(());
 
+/// The environment Open MPI needs in containers: root allowed, no cross-memory attach
+/// between ranks.
+fn mpi_env(cmd: &mut Command) {
+    cmd.env("OMPI_ALLOW_RUN_AS_ROOT", "1")
+        .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
+        .env("OMPI_MCA_btl_vader_single_copy_mechanism", "none")
+        .env("OMPI_MCA_rmaps_base_oversubscribe", "1");
+}
+
 /// `ranks = 0`: the binary itself, without mpirun (one process).
 fn gsph(ranks: usize, threads: usize, args: &[String]) -> (bool, String) {
     let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
@@ -46,12 +55,7 @@ fn gsph(ranks: usize, threads: usize, args: &[String]) -> (bool, String) {
     if args.first().is_some_and(|a| a == "run") {
         cmd.args(["--threads", &threads.to_string(), "--quiet"]);
     }
-    cmd
-        // containers: root allowed, no cross-memory attach between ranks
-        .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
-        .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
-        .env("OMPI_MCA_btl_vader_single_copy_mechanism", "none")
-        .env("OMPI_MCA_rmaps_base_oversubscribe", "1");
+    mpi_env(&mut cmd);
     let out = cmd.output().expect("mpirun or gsph could not start");
     let text = format!(
         "{}{}",
@@ -294,5 +298,43 @@ fn refusals_on_several_ranks_are_one_line_errors() {
         !dir.join("study").exists(),
         "the refused study made its folder"
     );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Ranks that built different runs refuse, each in one line, before anything is written
+/// (issue 25: two ranks whose scenes differed only in `t_end` waited for ever in
+/// mismatched collectives). Open MPI's MPMD form starts the two ranks with different
+/// `--set`; `timeout` turns a hang into a failure here.
+#[test]
+fn ranks_that_read_different_scenes_refuse_instead_of_hanging() {
+    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
+    let dir = scratch("differ");
+    let out = dir.join("out");
+    let flyer = Path::new(CASES).join("flyer_plate.toml");
+    let rank = |extra: &[&str]| {
+        let mut a: Vec<String> = vec!["-np".into(), "1".into(), bin().display().to_string()];
+        a.extend(["run".into(), flyer.display().to_string(), "--out".into()]);
+        a.push(out.display().to_string());
+        a.push("--quiet".into());
+        a.extend(extra.iter().map(|s| s.to_string()));
+        a
+    };
+    let mut cmd = Command::new("timeout");
+    cmd.args(["120", "mpirun", "--oversubscribe"])
+        .args(rank(&[]))
+        .arg(":")
+        .args(rank(&["--set", "t_end=0.4e-6"]));
+    mpi_env(&mut cmd);
+    let o = cmd.output().expect("timeout and mpirun start");
+    let text = format!(
+        "{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert_ne!(o.status.code(), Some(124), "the ranks hung: {text}");
+    assert!(!o.status.success(), "{text}");
+    assert!(text.contains("error: "), "{text}");
+    assert!(text.contains("its run differs from rank 0's"), "{text}");
+    assert!(!out.exists(), "the refused run made its output folder");
     let _ = std::fs::remove_dir_all(&dir);
 }

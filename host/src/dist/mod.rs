@@ -223,6 +223,25 @@ pub fn agree(local: Result<(), String>) -> Result<(), String> {
     }
 }
 
+/// Refuses, on every rank and in one line, a run whose ranks built different things:
+/// rank 0 broadcasts its `digest` (of the scene, the overrides, the particles and any
+/// restored state) and every rank compares it with its own. Without this check, ranks
+/// that read different scenes (a `t_end` edited while the job started) take different
+/// steps and wait for ever in mismatched collectives.
+pub fn same_everywhere(digest: &str) -> Result<(), String> {
+    let root = broadcast_text(0, digest);
+    let mine = if root == digest {
+        Ok(())
+    } else {
+        Err(format!(
+            "its run differs from rank 0's (scene, overrides, particle files or checkpoint: sha256 {} there, {} on rank 0); every rank must read the same files and options (was one changed while the job started?)",
+            &digest[..digest.len().min(16)],
+            &root[..root.len().min(16)]
+        ))
+    };
+    agree(mine)
+}
+
 /// Which owned particles each rank receives as ghosts, and how many ghosts come from each
 /// rank (they sit after the owned particles, in rank order).
 #[derive(Clone, Debug, Default)]

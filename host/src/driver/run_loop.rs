@@ -108,8 +108,13 @@ fn set_up<const D: usize>(
         frames = ck.frames().map_err(ckpt_err)?;
         resumed = Some(ck.driver.clone());
     }
-    // MPI: split the particles over the ranks; rank 0 alone writes files, every rank
-    // takes part in the gathers behind them
+    // MPI: every rank built the same run (else refused on every rank), then the
+    // particles are split over the ranks; rank 0 alone writes files, every rank takes
+    // part in the gathers behind them
+    #[cfg(feature = "mpi")]
+    if ranks > 1 {
+        crate::dist::same_everywhere(&fingerprint(scene, &sim)).map_err(RunError::Refused)?;
+    }
     #[cfg(feature = "mpi")]
     sim.distribute()?;
     let window_names = match window {
@@ -141,6 +146,29 @@ fn set_up<const D: usize>(
         resumed,
         frames,
     })
+}
+
+/// SHA-256 of what a run is built from: the scene (its every key after overrides, as
+/// printed by `Debug`, which round-trips every float) and the initial or restored state
+/// of every particle.
+#[cfg(feature = "mpi")]
+fn fingerprint<const D: usize>(scene: &Scene, sim: &Sim<D>) -> String {
+    use sha2::{Digest, Sha256};
+    let mut h = Sha256::new();
+    h.update(format!("{scene:?}").as_bytes());
+    h.update(sim.t.to_le_bytes());
+    h.update(sim.step.to_le_bytes());
+    for i in 0..sim.len() {
+        h.update(sim.ids[i].to_le_bytes());
+        for a in 0..D {
+            h.update(sim.x[i][a].to_le_bytes());
+            h.update(sim.v[i][a].to_le_bytes());
+        }
+        for f in [sim.m[i], sim.rho[i], sim.e[i]] {
+            h.update(f.to_le_bytes());
+        }
+    }
+    h.finalize().iter().map(|b| format!("{b:02x}")).collect()
 }
 
 fn run_dim_logged<const D: usize>(
