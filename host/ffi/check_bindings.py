@@ -7,8 +7,9 @@ Every function declared in gsph.h must be
 - called in gsph.hpp (a wrapper calls it),
 - bound in gsph.f90 (an interface `function NAME(...) bind(c)` or `subroutine`, made public),
 - reached by the programs host/ffi/cpp/every.cpp and host/ffi/fortran/every.f90: an
-  undefined symbol of their object files (`nm -u`), so that compiling and running them
-  calls every wrapper.
+  undefined symbol of their object files (`nm -u`), directly or (Fortran) through a
+  helper of the module that calls it (`version()` calls gsph_version), so that compiling
+  and running them calls every wrapper.
 And gsph.f90 binds nothing gsph.h does not declare. Exits 1 naming what is missing.
 """
 
@@ -43,7 +44,20 @@ def main(header, hpp, f90, cpp_obj, f_obj):
         for line in re.findall(r"^\s*public\s*::(.*)$", fortran, re.M | re.I)
         for n in line.split(",")
     }
-    reached = {"every.cpp": undefined_symbols(cpp_obj), "every.f90": undefined_symbols(f_obj)}
+    # the module's helpers (after `contains`) and the C functions each calls
+    helpers = {
+        name.lower(): {c.lower() for c in re.findall(r"\b(gsph_\w+)\s*\(", body)}
+        for name, body in re.findall(
+            r"^\s*function[ \t]+(\w+)\s*\((.*?)^\s*end function",
+            fortran.split("contains", 1)[-1],
+            re.M | re.S | re.I,
+        )
+    }
+    f_syms = undefined_symbols(f_obj)
+    for helper, called in helpers.items():
+        if f"__gsph_MOD_{helper}" in f_syms:
+            f_syms |= called
+    reached = {"every.cpp": undefined_symbols(cpp_obj), "every.f90": f_syms}
     missing = []
     for n in names:
         if not re.search(rf"\b{n}\s*\(", wrapper):

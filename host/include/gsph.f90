@@ -270,13 +270,14 @@ contains
     type(c_ptr), intent(in) :: sim
     character(len=:), allocatable :: text
     character(kind=c_char), allocatable, target :: buf(:)
-    integer(c_size_t) :: need
+    integer(c_size_t) :: need, size
     integer(c_int) :: status
     need = 0
     status = gsph_summary_json(sim, c_null_ptr, 0_c_size_t, need)
-    allocate(buf(max(need, 1_c_size_t)))
+    size = max(need, 1_c_size_t)
+    allocate(buf(size))
     text = ""
-    if (gsph_summary_json(sim, c_loc(buf), need, need) == gsph_ok) text = from_c(c_loc(buf))
+    if (gsph_summary_json(sim, c_loc(buf), size, need) == gsph_ok) text = from_c(c_loc(buf))
   end function
 
   !> The series' column names, comma-separated ("" if the call fails).
@@ -284,12 +285,13 @@ contains
     type(c_ptr), intent(in) :: sim
     character(len=:), allocatable :: text
     character(kind=c_char), allocatable, target :: buf(:)
-    integer(c_size_t) :: need
+    integer(c_size_t) :: need, size
     integer(c_int) :: status
     need = 0
     status = gsph_series_names(sim, c_null_ptr, 0_c_size_t, need)
-    allocate(buf(max(need, 1_c_size_t)))
+    size = max(need, 1_c_size_t)
+    allocate(buf(size))
     text = ""
-    if (gsph_series_names(sim, c_loc(buf), need, need) == gsph_ok) text = from_c(c_loc(buf))
+    if (gsph_series_names(sim, c_loc(buf), size, need) == gsph_ok) text = from_c(c_loc(buf))
   end function
 end module gsph
