@@ -480,7 +480,7 @@ fn every_bundled_scene_builds_and_steps() {
                 let dt = sim
                     .step(None)
                     .unwrap_or_else(|e| panic!("{}: {e}", file.display()));
-                assert!(dt > 0.0 && sim.series().rows.len() >= 1);
+                assert!(dt > 0.0 && !sim.series().rows.is_empty());
             }
             Err(e) => {
                 assert!(windowed, "{}: {e}", file.display());
