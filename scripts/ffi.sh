@@ -7,10 +7,17 @@
 #   C        host/ffi/c/coupling.c     external forces each step; the momentum budget closes
 #   C++      host/ffi/cpp/ring.cpp     collapsing ring, inner radius after 200 steps
 #   Fortran  host/ffi/fortran/flyer.f90 flyer plate, peak sigma_xx
+#   C        host/ffi/c/threads.c      (pthreads) destroy racing a stepping thread, a busy
+#                                      handle refused, destroy stopping a long run, the
+#                                      thread cap of gsph_set_threads
+#   C++      host/ffi/cpp/every.cpp    every wrapper of gsph.hpp, checked
+#   Fortran  host/ffi/fortran/every.f90 every function of gsph.f90, checked
+# and host/ffi/check_bindings.py: every function of gsph.h is wrapped in gsph.hpp, bound
+# in gsph.f90 and reached by every.cpp and every.f90 (their undefined symbols, nm -u).
 # About 2 minutes after the build.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-for tool in cc c++ gfortran python3; do
+for tool in cc c++ gfortran python3 nm; do
   command -v "$tool" >/dev/null || { echo "ffi: $tool is missing (scripts/setup.sh installs it)" >&2; exit 1; }
 done
 echo "== ffi: cargo build --release -p gsph -p gsph-capi (gsph, libgsph.so, libgsph.a)"
@@ -58,4 +65,18 @@ echo "== ffi: Fortran, flyer plate"
 gfortran -std=f2018 -Wall -Werror -J "$out" -c "$inc/gsph.f90" -o "$out/gsph_mod.o"
 gfortran -std=f2018 -Wall -Werror -I "$out" host/ffi/fortran/flyer.f90 "$out/gsph_mod.o" "${link[@]}" -o "$out/flyer_f"
 "$out/flyer_f" cases/flyer_plate.toml "$peak"
+
+echo "== ffi: C, two threads on one handle (pthreads)"
+cc -std=c11 -O2 -Wall -Wextra -Werror -pthread -I"$inc" host/ffi/c/threads.c "${link[@]}" -o "$out/threads_c"
+"$out/threads_c" cases/flyer_plate.toml 8
+
+echo "== ffi: the C++ wrapper and the Fortran module cover gsph.h"
+c++ -std=c++17 -O2 -Wall -Wextra -Werror -I"$inc" -c host/ffi/cpp/every.cpp -o "$out/every_cpp.o"
+gfortran -std=f2018 -Wall -Werror -I "$out" -J "$out" -c host/ffi/fortran/every.f90 -o "$out/every_f.o"
+python3 host/ffi/check_bindings.py "$inc/gsph.h" "$inc/gsph.hpp" "$inc/gsph.f90" "$out/every_cpp.o" "$out/every_f.o"
+c++ "$out/every_cpp.o" "${link[@]}" -o "$out/every_cpp"
+mkdir -p "$out/every_cpp.d" "$out/every_f.d"
+"$out/every_cpp" cases/flyer_plate.toml "$out/every_cpp.d"
+gfortran "$out/every_f.o" "$out/gsph_mod.o" "${link[@]}" -o "$out/every_f"
+"$out/every_f" cases/flyer_plate.toml "$out/every_f.d"
 echo "ffi: all examples agree with gsph run"

@@ -30,6 +30,11 @@ typedef struct gsph_sim gsph_sim;
 // A bug in gsph (a caught panic); the message says where.
 #define GSPH_ERR_INTERNAL 6
 
+// The handle is in use by a call on another thread (one call at a time per handle), or
+// was destroyed by another thread during this call (a run or advance then stops after
+// its step).
+#define GSPH_ERR_BUSY 7
+
 // Particles given by the caller to [`gsph_create_from_particles`]. Vectors hold `dim`
 // values per particle; optional arrays may be null.
 typedef struct gsph_particles {
@@ -62,14 +67,17 @@ extern "C" {
 // Thread safety: any thread, any time.
 const char *gsph_version(void);
 
-// Sets the number of worker threads of the process-wide pool (0: one per core). Only
-// before the first simulation is created; later calls fail. Any thread.
+// Sets the number of worker threads of the process-wide pool (0: one per core; at most
+// 8 per core, as `gsph run --threads`). Only before the first simulation is created;
+// later calls fail.
 //
 // Thread safety: any thread; once, before the first simulation is created.
 int gsph_set_threads(size_t threads);
 
-// Creates a simulation from a scene file, with `n_overrides` overrides `KEY=VALUE` (as
-// `gsph run --set`; may be null when 0). `*out` is the new handle, or null on error.
+// Creates a simulation from a scene file, with `n_overrides` overrides applied in order
+// (`overrides` may be null when 0): `KEY=VALUE` sets a key (as `gsph run --set`),
+// `unset:KEY` removes one (as `gsph run --unset KEY`). `*out` is the new handle, or null
+// on error.
 //
 // Thread safety: any thread, concurrently with other calls; the new handle belongs to the caller.
 int gsph_create_from_file(const char *path,
@@ -77,7 +85,8 @@ int gsph_create_from_file(const char *path,
                           size_t n_overrides,
                           gsph_sim **out);
 
-// Creates a simulation from scene text (TOML, as a scene file), with overrides.
+// Creates a simulation from scene text (TOML, as a scene file), with overrides
+// (`KEY=VALUE`, `unset:KEY`).
 //
 // Thread safety: any thread, concurrently with other calls; the new handle belongs to the caller.
 int gsph_create_from_text(const char *text,
@@ -86,7 +95,8 @@ int gsph_create_from_text(const char *text,
                           gsph_sim **out);
 
 // Creates a simulation of the caller's particles: `settings` is scene text without
-// `bodies` (dim, scheme, t_end, materials, options).
+// `bodies` (dim, scheme, t_end, materials, options), with overrides (`KEY=VALUE`,
+// `unset:KEY`).
 //
 // Thread safety: any thread, concurrently with other calls; the new handle belongs to the caller.
 int gsph_create_from_particles(const char *settings,
@@ -100,118 +110,202 @@ int gsph_create_from_particles(const char *settings,
 // Thread safety: any thread, concurrently with other calls; the new handle belongs to the caller.
 int gsph_create_from_checkpoint(const char *dir, gsph_sim **out);
 
-// Destroys a simulation (null is ignored). The handle must not be used afterwards.
+// Destroys a simulation. Null, and a handle destroyed before, are ignored. A call inside
+// the simulation on another thread is waited for (a `gsph_run` or `gsph_advance` stops
+// after its step and returns GSPH_ERR_BUSY); then the memory is freed. Later calls with
+// the handle fail with GSPH_ERR_POINTER.
 //
-// Thread safety: not concurrently with any other call on the same handle.
+// Thread safety: any thread, also while another thread is inside a call on the handle.
 void gsph_destroy(gsph_sim *sim);
 
 // Dimension of the simulation (1, 2, 3).
 //
-// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
+// Thread safety: one call at a time per handle (GSPH_ERR_BUSY otherwise); distinct handles
+// in parallel.
 int gsph_dim(gsph_sim *sim, size_t *dim);
 
 // Number of particles.
 //
-// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
+// Thread safety: one call at a time per handle (GSPH_ERR_BUSY otherwise); distinct handles
+// in parallel.
 int gsph_count(gsph_sim *sim, size_t *count);
 
 // Simulated time, s, and steps taken (either output may be null).
 //
-// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
+// Thread safety: one call at a time per handle (GSPH_ERR_BUSY otherwise); distinct handles
+// in parallel.
 int gsph_time(gsph_sim *sim, double *t, uint64_t *steps);
 
 // The time step the scene's rule gives now (its fixed `dt`, or the CFL step), s.
 //
-// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
+// Thread safety: one call at a time per handle (GSPH_ERR_BUSY otherwise); distinct handles
+// in parallel.
 int gsph_stable_dt(gsph_sim *sim, double *dt);
 
 // The scene's end time `t_end`, s, and its snapshot count (the times `t_end k /
 // snapshots` that [`gsph_run`] lands on); either output may be null.
 //
-// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
+// Thread safety: one call at a time per handle (GSPH_ERR_BUSY otherwise); distinct handles
+// in parallel.
 int gsph_schedule(gsph_sim *sim, double *t_end, size_t *snapshots);
 
 // Takes one step: `dt` > 0 is the step (refused above the CFL-1 limit), `dt` = 0 takes
 // the scene's rule. `dt_taken` (may be null) receives the step taken.
 //
-// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
+// Thread safety: one call at a time per handle (GSPH_ERR_BUSY otherwise); distinct handles
+// in parallel.
 int gsph_step(gsph_sim *sim, double dt, double *dt_taken);
 
 // Steps until time `t`, the last step shortened to land on it. `steps` (may be null)
 // receives the number of steps taken.
 //
-// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
+// Thread safety: one call at a time per handle (GSPH_ERR_BUSY otherwise); distinct handles
+// in parallel.
 int gsph_advance(gsph_sim *sim, double t, uint64_t *steps);
 
 // Runs to the scene's `t_end` through its snapshot times: the steps of `gsph run`.
 //
-// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
+// Thread safety: one call at a time per handle (GSPH_ERR_BUSY otherwise); distinct handles
+// in parallel.
 int gsph_run(gsph_sim *sim, uint64_t *steps);
 
 // Values per particle of the field `name` (position, velocity, mass, density, pressure,
 // energy, sound_speed, deviator, plastic_strain, damage, temperature, h, material; or
 // the short names of final.csv: x, v, m, rho, p, e, c, s, eps_p, temp).
 //
-// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
+// Thread safety: one call at a time per handle (GSPH_ERR_BUSY otherwise); distinct handles
+// in parallel.
 int gsph_field_components(gsph_sim *sim, const char *name, size_t *components);
 
 // Copies the field `name` into `buf` (`len` = count x components doubles, id order).
 //
-// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
+// Thread safety: one call at a time per handle (GSPH_ERR_BUSY otherwise); distinct handles
+// in parallel.
 int gsph_read_field(gsph_sim *sim, const char *name, double *buf, size_t len);
 
 // Sets the field `name` from `data` (`len` = count x components doubles, id order);
 // every value is checked before any is written. Pressure, sound speed and material are
 // read-only; writing density or energy updates pressure through the EOS.
 //
-// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
+// Thread safety: one call at a time per handle (GSPH_ERR_BUSY otherwise); distinct handles
+// in parallel.
 int gsph_write_field(gsph_sim *sim, const char *name, const double *data, size_t len);
 
 // Copies the particle ids into `ids` (`len` = count), in the order of every field.
 //
-// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
+// Thread safety: one call at a time per handle (GSPH_ERR_BUSY otherwise); distinct handles
+// in parallel.
 int gsph_read_ids(gsph_sim *sim, uint32_t *ids, size_t len);
 
 // Sets the external acceleration, m/s² (`len` = count x dim, id order), applied in every
 // following step (half before, half after it) until set again; `len` 0 removes it.
 //
-// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
+// Thread safety: one call at a time per handle (GSPH_ERR_BUSY otherwise); distinct handles
+// in parallel.
 int gsph_set_acceleration(gsph_sim *sim, const double *acceleration, size_t len);
 
 // Kinetic and internal energy, J (either may be null).
 //
-// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
+// Thread safety: one call at a time per handle (GSPH_ERR_BUSY otherwise); distinct handles
+// in parallel.
 int gsph_energy(gsph_sim *sim, double *kinetic, double *internal);
 
 // Total momentum (3 doubles, unused components 0) and the momentum the external
 // accelerations added so far (3 doubles; may be null).
 //
-// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
+// Thread safety: one call at a time per handle (GSPH_ERR_BUSY otherwise); distinct handles
+// in parallel.
 int gsph_momentum(gsph_sim *sim, double *momentum, double *external);
-
-// The summary as JSON (NUL-terminated) into `buf` of `len` bytes; `needed` (may be null)
-// receives the length including the NUL. A `buf` too small (or null with `len` 0) gets
-// nothing and the call fails with GSPH_ERR_ARGUMENT, `needed` set: call again.
-//
-// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
-int gsph_summary_json(gsph_sim *sim, char *buf, size_t len, size_t *needed);
-
-// Writes the state as a CSV file with the columns of `gsph run`'s final.csv.
-//
-// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
-int gsph_write_snapshot(gsph_sim *sim, const char *path);
-
-// Writes a checkpoint into the directory `dir` (created if missing), from which
-// [`gsph_create_from_checkpoint`] continues bitwise identically.
-//
-// Thread safety: one thread at a time per handle (distinct handles in parallel are fine).
-int gsph_write_checkpoint(gsph_sim *sim, const char *dir);
 
 // The message of the last failed call on this thread ("" after a success), valid until
 // the next gsph call on this thread. Never null.
 //
 // Thread safety: any thread; each thread has its own message.
 const char *gsph_last_error(void);
+
+// The summary as JSON (NUL-terminated) into `buf` of `len` bytes: energies, momenta, the
+// largest kinetic energy, the reference's and the `[monitor]`'s measures (the keys of
+// `gsph run`'s summary.json but timings). `needed` (may be null) receives the length
+// including the NUL. A `buf` too small (or null with `len` 0) gets
+// nothing and the call fails with GSPH_ERR_ARGUMENT, `needed` set: call again.
+//
+// Thread safety: one call at a time per handle (GSPH_ERR_BUSY otherwise); distinct handles
+// in parallel.
+int gsph_summary_json(gsph_sim *sim, char *buf, size_t len, size_t *needed);
+
+// Writes the state as a CSV file with the columns of `gsph run`'s final.csv (a path
+// ending in `.h5` or `.xdmf` is refused: see [`gsph_write_snapshots`]).
+//
+// Thread safety: one call at a time per handle (GSPH_ERR_BUSY otherwise); distinct handles
+// in parallel.
+int gsph_write_snapshot(gsph_sim *sim, const char *path);
+
+// Writes a checkpoint into the directory `dir` (created if missing), from which
+// [`gsph_create_from_checkpoint`] continues bitwise identically (the series and monitor
+// included).
+//
+// Thread safety: one call at a time per handle (GSPH_ERR_BUSY otherwise); distinct handles
+// in parallel.
+int gsph_write_checkpoint(gsph_sim *sim, const char *dir);
+
+// The series recorded so far (`series.csv` of `gsph run`: one row per sample, `output.series`
+// samples per run, 200 by default, plus the initial state): its `rows` and `columns`
+// (either may be null).
+//
+// Thread safety: one call at a time per handle (GSPH_ERR_BUSY otherwise); distinct handles
+// in parallel.
+int gsph_series_shape(gsph_sim *sim, size_t *rows, size_t *columns);
+
+// The series' column names, comma-separated as in the header of series.csv (t, step, dt,
+// kinetic, internal, total, momentum_x..z, then the reference's and the monitor's), into
+// `buf` as [`gsph_summary_json`] does.
+//
+// Thread safety: one call at a time per handle (GSPH_ERR_BUSY otherwise); distinct handles
+// in parallel.
+int gsph_series_names(gsph_sim *sim, char *buf, size_t len, size_t *needed);
+
+// Copies the series into `buf` (`len` = rows x columns doubles, row after row).
+//
+// Thread safety: one call at a time per handle (GSPH_ERR_BUSY otherwise); distinct handles
+// in parallel.
+int gsph_read_series(gsph_sim *sim, double *buf, size_t len);
+
+// Writes the series so far to the file `path` as series.csv (byte for byte what `gsph run`
+// writes for the same steps).
+//
+// Thread safety: one call at a time per handle (GSPH_ERR_BUSY otherwise); distinct handles
+// in parallel.
+int gsph_write_series(gsph_sim *sim, const char *path);
+
+// Writes `dir/snapshots.h5` + `dir/snapshots.xdmf` (the HDF5/XDMF pair of `gsph run`, read by
+// ParaView and `gsph plot particles`) holding the state now; `dir` is created if missing.
+//
+// Thread safety: one call at a time per handle (GSPH_ERR_BUSY otherwise); distinct handles
+// in parallel.
+int gsph_write_snapshots(gsph_sim *sim, const char *dir);
+
+// Starts the snapshot pair in `dir` with the state now as its first snapshot; then
+// [`gsph_run`] adds one at each of the scene's snapshot times (as `gsph run`),
+// [`gsph_append_snapshot`] one at any time, and [`gsph_close_snapshots`] finishes the pair
+// (until then it is snapshots.partial.h5/.xdmf, marked partial; also if the simulation is
+// destroyed first). One file open per simulation; the folder is locked meanwhile.
+//
+// Thread safety: one call at a time per handle (GSPH_ERR_BUSY otherwise); distinct handles
+// in parallel.
+int gsph_open_snapshots(gsph_sim *sim, const char *dir);
+
+// Adds the state now to the open snapshot file (refused without one, or when it holds
+// this step already).
+//
+// Thread safety: one call at a time per handle (GSPH_ERR_BUSY otherwise); distinct handles
+// in parallel.
+int gsph_append_snapshot(gsph_sim *sim);
+
+// Finishes the open snapshot file: snapshots.h5 + snapshots.xdmf (status complete).
+//
+// Thread safety: one call at a time per handle (GSPH_ERR_BUSY otherwise); distinct handles
+// in parallel.
+int gsph_close_snapshots(gsph_sim *sim);
 
 #ifdef __cplusplus
 }  // extern "C"

@@ -1,9 +1,10 @@
-//! The library interface (gsph::api): the runs equal `gsph run`'s bit for bit, fields in
+//! The library interface (gsph::api): the runs equal `gsph run`'s bit for bit (final
+//! state, series.csv with the monitor's columns, summary measures, snapshots.h5), fields in
 //! id order, the checks on every argument, the momentum budget of external forces,
-//! caller-given particles, the typed builder and checkpoints. The C ABI over it is tested
-//! in host/capi.
+//! caller-given particles, the typed builder, checkpoints, overrides that unset keys, and
+//! every bundled scene built and stepped. The C ABI over it is tested in host/capi.
 
-use gsph::api::{Effect, Particles, SceneBuilder, Simulation};
+use gsph::api::{unset, Effect, Particles, SceneBuilder, Simulation};
 use gsph::driver::{run, RunOptions};
 use gsph::scene::{self, BodySpec, EosSpec, MaterialSpec, ShapeSpec, StrengthSpec, VelocitySpec};
 use gsph_core::schemes::Scheme;
@@ -309,12 +310,188 @@ fn a_checkpoint_refuses_state_it_cannot_hold() {
     let e = sim.write_checkpoint(dir.path()).err().unwrap().to_string();
     assert!(e.contains("only a simulation built from scene text"), "{e}");
     // keys the library does not use are refused, not ignored
-    let e = Simulation::from_file(&case("flyer_plate.toml"), &["output.series=5".into()])
-        .err()
-        .unwrap()
-        .to_string();
+    let e = Simulation::from_file(
+        &case("flyer_plate.toml"),
+        &["output.checkpoint_steps=5".into()],
+    )
+    .err()
+    .unwrap()
+    .to_string();
     assert_eq!(
         e,
-        "output.series: not used by the library (series.csv is written by `gsph run`)"
+        "output.checkpoint_steps: not used by the library (call write_checkpoint instead)"
     );
+}
+
+fn gsph(args: &[&str]) {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_gsph"))
+        .args(args)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "gsph {args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+/// A scene with a `[monitor]` and `output.series` (was refused by the library: "monitor: not
+/// used by the library") run through the library and through `gsph run`: series.csv equal
+/// byte for byte (the monitor's columns included), the summary's measures equal, and the
+/// library's snapshots.h5 + .xdmf the CLI's frames, read by the HDF5 reader and by `gsph
+/// plot particles`.
+#[test]
+fn monitor_series_and_snapshots_equal_gsph_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = case("steel_sic_impact.toml");
+    let set = [
+        "resolution_scale=0.1",
+        "t_end=2e-6",
+        "output.snapshots=4",
+        "output.series=50",
+    ];
+    let cli = dir.path().join("cli");
+    let mut args = vec!["run", scene.to_str().unwrap(), "--quiet"];
+    args.extend(["--out", cli.to_str().unwrap()]);
+    for s in &set {
+        args.extend(["--set", s]);
+    }
+    gsph(&args);
+    let set: Vec<String> = set.iter().map(|s| s.to_string()).collect();
+    let mut sim = Simulation::from_file(&scene, &set).unwrap();
+    let lib = dir.path().join("lib");
+    sim.open_snapshots(&lib).unwrap();
+    sim.run().unwrap();
+    sim.close_snapshots().unwrap();
+    sim.write_series(&lib.join("series.csv")).unwrap();
+    let series = std::fs::read_to_string(lib.join("series.csv")).unwrap();
+    assert_eq!(
+        series,
+        std::fs::read_to_string(cli.join("series.csv")).unwrap()
+    );
+    let header = series.lines().next().unwrap();
+    assert!(header.ends_with(",back_face_velocity"), "{header}");
+    // the series as numbers, a row per line of series.csv
+    let s = sim.series();
+    assert_eq!(s.rows.len(), series.lines().count() - 1);
+    assert_eq!(s.names.join(","), header);
+    assert_eq!(
+        s.column("step").unwrap().last(),
+        Some(&(sim.steps() as f64))
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(cli.join("summary.json")).unwrap()).unwrap();
+    let ours = serde_json::Value::Object(sim.summary());
+    for key in [
+        "back_face_velocity_peak",
+        "back_face_velocity_peak_time",
+        "damaged_area_fraction",
+        "temperature_max",
+        "density_min",
+        "kinetic_max",
+        "energy_final",
+    ] {
+        assert!(!summary[key].is_null(), "{key}");
+        assert_eq!(ours[key], summary[key], "{key}");
+    }
+    // the snapshots: the CLI's times and frames
+    let (h5, h5_cli) = (lib.join("snapshots.h5"), cli.join("snapshots.h5"));
+    let times = gsph::output::read_snapshot_times(&h5).unwrap();
+    assert_eq!(times, gsph::output::read_snapshot_times(&h5_cli).unwrap());
+    assert_eq!(times.len(), 5);
+    for (step, _) in times {
+        let (a, b) = (
+            gsph::output::read_frame(&h5, step).unwrap(),
+            gsph::output::read_frame(&h5_cli, step).unwrap(),
+        );
+        assert!(a.table == b.table && a.time == b.time, "step {step}");
+    }
+    assert!(std::fs::read_to_string(lib.join("snapshots.xdmf"))
+        .unwrap()
+        .contains("complete"));
+    assert!(!lib.join("snapshots.partial.h5").exists());
+    let png = dir.path().join("eps_p.png");
+    gsph(&[
+        "plot",
+        "particles",
+        lib.to_str().unwrap(),
+        "--out",
+        png.to_str().unwrap(),
+    ]);
+    assert!(png.metadata().unwrap().len() > 0);
+    // one frame at once; a CSV path for HDF5 is refused
+    sim.write_snapshots(&dir.path().join("one")).unwrap();
+    let one = gsph::output::read_snapshot_times(dir.path().join("one/snapshots.h5")).unwrap();
+    assert_eq!(one, vec![(sim.steps(), sim.time())]);
+    let e = sim.write_snapshot(&dir.path().join("x.h5")).err().unwrap();
+    assert!(e.to_string().contains("write_snapshot writes CSV"), "{e}");
+    assert!(sim.append_snapshot().is_err() && sim.close_snapshots().is_err());
+}
+
+/// Overrides remove keys as `gsph run --unset` does (`unset:KEY`), in order with the sets.
+#[test]
+fn overrides_unset_keys() {
+    let file = case("flyer_plate.toml");
+    let with = flyer();
+    let without = Simulation::from_file(&file, &[unset("reference")]).unwrap();
+    assert!(with.summary().contains_key("l1_error"));
+    assert!(!without.summary().contains_key("l1_error"));
+    assert!(without.profile().is_err());
+    let e = Simulation::from_file(&file, &[unset("nope")])
+        .err()
+        .unwrap();
+    assert!(e.to_string().starts_with("--unset nope: "), "{e}");
+}
+
+/// The scene files of cases/ and cases/hard/, sorted.
+fn scene_files() -> Vec<std::path::PathBuf> {
+    let mut files = Vec::new();
+    for dir in ["", "hard"] {
+        for e in std::fs::read_dir(case(dir)).unwrap() {
+            let p = e.unwrap().path();
+            if p.extension().is_some_and(|x| x == "toml") {
+                files.push(p);
+            }
+        }
+    }
+    files.sort();
+    files
+}
+
+/// Every bundled scene builds through the library (coarse and short) and takes a step
+/// (6 of the 15 in cases/ were refused for their `[monitor]`, `output.series` or
+/// `[window]`); a moving-window scene is refused in one line naming `[window]` and the
+/// command that runs it.
+#[test]
+fn every_bundled_scene_builds_and_steps() {
+    let files = scene_files();
+    assert!(files.len() >= 15, "{files:?}");
+    let (mut refused, mut windowed_scenes) = (0, 0);
+    for file in &files {
+        let set = [
+            "resolution_scale=0.5".to_string(),
+            "output.snapshots=1".to_string(),
+        ];
+        let windowed = scene::load(file, &set).unwrap().window.is_some();
+        windowed_scenes += windowed as usize;
+        match Simulation::from_file(file, &set) {
+            Ok(mut sim) => {
+                assert!(!windowed);
+                let dt = sim
+                    .step(None)
+                    .unwrap_or_else(|e| panic!("{}: {e}", file.display()));
+                assert!(dt > 0.0 && !sim.series().rows.is_empty());
+            }
+            Err(e) => {
+                assert!(windowed, "{}: {e}", file.display());
+                let f = file.display();
+                assert_eq!(
+                    e.to_string(),
+                    format!("window: the moving window ([window]) is not run by the library; run this scene with `gsph run {f}` (its Hugoniot with `gsph hugoniot {f}`)")
+                );
+                refused += 1;
+            }
+        }
+    }
+    assert!(windowed_scenes > 0 && refused == windowed_scenes);
 }

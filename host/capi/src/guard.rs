@@ -2,8 +2,8 @@
 //! lengths checked before they become references.
 
 use super::{
-    GSPH_ERR_ARGUMENT, GSPH_ERR_INTERNAL, GSPH_ERR_IO, GSPH_ERR_POINTER, GSPH_ERR_SCENE,
-    GSPH_ERR_SIMULATION, GSPH_OK,
+    GSPH_ERR_ARGUMENT, GSPH_ERR_BUSY, GSPH_ERR_INTERNAL, GSPH_ERR_IO, GSPH_ERR_POINTER,
+    GSPH_ERR_SCENE, GSPH_ERR_SIMULATION, GSPH_OK,
 };
 use gsph_rs::api::ApiError;
 use std::cell::RefCell;
@@ -35,6 +35,18 @@ impl Failure {
             msg: msg.into(),
         }
     }
+    pub fn busy(msg: impl Into<String>) -> Self {
+        Failure {
+            code: GSPH_ERR_BUSY,
+            msg: msg.into(),
+        }
+    }
+    pub fn internal(msg: impl Into<String>) -> Self {
+        Failure {
+            code: GSPH_ERR_INTERNAL,
+            msg: msg.into(),
+        }
+    }
 }
 
 impl From<ApiError> for Failure {
@@ -44,6 +56,8 @@ impl From<ApiError> for Failure {
             ApiError::Simulation(_) => GSPH_ERR_SIMULATION,
             ApiError::Argument(_) => GSPH_ERR_ARGUMENT,
             ApiError::Io(_) => GSPH_ERR_IO,
+            // only the C ABI stops a call: its handle was destroyed during it
+            ApiError::Stopped(_) => GSPH_ERR_BUSY,
         };
         Failure {
             code,
@@ -188,4 +202,27 @@ pub unsafe fn strings(
         .enumerate()
         .map(|(k, &s)| unsafe { cstr(s, &format!("{name}[{k}]")) }.map(str::to_string))
         .collect()
+}
+
+/// Copies `text` with a NUL into `buf` of `len` bytes, its length with the NUL into the
+/// optional `needed`; a `buf` too small gets nothing and fails with GSPH_ERR_ARGUMENT
+/// (`what` names the text).
+pub unsafe fn text_out(
+    text: &str,
+    buf: *mut c_char,
+    len: usize,
+    needed: *mut usize,
+    what: &str,
+) -> Result<(), Failure> {
+    let need = text.len() + 1;
+    unsafe { put(needed, "needed", need)? };
+    if len < need {
+        return Err(Failure::argument(format!(
+            "buf: {len} bytes, the {what} needs {need}"
+        )));
+    }
+    let b = unsafe { slice_mut(buf.cast::<u8>(), len, "buf")? };
+    b[..text.len()].copy_from_slice(text.as_bytes());
+    b[text.len()] = 0;
+    Ok(())
 }

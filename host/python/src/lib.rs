@@ -1,8 +1,9 @@
 //! `gsph._gsph`: the extension module under the `gsph` Python package
 //! (host/python/python/gsph/__init__.py wraps it; docs/python.md). Long calls release
-//! the GIL; fields cross as numpy arrays.
+//! the GIL and look for signals between steps (Ctrl-C raises `KeyboardInterrupt` after
+//! the step in progress); fields cross as numpy arrays.
 
-use gsph::api::{ApiError, Field, Particles, Simulation as Sim};
+use gsph::api::{ApiError, ApiResult, Field, Particles, Simulation as Sim};
 use numpy::{IntoPyArray, PyArrayMethods, PyReadonlyArray1};
 use pyo3::create_exception;
 use pyo3::exceptions::PyException;
@@ -45,8 +46,33 @@ fn err(e: ApiError) -> PyErr {
     match e {
         ApiError::Scene(_) => SceneError::new_err(msg),
         ApiError::Simulation(_) => SimulationError::new_err(msg),
-        ApiError::Argument(_) => ArgumentError::new_err(msg),
+        ApiError::Argument(_) | ApiError::Stopped(_) => ArgumentError::new_err(msg),
         ApiError::Io(_) => OutputError::new_err(msg),
+    }
+}
+
+/// Seconds between two looks for signals during a long call.
+const SIGNAL_PERIOD: f64 = 0.02;
+
+/// Between the steps of a long call (the GIL released): runs Python's signal handlers
+/// every [`SIGNAL_PERIOD`] s; an exception from one (`KeyboardInterrupt` on Ctrl-C) is
+/// kept in `raised` and stops the call after the step just taken.
+fn between_steps(last: &mut std::time::Instant, raised: &mut Option<PyErr>) -> ApiResult<()> {
+    if last.elapsed().as_secs_f64() < SIGNAL_PERIOD {
+        return Ok(());
+    }
+    *last = std::time::Instant::now();
+    Python::attach(|py| py.check_signals()).map_err(|e| {
+        *raised = Some(e);
+        ApiError::Stopped("stopped by a signal".into())
+    })
+}
+
+/// The result of a long call: the exception a signal handler raised, if one stopped it.
+fn after_steps<T>(r: ApiResult<T>, raised: Option<PyErr>) -> PyResult<T> {
+    match (r, raised) {
+        (Err(_), Some(e)) => Err(e),
+        (r, _) => r.map_err(err),
     }
 }
 
@@ -156,12 +182,16 @@ impl PySim {
 
     fn advance(&mut self, py: Python<'_>, t: f64) -> PyResult<u64> {
         let inner = &mut self.inner;
-        py.detach(|| inner.advance_to(t)).map_err(err)
+        let (mut last, mut raised) = (std::time::Instant::now(), None);
+        let r = py.detach(|| inner.advance_to_with(t, || between_steps(&mut last, &mut raised)));
+        after_steps(r, raised)
     }
 
     fn run(&mut self, py: Python<'_>) -> PyResult<u64> {
         let inner = &mut self.inner;
-        py.detach(|| inner.run()).map_err(err)
+        let (mut last, mut raised) = (std::time::Instant::now(), None);
+        let r = py.detach(|| inner.run_with(|| between_steps(&mut last, &mut raised)));
+        after_steps(r, raised)
     }
 
     /// Values per particle of a field.
@@ -228,6 +258,41 @@ impl PySim {
 
     fn write_checkpoint(&self, dir: PathBuf) -> PyResult<()> {
         self.inner.write_checkpoint(&dir).map_err(err)
+    }
+
+    /// The series so far: (column names, float64 array (rows, columns)).
+    fn series<'py>(&self, py: Python<'py>) -> PyResult<(Vec<String>, Bound<'py, PyAny>)> {
+        let s = self.inner.series();
+        let (rows, cols) = (s.rows.len(), s.names.len());
+        let flat: Vec<f64> = s.rows.into_iter().flatten().collect();
+        Ok((
+            s.names,
+            flat.into_pyarray(py).reshape([rows, cols])?.into_any(),
+        ))
+    }
+
+    fn series_csv(&self) -> String {
+        self.inner.series_csv().to_string()
+    }
+
+    fn write_series(&self, path: PathBuf) -> PyResult<()> {
+        self.inner.write_series(&path).map_err(err)
+    }
+
+    fn write_snapshots(&self, dir: PathBuf) -> PyResult<()> {
+        self.inner.write_snapshots(&dir).map_err(err)
+    }
+
+    fn open_snapshots(&mut self, dir: PathBuf) -> PyResult<()> {
+        self.inner.open_snapshots(&dir).map_err(err)
+    }
+
+    fn append_snapshot(&mut self) -> PyResult<()> {
+        self.inner.append_snapshot().map_err(err)
+    }
+
+    fn close_snapshots(&mut self) -> PyResult<()> {
+        self.inner.close_snapshots().map_err(err)
     }
 }
 

@@ -14,24 +14,39 @@
 //!
 //! Steps are the [`Sim::step`] of the `gsph` command: [`Simulation::run`] takes the same
 //! time steps as `gsph run` (it lands on the same snapshot times) and gives the same
-//! final state to the last bit.
+//! final state to the last bit. Every step is recorded as `gsph run` records it (the same
+//! [`Recorder`]): the series (`series.csv`, with the scene's `[monitor]` and reference
+//! columns) and the summary's measures; snapshots go to CSV or to the HDF5/XDMF pair of
+//! `gsph run` ([`output`]).
+//!
+//! Overrides are the strings of `gsph run`: `KEY=VALUE` (`--set`) and `unset:KEY`
+//! (`--unset KEY`, [`unset`]).
 
 pub mod builder;
 pub mod fields;
+pub mod output;
 mod particles;
 
 use crate::checkpoint::SceneSource;
+use crate::driver::record::Recorder;
+use crate::monitor::Monitor;
 use crate::reference::Reference;
 use crate::scene::{self, InitialParticles, Scene};
 use crate::sim::{Sim, SimError};
 use gsph_core::effects::EffectSet;
 use gsph_core::schemes::Scheme;
-use serde_json::{json, Map, Value};
 use std::path::Path;
 
 pub use builder::{Effect, Riemann, SceneBuilder};
 pub use fields::{Field, FIELDS};
+pub use output::Series;
 pub use particles::Particles;
+
+/// The override that removes `key` from a scene (`gsph run --unset KEY`): `unset:KEY`,
+/// given among the `KEY=VALUE` overrides (applied in order).
+pub fn unset(key: &str) -> String {
+    format!("{}{key}", scene::UNSET)
+}
 
 /// What went wrong in a library call; `Display` is one line.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -45,15 +60,19 @@ pub enum ApiError {
     Argument(String),
     /// A file could not be written.
     Io(String),
+    /// A long call ([`Simulation::run_with`], [`Simulation::advance_to_with`]) was stopped
+    /// between two steps by its caller; the state is whole and can step on.
+    Stopped(String),
 }
 
 impl std::fmt::Display for ApiError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            ApiError::Scene(m) | ApiError::Simulation(m) | ApiError::Argument(m) => {
-                write!(f, "{m}")
-            }
-            ApiError::Io(m) => write!(f, "{m}"),
+            ApiError::Scene(m)
+            | ApiError::Simulation(m)
+            | ApiError::Argument(m)
+            | ApiError::Io(m)
+            | ApiError::Stopped(m) => write!(f, "{m}"),
         }
     }
 }
@@ -95,13 +114,18 @@ macro_rules! with_sim {
 }
 pub(crate) use with_sim;
 
-/// A simulation of any dimension with the controls a coupling code needs.
-#[derive(Clone)]
+/// A simulation of any dimension with the controls a coupling code needs. A clone has
+/// the state and the series so far, but no open snapshot file.
 pub struct Simulation {
     scene: Scene,
     source: Option<SceneSource>,
     sim: AnySim,
-    reference: Option<Reference>,
+    /// The series, monitor and reference, as `gsph run` records them.
+    rec: Recorder,
+    /// Index of the next series sample (`t_end k / series`).
+    next_series: usize,
+    /// The HDF5/XDMF snapshots being written, if open ([`Self::open_snapshots`]).
+    snapshots: Option<output::Snapshots>,
     energy0: f64,
     momentum0: [f64; 3],
     /// External accelerations in id order (`dim` per particle), empty for none.
@@ -115,9 +139,29 @@ pub struct Simulation {
     failed: Option<String>,
 }
 
+impl Clone for Simulation {
+    fn clone(&self) -> Self {
+        Simulation {
+            scene: self.scene.clone(),
+            source: self.source.clone(),
+            sim: self.sim.clone(),
+            rec: self.rec.clone(),
+            next_series: self.next_series,
+            snapshots: None,
+            energy0: self.energy0,
+            momentum0: self.momentum0,
+            external: self.external.clone(),
+            impulse: self.impulse,
+            external_work: self.external_work,
+            order: self.order.clone(),
+            failed: self.failed.clone(),
+        }
+    }
+}
+
 impl Simulation {
-    /// Reads, validates and builds a scene file, applying `overrides` (`KEY=VALUE`, as
-    /// `gsph run --set`).
+    /// Reads, validates and builds a scene file, applying `overrides` in order (`KEY=VALUE`
+    /// as `gsph run --set`, `unset:KEY` as `--unset KEY`: [`unset`]).
     pub fn from_file(path: &Path, overrides: &[String]) -> ApiResult<Self> {
         let text = std::fs::read_to_string(path)
             .map_err(|e| ApiError::Scene(format!("{}: cannot read scene: {e}", path.display())))?;
@@ -128,7 +172,7 @@ impl Simulation {
         Self::from_source(&text, &path.display().to_string(), &stem, overrides)
     }
 
-    /// Validates and builds scene text (`origin` names it in messages).
+    /// Validates and builds scene text (`origin` names it in messages) with overrides.
     pub fn from_text(text: &str, origin: &str, overrides: &[String]) -> ApiResult<Self> {
         Self::from_source(text, origin, origin, overrides)
     }
@@ -136,6 +180,7 @@ impl Simulation {
     fn from_source(text: &str, origin: &str, stem: &str, overrides: &[String]) -> ApiResult<Self> {
         let scene = scene::parse(text, origin, overrides)?;
         let name = scene.name.clone().unwrap_or_else(|| stem.to_string());
+        refuse_driver_only(&scene, origin)?;
         let mut sim = Self::from_scene(scene)?;
         sim.source = Some(SceneSource {
             origin: origin.to_string(),
@@ -166,50 +211,24 @@ impl Simulation {
     }
 
     fn with_particles(scene: Scene, parts: InitialParticles) -> ApiResult<Self> {
-        // what only the run driver does is refused, not ignored
-        let driver_only = [
-            (
-                scene.window.is_some(),
-                "window",
-                "the moving window runs under `gsph run` and `gsph hugoniot`",
-            ),
-            (
-                scene.monitor.is_some(),
-                "monitor",
-                "the monitors run under `gsph run`; read the fields instead",
-            ),
-            (
-                scene.output.series.is_some(),
-                "output.series",
-                "series.csv is written by `gsph run`",
-            ),
-            (
-                scene.output.checkpoint_steps.is_some(),
-                "output.checkpoint_steps",
-                "call write_checkpoint instead",
-            ),
-            (
-                scene.output.checkpoint_seconds.is_some(),
-                "output.checkpoint_seconds",
-                "call write_checkpoint instead",
-            ),
-        ];
-        if let Some((_, key, why)) = driver_only.iter().find(|d| d.0) {
-            return Err(ApiError::Scene(format!(
-                "{key}: not used by the library ({why})"
-            )));
-        }
+        refuse_driver_only(&scene, "SCENE.toml")?;
         let reference = Reference::from_scene(&scene, &parts.x, &parts.spacing)?;
         let sim = match scene.dim {
             1 => AnySim::One(Box::new(Sim::new(&scene, &parts)?)),
             2 => AnySim::Two(Box::new(Sim::new(&scene, &parts)?)),
             _ => AnySim::Three(Box::new(Sim::new(&scene, &parts)?)),
         };
+        let materials = with_sim!(&sim, s => s.materials.clone());
+        let monitor = Monitor::new(&scene, &parts, &materials)?;
+        let mut rec = Recorder::new(reference, monitor, &[]);
+        with_sim!(&sim, s => rec.push(s.as_ref(), &None, 0.0));
         let mut s = Simulation {
             scene,
             source: None,
             sim,
-            reference,
+            rec,
+            next_series: 1,
+            snapshots: None,
             energy0: 0.0,
             momentum0: [0.0; 3],
             external: Vec::new(),
@@ -304,7 +323,24 @@ impl Simulation {
             return Err(e);
         }
         self.kick(0.5 * dt);
+        self.record(dt);
         Ok(())
+    }
+
+    /// Samples the series after a step of `dt` when the step passed the next series time
+    /// (`t_end k / series`, `series` 200 unless the scene's `output.series` says), as
+    /// `gsph run` does.
+    fn record(&mut self, dt: f64) {
+        let t_end = self.scene.t_end;
+        let n = self.scene.output.series.unwrap_or(200) as f64;
+        let t = self.time();
+        if t >= t_end * self.next_series as f64 / n {
+            let rec = &mut self.rec;
+            with_sim!(&self.sim, s => rec.push(s.as_ref(), &None, dt));
+            while t >= t_end * self.next_series as f64 / n {
+                self.next_series += 1;
+            }
+        }
     }
 
     /// An error if a step failed before: the state is half a step and cannot go on.
@@ -320,6 +356,17 @@ impl Simulation {
     /// Steps with the scene's rule until time `t`, the last step shortened to land on it
     /// (as `gsph run` lands on its snapshot times). Returns the steps taken.
     pub fn advance_to(&mut self, t: f64) -> ApiResult<u64> {
+        self.advance_to_with(t, || Ok(()))
+    }
+
+    /// [`Self::advance_to`], calling `between` after every step: an error from it stops
+    /// the call there (the state is whole and can step on) and is returned. The C ABI
+    /// stops a call whose handle another thread destroys, Python on Ctrl-C.
+    pub fn advance_to_with(
+        &mut self,
+        t: f64,
+        mut between: impl FnMut() -> ApiResult<()>,
+    ) -> ApiResult<u64> {
         if !t.is_finite() {
             return Err(ApiError::Argument(format!("t: must be finite (got {t:e})")));
         }
@@ -330,13 +377,20 @@ impl Simulation {
                 dt = t - self.time();
             }
             self.step_exact(dt)?;
+            between()?;
         }
         Ok(self.steps() - first)
     }
 
     /// Runs to the scene's `t_end` (or `max_steps`) through its snapshot times, taking the
-    /// same steps as `gsph run` on the same scene. Returns the steps taken.
+    /// same steps as `gsph run` on the same scene (and, with a snapshot file open, writing
+    /// a snapshot at each of those times, as `gsph run` does). Returns the steps taken.
     pub fn run(&mut self) -> ApiResult<u64> {
+        self.run_with(|| Ok(()))
+    }
+
+    /// [`Self::run`], calling `between` after every step (see [`Self::advance_to_with`]).
+    pub fn run_with(&mut self, mut between: impl FnMut() -> ApiResult<()>) -> ApiResult<u64> {
         let first = self.steps();
         let (t_end, n_out) = (self.scene.t_end, self.scene.output.snapshots.max(1));
         let max_steps = self.scene.max_steps.unwrap_or(u64::MAX);
@@ -352,6 +406,10 @@ impl Simulation {
                 dt = t_out - self.time();
             }
             self.step_exact(dt)?;
+            if self.time() >= t_out * (1.0 - 1e-12) {
+                self.snapshot_at_output_time()?;
+            }
+            between()?;
         }
         Ok(self.steps() - first)
     }
@@ -452,132 +510,35 @@ impl Simulation {
         let order = &self.order.1;
         with_sim!(&self.sim, s => order.iter().map(|&i| s.ids[i]).collect())
     }
+}
 
-    /// The summary of the state now: the keys of `gsph run`'s summary.json that do not
-    /// need the run's history (scene, scheme, effects, particles, steps, t, energies and
-    /// momenta, the reference's measures), plus the external impulse and work.
-    pub fn summary(&self) -> Map<String, Value> {
-        let mut s = Map::new();
-        let name = self
-            .source
-            .as_ref()
-            .map(|s| s.name.clone())
-            .or_else(|| self.scene.name.clone())
-            .unwrap_or_default();
-        let (k, i) = self.energy();
-        let e1 = k + i;
-        let scale = self.energy0.abs().max(k + i.abs()).max(f64::MIN_POSITIVE);
-        let d = self.dim();
-        s.insert("scene".into(), json!(name));
-        s.insert("dim".into(), json!(d));
-        s.insert("scheme".into(), json!(self.scheme().name()));
-        s.insert(
-            "effects".into(),
-            json!(self.effects().names().collect::<Vec<_>>()),
-        );
-        s.insert("particles".into(), json!(self.len()));
-        s.insert("steps".into(), json!(self.steps()));
-        s.insert("t".into(), json!(self.time()));
-        s.insert("energy_initial".into(), json!(self.energy0));
-        s.insert("energy_final".into(), json!(e1));
-        s.insert(
-            "energy_rel_error".into(),
-            json!((e1 - self.energy0 - self.external_work) / scale),
-        );
-        s.insert("kinetic_final".into(), json!(k));
-        s.insert("internal_final".into(), json!(i));
-        s.insert(
-            "momentum_initial".into(),
-            json!(self.momentum0[..d].to_vec()),
-        );
-        s.insert(
-            "momentum_final".into(),
-            json!(self.momentum()[..d].to_vec()),
-        );
-        s.insert("external_impulse".into(), json!(self.impulse[..d].to_vec()));
-        s.insert("external_work".into(), json!(self.external_work));
-        if let Some(r) = &self.reference {
-            let table = with_sim!(&self.sim, s => s.table());
-            for (key, v) in r.measures(&table, self.time()) {
-                s.insert(key.into(), json!(v));
-            }
-        }
-        s
-    }
-
-    /// `[x, sigma_xx, exact sigma_xx]` of every particle sorted by x (the exact value NaN
-    /// where it does not hold), for scenes whose reference is a stress profile (the flyer
-    /// plate, the elastic-plastic Riemann problem): `gsph run`'s profile.csv.
-    pub fn profile(&self) -> ApiResult<Vec<[f64; 3]>> {
-        let r = match &self.reference {
-            Some(r) if r.is_profile() => r,
-            _ => {
-                return Err(ApiError::Argument(
-                    "profile: the scene's [reference] is not a stress profile (flyer_plate or elastic_plastic_riemann)".into(),
-                ))
-            }
+/// Refuses what only the run driver does, rather than ignoring it: the moving window
+/// (named with the command that runs it) and the checkpoint schedule.
+fn refuse_driver_only(scene: &Scene, origin: &str) -> ApiResult<()> {
+    if scene.window.is_some() {
+        let file = if Path::new(origin).is_file() {
+            origin
+        } else {
+            "SCENE.toml"
         };
-        let rows = r.profile(&self.table(), self.time()).unwrap_or_default();
-        Ok(rows
-            .into_iter()
-            .map(|(x, s, ex)| [x, s, ex.unwrap_or(f64::NAN)])
-            .collect())
+        return Err(ApiError::Scene(format!(
+            "window: the moving window ([window]) is not run by the library; run this scene with `gsph run {file}` (its Hugoniot with `gsph hugoniot {file}`)"
+        )));
     }
-
-    /// The particle table (the columns of `final.csv`), rows in id order.
-    pub fn table(&self) -> crate::output::ParticleTable {
-        with_sim!(&self.sim, s => s.table())
+    let keys = [
+        (
+            scene.output.checkpoint_steps.is_some(),
+            "output.checkpoint_steps",
+        ),
+        (
+            scene.output.checkpoint_seconds.is_some(),
+            "output.checkpoint_seconds",
+        ),
+    ];
+    if let Some((_, key)) = keys.iter().find(|k| k.0) {
+        return Err(ApiError::Scene(format!(
+            "{key}: not used by the library (call write_checkpoint instead)"
+        )));
     }
-
-    /// Writes the state as `final.csv` does (a CSV file at `path`, written atomically).
-    pub fn write_snapshot(&self, path: &Path) -> ApiResult<()> {
-        crate::output::write_csv(path, &self.table())
-            .map_err(|e| ApiError::Io(format!("{}: {e}", path.display())))
-    }
-
-    /// Writes a checkpoint into `dir` (`dir/checkpoint.bin`) from which the library
-    /// ([`Self::from_checkpoint`]) continues bitwise identically. Only for simulations
-    /// built from a scene file or text.
-    pub fn write_checkpoint(&self, dir: &Path) -> ApiResult<()> {
-        self.check_usable()?;
-        if !self.external.is_empty() || self.external_work != 0.0 {
-            return Err(ApiError::Argument(
-                "checkpoint: external accelerations have acted on this simulation, and a checkpoint does not hold them nor the impulse and work they added".into(),
-            ));
-        }
-        let Some(source) = &self.source else {
-            return Err(ApiError::Argument(
-                "checkpoint: only a simulation built from scene text or a file can be checkpointed"
-                    .into(),
-            ));
-        };
-        std::fs::create_dir_all(dir)
-            .map_err(|e| ApiError::Io(format!("{}: {e}", dir.display())))?;
-        let state = crate::checkpoint::DriverState {
-            energy0: self.energy0,
-            mom0: self.momentum0,
-            ..Default::default()
-        };
-        let run_id = crate::outdir::new_run_id();
-        let mut control =
-            crate::checkpoint::Control::new(Default::default(), source.clone(), dir, &run_id);
-        with_sim!(&self.sim, s => control.write(s.as_ref(), &state, None))
-            .map_err(|e| ApiError::Io(format!("{}: checkpoint: {e}", dir.display())))
-    }
-
-    /// Continues from a checkpoint written by [`Self::write_checkpoint`] (or by `gsph run
-    /// --checkpoint-every` for a scene the library accepts: no monitor, no series or
-    /// checkpoint keys).
-    pub fn from_checkpoint(dir: &Path) -> ApiResult<Self> {
-        let ck =
-            crate::checkpoint::Checkpoint::read(dir).map_err(|e| ApiError::Io(e.to_string()))?;
-        let src = ck.source.clone();
-        let mut sim = Self::from_source(&src.text, &src.origin, &src.name, &src.overrides)?;
-        with_sim!(&mut sim.sim, s => ck.restore_sim(s.as_mut()))
-            .map_err(|e| ApiError::Io(e.to_string()))?;
-        sim.energy0 = ck.driver.energy0;
-        sim.momentum0 = ck.driver.mom0;
-        sim.order = (u64::MAX, Vec::new());
-        Ok(sim)
-    }
+    Ok(())
 }

@@ -26,24 +26,16 @@ pub mod study;
 /// SIGINT/SIGTERM stopped a run.
 pub(crate) static EXIT_CODE: std::sync::atomic::AtomicI32 = std::sync::atomic::AtomicI32::new(0);
 
-/// Most worker threads per core `--threads` may ask for.
-pub const MAX_THREADS_PER_CORE: usize = 8;
-
 /// The worker threads of a command: `--threads` (at least 1, at most
-/// [`MAX_THREADS_PER_CORE`] per core) or all cores.
+/// [`crate::exec::MAX_THREADS_PER_CORE`] per core: [`crate::exec::check_threads`]) or all
+/// cores.
 pub fn pool(threads: Option<usize>) -> Result<rayon::ThreadPool, String> {
     let mut b = rayon::ThreadPoolBuilder::new();
     if let Some(t) = threads {
         if t == 0 {
             return Err("--threads must be at least 1".into());
         }
-        let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-        if t > MAX_THREADS_PER_CORE * cores {
-            return Err(format!(
-                "--threads {t}: this machine has {cores} cores; more than {MAX_THREADS_PER_CORE} threads per core ({}) only slows a run down",
-                MAX_THREADS_PER_CORE * cores
-            ));
-        }
+        crate::exec::check_threads(t).map_err(|e| format!("--threads {t}: {e}"))?;
         b = b.num_threads(t);
     }
     b.build().map_err(|e| format!("cannot start threads: {e}"))

@@ -17,7 +17,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 mod files;
-mod record;
+pub mod record;
 mod run_loop;
 mod summary;
 use run_loop::run_dim;

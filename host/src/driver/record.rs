@@ -1,14 +1,20 @@
 //! What a run records while it steps: the series (`series.csv`: energies, momentum, the
 //! reference's and the monitor's quantities, the moving window's), the largest kinetic
-//! energy, and the stress profile against the exact one at the end (`profile.csv`).
+//! energy, and the stress profile against the exact one at the end (`profile.csv`). The
+//! library ([`crate::api::Simulation`]) records with the same [`Recorder`].
 
 use super::*;
 
 /// The series so far and the quantities sampled with it.
-pub(super) struct Recorder {
+#[derive(Clone)]
+pub struct Recorder {
+    /// `series.csv` so far: the header, then one line per [`Recorder::push`].
     pub series: String,
+    /// The largest kinetic energy sampled, J.
     pub kinetic_max: f64,
+    /// The scene's monitor (its columns in the series, its measures in the summary).
     pub monitor: Monitor,
+    /// The scene's exact reference, if it has one.
     pub reference: Option<Reference>,
     /// The reference's series columns (empty without a reference).
     extra: &'static [&'static str],

@@ -14,7 +14,9 @@ view would silently change meaning after the next step. Scalars are shape (n,), 
 
 Errors are exceptions derived from gsph.GsphError carrying gsph's one-line message:
 SceneError (names the key), SimulationError (names step and particle), ArgumentError,
-OutputError. Long calls (build, step, advance, run, study, hugoniot) release the GIL.
+OutputError. Long calls (build, step, advance, run, study, hugoniot) release the GIL;
+Ctrl-C during run() or advance() raises KeyboardInterrupt after the step in progress,
+and the simulation can go on (or be checkpointed) from there.
 """
 
 import json
@@ -45,20 +47,27 @@ __all__ = [
 ]
 
 
-def _overrides(overrides):
-    """`{"key": value}` or ["key=value", ...] as the list `gsph run --set` takes."""
-    if overrides is None:
-        return []
+def _overrides(overrides, unset=None):
+    """`{"key": value}` or ["key=value", ...] as the list `gsph run --set` takes; a value
+    None in the dict, a "unset:key" in the list and each key of `unset` remove the key
+    (`gsph run --unset key`)."""
+    out = []
     if isinstance(overrides, dict):
-        out = []
         for k, v in overrides.items():
+            if v is None:
+                out.append(f"unset:{k}")
+                continue
             if isinstance(v, bool):
                 v = "true" if v else "false"
             elif isinstance(v, float):
                 v = repr(v)
             out.append(f"{k}={v}")
-        return out
-    return [str(o) for o in overrides]
+    elif overrides is not None:
+        out = [str(o) for o in overrides]
+    if isinstance(unset, str):
+        unset = [unset]
+    out += [f"unset:{k}" for k in (unset or [])]
+    return out
 
 
 def _flat(a):
@@ -92,22 +101,24 @@ def _indices(a, name):
 class Scene:
     """A scene file or text with overrides. `build()` validates and builds it."""
 
-    def __init__(self, text=None, path=None, overrides=None):
+    def __init__(self, text=None, path=None, overrides=None, unset=None):
         if (text is None) == (path is None):
             raise ArgumentError("Scene: give exactly one of text and path")
         self.text = text
         self.path = None if path is None else os.fspath(path)
-        self.overrides = _overrides(overrides)
+        self.overrides = _overrides(overrides, unset)
 
     @classmethod
-    def from_file(cls, path, overrides=None):
-        """A scene file (TOML) with overrides: a dict {"key": value} or ["key=value"]."""
-        return cls(path=path, overrides=overrides)
+    def from_file(cls, path, overrides=None, unset=None):
+        """A scene file (TOML) with overrides: a dict {"key": value} or ["key=value"]
+        (as `gsph run --set`); `unset` lists keys to remove (as `gsph run --unset`), as
+        does a value None in the dict."""
+        return cls(path=path, overrides=overrides, unset=unset)
 
     @classmethod
-    def from_text(cls, text, overrides=None):
-        """Scene text (TOML, as a scene file) with overrides."""
-        return cls(text=text, overrides=overrides)
+    def from_text(cls, text, overrides=None, unset=None):
+        """Scene text (TOML, as a scene file) with overrides and keys to unset."""
+        return cls(text=text, overrides=overrides, unset=unset)
 
     def build(self):
         """Validates the scene and builds its particles: a `Simulation`."""
@@ -131,7 +142,7 @@ class Simulation:
 
     @classmethod
     def from_particles(cls, settings, position, material, spacing, velocity=None,
-                       density=None, energy=None, mass=None, overrides=None):
+                       density=None, energy=None, mass=None, overrides=None, unset=None):
         """The caller's particles: `settings` is scene text without bodies; `position`
         (n, dim); `material` (n,) indices into the settings' materials; `spacing` one
         value or (n,); the rest optional (rest, rho0, 0, density * spacing**dim)."""
@@ -143,7 +154,7 @@ class Simulation:
         sca = lambda a, name: None if a is None else _shaped(a, name, n, 1)  # noqa: E731
         spacing = _np.asarray(spacing, dtype=_np.float64)
         raw = _gsph.Simulation.from_particles(
-            settings, _overrides(overrides), _shaped(pos, "position", n, max(dim, 1)),
+            settings, _overrides(overrides, unset), _shaped(pos, "position", n, max(dim, 1)),
             _flat(vec(velocity, "velocity")), _flat(sca(density, "density")),
             _flat(sca(energy, "energy")), _flat(sca(mass, "mass")), mat,
             _flat(spacing if spacing.ndim == 0 else sca(spacing, "spacing")))
@@ -172,11 +183,14 @@ class Simulation:
         return self._raw.step(dt)
 
     def advance(self, t):
-        """Steps to time `t` (the last step shortened to land on it); returns steps."""
+        """Steps to time `t` (the last step shortened to land on it); returns steps.
+        Ctrl-C raises KeyboardInterrupt after the step in progress (the state is whole)."""
         return self._raw.advance(float(t))
 
     def run(self):
-        """Runs to t_end through the snapshot times, as `gsph run`; returns steps."""
+        """Runs to t_end through the snapshot times, as `gsph run` (adding a snapshot at
+        each of them while a snapshot file is open); returns steps. Ctrl-C raises
+        KeyboardInterrupt after the step in progress (the state is whole)."""
         return self._raw.run()
 
     def field(self, name):
@@ -222,9 +236,44 @@ class Simulation:
         no history, the reference's measures, the external impulse and work)."""
         return json.loads(self._raw.summary_json())
 
+    def series(self):
+        """The series recorded so far (the columns of `gsph run`'s series.csv: t, step,
+        dt, energies, momentum, the reference's and the [monitor]'s quantities), as a dict
+        {column: float64 array}, one value per sample."""
+        names, rows = self._raw.series()
+        return {name: rows[:, k].copy() for k, name in enumerate(names)}
+
+    def series_csv(self):
+        """The series so far as the text of series.csv."""
+        return self._raw.series_csv()
+
+    def write_series(self, path):
+        """Writes the series so far as series.csv (byte for byte `gsph run`'s for the same
+        steps)."""
+        self._raw.write_series(os.fspath(path))
+
     def write_snapshot(self, path):
         """Writes the state as a CSV file with the columns of final.csv."""
         self._raw.write_snapshot(os.fspath(path))
+
+    def write_snapshots(self, directory):
+        """Writes directory/snapshots.h5 + snapshots.xdmf (the HDF5/XDMF pair of `gsph run`,
+        opened by ParaView and `gsph plot particles`) holding the state now."""
+        self._raw.write_snapshots(os.fspath(directory))
+
+    def open_snapshots(self, directory):
+        """Starts the snapshot pair in `directory` with the state now as its first
+        snapshot; `run()` adds one at each snapshot time of the scene, `append_snapshot()`
+        one at any time, `close_snapshots()` finishes the pair (partial until then)."""
+        self._raw.open_snapshots(os.fspath(directory))
+
+    def append_snapshot(self):
+        """Adds the state now to the open snapshot file."""
+        self._raw.append_snapshot()
+
+    def close_snapshots(self):
+        """Finishes the open snapshot file: snapshots.h5 + snapshots.xdmf."""
+        self._raw.close_snapshots()
 
     def write_checkpoint(self, directory):
         """Writes a checkpoint that `Simulation.from_checkpoint` continues from."""
@@ -236,20 +285,20 @@ class Simulation:
 
 
 def study(scene, schemes=("ts1", "ts2"), resolutions=(0.5, 1.0, 2.0), overrides=None,
-          metric=None, out="out/study"):
+          metric=None, out="out/study", unset=None):
     """`gsph study`: error against the exact solution and wall time for every scheme at
     every resolution scale. Returns a list of dicts (scheme, resolution, particles, error,
     wall_s, steps, pair_interactions, energy_rel_error, pareto); writes tables and plots
     into `out`."""
     rows = _gsph.study_json(os.fspath(scene), list(schemes), [float(r) for r in resolutions],
-                            _overrides(overrides), metric, os.fspath(out))
+                            _overrides(overrides, unset), metric, os.fspath(out))
     return json.loads(rows)
 
 
-def hugoniot(scene, ups, overrides=None, out="out/hugoniot"):
+def hugoniot(scene, ups, overrides=None, out="out/hugoniot", unset=None):
     """`gsph hugoniot`: the moving-window Hugoniot of a porous-material scene at the
     particle velocities `ups` (m/s). Returns a list of dicts (up, us, sigma_behind, ...);
     writes profiles, hugoniot.csv and the plot into `out`."""
-    pts = _gsph.hugoniot_json(os.fspath(scene), _overrides(overrides),
+    pts = _gsph.hugoniot_json(os.fspath(scene), _overrides(overrides, unset),
                               [float(u) for u in ups], os.fspath(out))
     return json.loads(pts)
