@@ -22,7 +22,7 @@ for scheme in ["ts1", "ts2"]:
     print(f"{scheme}: {len(sim)} particles, {steps} steps, t = {sim.time:.3e} s, "
           f"L1 error {s['l1_error'] / 1e9:.4f} GPa, energy error {s['energy_rel_error']:.1e}")
 
-# %% sigma_xx of every particle against the exact solution (seed 000 §4.1).
+# %% sigma_xx of every particle against the exact solution (Connolly et al. 2013 §4.1).
 fig, ax = plt.subplots(figsize=(7, 4))
 for scheme, sim in sims.items():
     x, sxx, exact = sim.profile().T

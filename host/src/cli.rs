@@ -167,7 +167,10 @@ mod tests {
         assert_eq!(copies_refusal(Some((Some(0), Some(1)))), None);
         assert_eq!(copies_refusal(Some((Some(0), None))), None);
         let e = copies_refusal(Some((Some(0), Some(4)))).unwrap();
-        assert!(e.contains("built without MPI") && e.contains("rank 0 of 4"), "{e}");
+        assert!(
+            e.contains("built without MPI") && e.contains("rank 0 of 4"),
+            "{e}"
+        );
         assert!(e.contains("--features mpi"), "{e}");
         let e = copies_refusal(Some((Some(3), None))).unwrap();
         assert!(e.contains("rank 3:"), "{e}");
@@ -181,6 +184,9 @@ mod tests {
         assert!(v.contains(&format!("\nfeatures: {features}\n")), "{v}");
         assert_eq!(cfg!(feature = "mpi"), features.contains("mpi"), "{v}");
         let (have, all) = crate::specs::compiled();
-        assert!(v.ends_with(&format!("specialisations: {have} of {all}")), "{v}");
+        assert!(
+            v.ends_with(&format!("specialisations: {have} of {all}")),
+            "{v}"
+        );
     }
 }

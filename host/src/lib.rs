@@ -67,7 +67,12 @@ pub fn launcher() -> Option<(Option<usize>, Option<usize>)> {
         vars.iter()
             .find_map(|v| std::env::var(v).ok()?.trim().parse::<usize>().ok())
     };
-    let rank = num(&["OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK", "SLURM_PROCID"]);
+    let rank = num(&[
+        "OMPI_COMM_WORLD_RANK",
+        "PMIX_RANK",
+        "PMI_RANK",
+        "SLURM_PROCID",
+    ]);
     let size = num(&["OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "SLURM_STEP_NUM_TASKS"]);
     (rank.is_some() || size.is_some()).then_some((rank, size))
 }

@@ -80,6 +80,11 @@ impl std::fmt::Display for SimError {
         match self {
             SimError::Neighbors(e) => write!(f, "{e}"),
             SimError::Walls(e) => write!(f, "{e}"),
+            SimError::Overlap { i, j, distance, at } if *distance == 0.0 => write!(
+                f,
+                "particles {i} and {j} are at the same point ({:.4e}, {:.4e}, {:.4e}) (a point given twice in a particle file, or two bodies overlapping?)",
+                at[0], at[1], at[2]
+            ),
             SimError::Overlap { i, j, distance, at } => write!(
                 f,
                 "particles {i} and {j} overlap: {distance:.3e} m apart at ({:.4e}, {:.4e}, {:.4e}) (less than half the lattice spacing; do two bodies overlap?)",

@@ -386,6 +386,38 @@ fn run_of_the_flyer_plate_writes_every_output() {
         Some("id,material,x,y,z,vx,vy,vz,m,rho,p,e,sxx,syy,szz,sxy,sxz,syz,eps_p,damage,temperature,h,sigma_xx,sigma_yy,sigma_zz,sigma_xy,sigma_xz,sigma_yz,von_mises")
     );
     assert_eq!(lines.filter(|l| !l.is_empty()).count(), 100);
+    assert_eq!(s["ended"], "t_end");
+}
+
+/// A run that `max_steps` stops says so (issue 25: it looked finished in summary.json).
+#[test]
+fn a_run_stopped_by_max_steps_says_how_it_ended() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    std::fs::write(dir.join("scene.toml"), flyer()).unwrap();
+    let o = gsph(
+        dir,
+        &[
+            "run",
+            "scene.toml",
+            "--out",
+            "out",
+            "--quiet",
+            "--set",
+            "max_steps=7",
+        ],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let s = summary(&dir.join("out"));
+    assert_eq!(s["ended"], "max_steps");
+    assert_eq!(s["steps"], 7);
+    assert!(s["t_end"].as_f64().unwrap() < 0.5e-6);
+    let o = gsph(
+        dir,
+        &["run", "scene.toml", "--out", "out2", "--set", "max_steps=7"],
+    );
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(text.contains("stopped by max_steps = 7 at t = "), "{text}");
 }
 
 #[test]
@@ -408,4 +440,39 @@ fn overrides_change_scheme_and_resolution() {
     let s = summary(&tmp.path().join("out"));
     assert_eq!(s["particles"], 50);
     assert_eq!(s["scheme"], "pm");
+}
+
+/// Points given many times over in a particle file overflow the neighbour lists before the
+/// overlap check can run: the message names two coincident particles, not the capacity
+/// (issue 25: "raise `neighbor_capacity`" was the advice).
+#[test]
+fn duplicate_points_are_named_not_blamed_on_the_capacity() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    let mut csv = String::from("x\n");
+    for k in 0..10 {
+        for _ in 0..30 {
+            csv.push_str(&format!("{:e}\n", (k as f64 + 0.5) * 1e-4));
+        }
+    }
+    std::fs::write(dir.join("points.csv"), csv).unwrap();
+    std::fs::write(
+        dir.join("scene.toml"),
+        flyer().replacen(
+            "shape = { type = \"segment\", min = 0.0, max = 0.005 }",
+            "shape = { type = \"particles\", file = \"points.csv\" }",
+            1,
+        ),
+    )
+    .unwrap();
+    let o = gsph(dir, &["check", "scene.toml"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success());
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.contains("are at the same point (5.0000e-5,"), "{err}");
+    assert!(
+        err.contains("a point given twice in a particle file"),
+        "{err}"
+    );
+    assert!(!err.contains("neighbor_capacity"), "{err}");
 }

@@ -133,6 +133,13 @@ pub fn command(args: RunArgs) -> Result<(), String> {
             .map(|v| format!(", L1 error {v:.4e}"))
             .unwrap_or_default()
     );
+    if g("ended").as_str() == Some("max_steps") {
+        out!(
+            "{name}: stopped by max_steps = {} at t = {:e} s, before t_end",
+            g("steps"),
+            g("t_end").as_f64().unwrap_or(0.0)
+        );
+    }
     out!("wrote {}", out.display());
     Ok(())
 }

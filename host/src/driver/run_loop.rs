@@ -314,6 +314,11 @@ fn run_dim_logged<const D: usize>(
         monitor: &mut rec.monitor,
         window: &window,
         table: &table,
+        ended: if sim.t < t_end * (1.0 - 1e-12) {
+            "max_steps"
+        } else {
+            "t_end"
+        },
     });
     files.finish(&table, &rec, &s, (sim.step, sim.t, wall), log)?;
     Ok(Outcome::Finished(Box::new(RunResult { summary: s, table })))

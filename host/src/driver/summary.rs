@@ -18,6 +18,8 @@ pub(super) struct Summed<'a, const D: usize> {
     pub monitor: &'a mut Monitor,
     pub window: &'a Option<Window<D>>,
     pub table: &'a crate::output::ParticleTable,
+    /// How the run ended: `t_end`, or `max_steps` when that bound stopped it first.
+    pub ended: &'static str,
 }
 
 /// The summary of a finished run (summary.json).
@@ -46,6 +48,7 @@ pub(super) fn summary<const D: usize>(x: Summed<'_, D>) -> Map<String, Value> {
     s.insert("particles".into(), json!(sim.global_len()));
     s.insert("steps".into(), json!(sim.step));
     s.insert("t_end".into(), json!(sim.t));
+    s.insert("ended".into(), json!(x.ended));
     s.insert("wall_s".into(), json!(x.wall));
     s.insert("wall_total_s".into(), json!(x.wall_total));
     s.insert("threads".into(), json!(rayon::current_num_threads()));

@@ -155,6 +155,56 @@ impl<const D: usize> Sim<D> {
         2.0 * dmax2.sqrt() >= self.kernel.support() * hmin * (self.skin - growth)
     }
 
+    /// The neighbour lists could not be built because particle `id` has more neighbours
+    /// than their capacity: when that is because particles sit on top of each other there
+    /// (points given twice in a particle file, overlapping bodies), the overlap naming two
+    /// of them, nearest first, as [`Sim::check_overlap`] would have named it.
+    pub(super) fn overlap_near(&self, id: usize, spacing: &[f64]) -> Option<SimError> {
+        // an owned particle (a wall's mirror may be the one that overflowed)
+        let i = self.ids[..self.owned]
+            .iter()
+            .position(|&k| k as usize == id)?;
+        let close = |a: usize, b: usize| {
+            let d = self.periodic.min_image(self.x[a] - self.x[b]).norm();
+            let sa = spacing.get(self.ids[a] as usize)?;
+            let sb = spacing.get(self.ids[b] as usize)?;
+            (d < 0.5 * sa.min(*sb)).then_some(d)
+        };
+        // its own nearest overlapping particle, else the closest overlapping pair among
+        // the particles within its reach (a bounded number of them)
+        let reach = self.kernel.support() * (1.0 + self.skin) * self.h[i];
+        let near: Vec<usize> = (0..self.owned)
+            .filter(|&j| self.periodic.min_image(self.x[j] - self.x[i]).norm() < reach)
+            .take(2000)
+            .collect();
+        let pair = near
+            .iter()
+            .filter(|&&j| j != i)
+            .filter_map(|&j| close(i, j).map(|d| (d, i, j)))
+            .min_by(|a, b| a.0.total_cmp(&b.0))
+            .or_else(|| {
+                near.iter()
+                    .enumerate()
+                    .flat_map(|(k, &a)| near[k + 1..].iter().map(move |&b| (a, b)))
+                    .filter_map(|(a, b)| close(a, b).map(|d| (d, a, b)))
+                    .min_by(|a, b| a.0.total_cmp(&b.0))
+            })?;
+        let (distance, a, b) = pair;
+        let (a, b) = if self.ids[a] < self.ids[b] {
+            (a, b)
+        } else {
+            (b, a)
+        };
+        let mut at = [0.0; 3];
+        at[..D].copy_from_slice(self.x[a].as_slice());
+        Some(SimError::Overlap {
+            i: self.ids[a],
+            j: self.ids[b],
+            distance,
+            at,
+        })
+    }
+
     /// Refuses particles nearer than half their spacing (`spacing` indexed by id).
     pub(super) fn check_overlap(&self, spacing: &[f64]) -> Result<(), SimError> {
         let nb = self.lists.view();

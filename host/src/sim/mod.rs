@@ -385,7 +385,17 @@ impl<const D: usize> Sim<D> {
         // particles a moving window feeds in later
         sim.append(parts);
         sim.check_walls().map_err(SimError::Walls)?;
-        sim.rebuild()?;
+        match sim.rebuild() {
+            // too many neighbours because particles sit on top of each other: say that
+            Err(SimError::Neighbors(NeighborError::Overflow { particle, .. }))
+                if sim.overlap_near(particle, &parts.spacing).is_some() =>
+            {
+                return Err(sim
+                    .overlap_near(particle, &parts.spacing)
+                    .expect("found above"));
+            }
+            r => r?,
+        }
         sim.check_overlap(&parts.spacing)?;
         Ok(sim)
     }

@@ -98,12 +98,12 @@ pub fn hugoniot_plot(runs: &[(String, Vec<(f64, f64)>)]) -> XyPlot {
         })
         .collect();
     series.push(Series {
-        name: "seed 004 fit, 226.8 + 1.886 u_p".into(),
+        name: "Rublev & Murzov fit, 226.8 + 1.886 u_p".into(),
         points: curve(bottom, 130.0),
         style: SeriesStyle::Dashed,
     });
     series.push(Series {
-        name: "seed 004 fit, 14.58 + 3.573 u_p - 0.0003967 u_p^2".into(),
+        name: "Rublev & Murzov fit, 14.58 + 3.573 u_p - 0.0003967 u_p^2".into(),
         points: curve(130.0, top),
         style: SeriesStyle::Dashed,
     });
