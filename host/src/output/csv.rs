@@ -14,6 +14,7 @@ use std::path::Path;
 
 use super::atomic::AtomicFile;
 use super::meta::{derived_row, DERIVED_COLUMNS};
+use super::safe::excerpt;
 use super::table::{ParticleRow, ParticleTable, COLUMNS, NUM_FLOAT_COLUMNS};
 
 /// The CSV header line (without newline): [`COLUMNS`], then [`DERIVED_COLUMNS`].
@@ -51,8 +52,9 @@ pub fn write_csv(path: impl AsRef<Path>, table: &ParticleTable) -> io::Result<()
 /// Errors name the path and line, in one line.
 pub fn read_csv(path: impl AsRef<Path>) -> Result<ParticleTable, String> {
     let path = path.as_ref();
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
+    // a regular file (final.csv of a run, as large as the run): read whole
+    let text =
+        super::safe::read_text(path, u64::MAX).map_err(|e| format!("{}: {e}", path.display()))?;
     parse_csv(&text).map_err(|e| format!("{}: {e}", path.display()))
 }
 
@@ -83,7 +85,7 @@ pub fn parse_csv(text: &str) -> Result<ParticleTable, String> {
         };
         let parse_u32 = |name: &str, s: &str| {
             s.parse::<u32>()
-                .map_err(|e| format!("line {lineno}: column `{name}`: `{s}`: {e}"))
+                .map_err(|e| format!("line {lineno}: column `{name}`: `{}`: {e}", excerpt(s)))
         };
         let id = parse_u32("id", next("id")?)?;
         let material = parse_u32("material", next("material")?)?;
@@ -92,12 +94,12 @@ pub fn parse_csv(text: &str) -> Result<ParticleTable, String> {
             let s = next(name)?;
             *v = s
                 .parse::<f64>()
-                .map_err(|e| format!("line {lineno}: column `{name}`: `{s}`: {e}"))?;
+                .map_err(|e| format!("line {lineno}: column `{name}`: `{}`: {e}", excerpt(s)))?;
         }
         for name in &DERIVED_COLUMNS[..derived] {
             let s = next(name)?;
             s.parse::<f64>()
-                .map_err(|e| format!("line {lineno}: column `{name}`: `{s}`: {e}"))?;
+                .map_err(|e| format!("line {lineno}: column `{name}`: `{}`: {e}", excerpt(s)))?;
         }
         if fields.next().is_some() {
             return Err(format!(
