@@ -196,6 +196,8 @@ fn cases() -> Vec<Case> {
         case("Tillotson e_cv not above e_iv", TILLOTSON_BAR.to_string(), "check", &["--set", "materials.0.eos.e_cv=2e6"], &["materials[0].eos.e_cv: must exceed e_iv = 3e6 J/kg (got 2e6)"]),
         case("Tillotson negative A", TILLOTSON_BAR.to_string(), "run", &["--set", "materials.0.eos.big_a=-1e9"], &["materials[0].eos.big_a: must be positive and finite (got -1e9)"]),
         case("t_end no run could reach", f(), "run", &["--set", "t_end=1e300"], &["t_end: 1e300 s would take about 1.0e308 steps of about 1.0e-8 s", "set max_steps to run it anyway"]),
+        case("particle file that is a device", f(), "run", &["--set", "bodies.0.shape={ type = \"particles\", file = \"/dev/zero\" }"], &["bodies[0].shape.file: /dev/zero: not a regular file"]),
+        case("long value quoted as an excerpt", f(), "check", &["--set", "materials.0.rho0=dddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddd"], &["materials[0].rho0: invalid type: string \"dddddddddddddddddddddddddddddddddddddddd…\", expected f64"]),
     ]
 }
 

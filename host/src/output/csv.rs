@@ -52,16 +52,29 @@ pub fn write_csv(path: impl AsRef<Path>, table: &ParticleTable) -> io::Result<()
 /// Errors name the path and line, in one line.
 pub fn read_csv(path: impl AsRef<Path>) -> Result<ParticleTable, String> {
     let path = path.as_ref();
-    // a regular file (final.csv of a run, as large as the run): read whole
-    let text =
-        super::safe::read_text(path, u64::MAX).map_err(|e| format!("{}: {e}", path.display()))?;
-    parse_csv(&text).map_err(|e| format!("{}: {e}", path.display()))
+    let at = |e: String| format!("{}: {e}", path.display());
+    // a regular file, streamed line by line (a line at most MAX_LINE bytes: a file
+    // without line breaks is refused after that much, not read whole)
+    super::safe::regular_file(path).map_err(at)?;
+    let file = std::fs::File::open(path).map_err(|e| at(format!("cannot read: {e}")))?;
+    parse_lines(super::safe::lines(std::io::BufReader::new(file))).map_err(at)
 }
 
 /// Parses CSV text in the [`write_csv`] format.
 pub fn parse_csv(text: &str) -> Result<ParticleTable, String> {
-    let mut lines = text.lines().enumerate();
-    let header = lines.next().map(|(_, l)| l.trim_end()).unwrap_or("");
+    parse_lines(text.lines().map(|l| Ok(l.to_string())))
+}
+
+/// [`parse_csv`] of lines given one by one (`Err`: a line could not be read).
+fn parse_lines(
+    lines: impl Iterator<Item = Result<String, String>>,
+) -> Result<ParticleTable, String> {
+    let mut lines = lines.enumerate();
+    let header = match lines.next() {
+        Some((_, l)) => l?,
+        None => String::new(),
+    };
+    let header = header.trim_end();
     let derived = if header == csv_header() {
         DERIVED_COLUMNS.len()
     } else if header == legacy_header() {
@@ -71,6 +84,7 @@ pub fn parse_csv(text: &str) -> Result<ParticleTable, String> {
     };
     let mut table = ParticleTable::default();
     for (i, line) in lines {
+        let line = line?;
         let line = line.trim_end();
         if line.is_empty() {
             continue;

@@ -24,7 +24,7 @@
 //! [`shorten_quotes`]): `file = "/proc/self/environ"` must not print the environment.
 
 use std::fs::{File, OpenOptions};
-use std::io::{self, Read};
+use std::io::{self, BufRead, Read};
 use std::path::Path;
 
 /// The mode files are created with before the umask applies (`open(2)` applies it).
@@ -46,9 +46,16 @@ pub const EXCERPT_CHARS: usize = 40;
 /// At most [`EXCERPT_CHARS`] characters of `s`, control characters escaped (`\n`,
 /// `\u{0}`), a cut marked with `…`. What a message may quote of a file's contents.
 pub fn excerpt(s: &str) -> String {
+    excerpt_to(s, EXCERPT_CHARS)
+}
+
+/// [`excerpt`] of at most `chars` characters (for what the user typed, such as a `--set`,
+/// which may be longer than a file's excerpt but not unbounded: a restart replays the
+/// overrides stored in a checkpoint file).
+pub fn excerpt_to(s: &str, chars: usize) -> String {
     let mut out = String::new();
     for (shown, c) in s.chars().enumerate() {
-        if shown == EXCERPT_CHARS {
+        if shown == chars {
             out.push('…');
             return out;
         }
@@ -245,6 +252,50 @@ pub fn read_text(path: &Path, max: u64) -> Result<String, String> {
     })
 }
 
+/// The lines of `r` (without their line breaks, a CR before one dropped), each at most
+/// [`MAX_LINE`] bytes: a longer one ends the iteration with an error naming it, read no
+/// further. `Err` is `line N: cause`.
+pub fn lines<R: io::BufRead>(mut r: R) -> impl Iterator<Item = Result<String, String>> {
+    let mut lineno = 0usize;
+    let mut done = false;
+    std::iter::from_fn(move || {
+        if done {
+            return None;
+        }
+        lineno += 1;
+        let mut line = Vec::new();
+        let got = (&mut r)
+            .take(MAX_LINE as u64 + 1)
+            .read_until(b'\n', &mut line);
+        let mut fail = |msg: String| {
+            done = true;
+            Some(Err(format!("line {lineno}: {msg}")))
+        };
+        match got {
+            Err(e) => return fail(format!("cannot read: {e}")),
+            Ok(0) => {
+                done = true;
+                return None;
+            }
+            Ok(_) => {}
+        }
+        if line.last() == Some(&b'\n') {
+            line.pop();
+            if line.last() == Some(&b'\r') {
+                line.pop();
+            }
+        } else if line.len() > MAX_LINE {
+            return fail(format!(
+                "longer than {MAX_LINE} bytes (no line break: is this the right file?)"
+            ));
+        }
+        match String::from_utf8(line) {
+            Ok(l) => Some(Ok(l)),
+            Err(_) => fail("not UTF-8 text".into()),
+        }
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -291,6 +342,22 @@ mod tests {
         std::os::unix::fs::symlink(d.path(), &sub).unwrap();
         assert!(create_dir_in(d.path(), "sub").is_err());
         assert!(create_dir_in(d.path(), "fresh").unwrap().is_dir());
+    }
+
+    #[test]
+    fn lines_are_bounded() {
+        let text = format!("a\r\nb\n{}\nc", "x".repeat(MAX_LINE));
+        let got: Vec<_> = lines(text.as_bytes()).collect();
+        assert_eq!(got.len(), 4);
+        assert_eq!(got[0].as_deref(), Ok("a"));
+        assert_eq!(got[3].as_deref(), Ok("c"));
+        let long = format!("a\n{}", "y".repeat(MAX_LINE + 10));
+        let got: Vec<_> = lines(long.as_bytes()).collect();
+        assert_eq!(got.len(), 2);
+        assert!(got[1]
+            .as_ref()
+            .unwrap_err()
+            .starts_with("line 2: longer than"));
     }
 
     #[test]

@@ -26,7 +26,7 @@ pub use spec::*;
 pub use walls::WallSpec;
 pub use window::{WindowGeometry, WindowSpec};
 
-use crate::output::safe::{excerpt, shorten_quotes};
+use crate::output::safe::{excerpt, excerpt_to, shorten_quotes};
 use gsph_core::kernel::Kernel;
 use std::path::Path;
 
@@ -202,12 +202,10 @@ fn toml_error(text: &str, origin: &str, e: &toml::de::Error) -> String {
     )
 }
 
-/// `KEY=VALUE` of a `--set` as a message shows it: the value an excerpt.
+/// `KEY=VALUE` of a `--set` as a message shows it: whole up to 120 characters (an inline
+/// table), else an excerpt; control characters escaped.
 fn shown_override(o: &str) -> String {
-    match o.split_once('=') {
-        Some((k, v)) => format!("{}={}", excerpt(k), excerpt(v)),
-        None => excerpt(o),
-    }
+    excerpt_to(o, 120)
 }
 
 /// Where the value behind an error came from: the last `--set` that wrote the key the message
