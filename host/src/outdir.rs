@@ -87,9 +87,11 @@ impl OutLock {
         match file.try_lock() {
             Ok(()) => {}
             Err(TryLockError::WouldBlock) => {
+                // what the holder wrote (its pid and command line), bounded and quoted
+                // printable: a lock file is a file of the folder like any other
                 let mut holder = String::new();
-                let _ = file.read_to_string(&mut holder);
-                let holder = holder.trim().replace('\n', "; ");
+                let _ = (&mut file).take(4096).read_to_string(&mut holder);
+                let holder = safe::excerpt_to(&holder.trim().replace('\n', "; "), 400);
                 let who = if holder.is_empty() {
                     String::new()
                 } else {
@@ -140,7 +142,8 @@ pub fn new_run_id() -> String {
 
 /// The `run_id` recorded in `dir/summary.json`, if that file exists and has one.
 pub fn summary_run_id(dir: &Path) -> Option<String> {
-    let text = std::fs::read_to_string(dir.join("summary.json")).ok()?;
+    // a regular file of bounded size (a pipe there would block the restart)
+    let text = safe::read_text(&dir.join("summary.json"), 1 << 26).ok()?;
     let v: serde_json::Value = serde_json::from_str(&text).ok()?;
     v.get("run_id")?.as_str().map(str::to_owned)
 }
