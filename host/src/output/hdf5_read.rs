@@ -3,7 +3,6 @@
 //! [`RunInfo`]. Files of both layouts read: format version 1 (before `stress`, `von_mises` and the
 //! run attributes) and 2; the derived datasets are not read back (the [`Frame`] holds `p` and the
 //! deviator they come from).
-
 //!
 //! Every file read is checked before any data is (issue 25): it is a regular file; no link in
 //! it leads to another file (external links), no dataset read is stored outside it (external
