@@ -6,7 +6,14 @@
 //! then are an earlier run's results removed and the new ones written. So a refused
 //! command never touches the folder, and a second run into a folder that a running job
 //! holds is refused in one line before it writes anything.
+//!
+//! No file is written through a symbolic link ([`crate::output::safe`]): before the lock
+//! is taken, every entry the command will write or remove in the folder is checked
+//! ([`OutLock::acquire_for`]) and a link among them refused in one line naming it; the lock
+//! file is opened with `O_NOFOLLOW`. The folder itself may be a link when the user named it
+//! (`--out`); the default folder `out/<name>`, which gsph chooses, may not ([`default_dir`]).
 
+use crate::output::safe;
 use std::fs::{File, OpenOptions, TryLockError};
 use std::io::{Read, Seek, Write};
 use std::path::{Path, PathBuf};
@@ -40,10 +47,13 @@ pub fn check_name(name: &str) -> Result<(), String> {
     }
 }
 
-/// The default output folder `out/<name><suffix>` of a scene (see [`check_name`]).
+/// The default output folder `out/<name><suffix>` of a scene (see [`check_name`]); refused
+/// if it is a symbolic link (gsph chose it, the user did not: `out` itself may be one).
 pub fn default_dir(name: &str, suffix: &str) -> Result<PathBuf, String> {
     check_name(name)?;
-    Ok(PathBuf::from("out").join(format!("{name}{suffix}")))
+    let dir = PathBuf::from("out").join(format!("{name}{suffix}"));
+    crate::output::safe::refuse_link(&dir)?;
+    Ok(dir)
 }
 
 /// An exclusive lock on an output folder, released when dropped (or when the process
@@ -56,24 +66,32 @@ pub struct OutLock {
 
 impl OutLock {
     /// Creates `dir` if needed and locks it; refuses in one line when another process
-    /// holds it, naming that process.
+    /// holds it, naming that process, or when its lock file is a symbolic link.
     pub fn acquire(dir: &Path) -> Result<OutLock, String> {
+        Self::acquire_for(dir, &[] as &[&str])
+    }
+
+    /// [`OutLock::acquire`] for a command that writes or removes the entries `names` of
+    /// `dir`: refuses first, before anything is created, if any of them (or the lock file)
+    /// is a symbolic link.
+    pub fn acquire_for<S: AsRef<str>>(dir: &Path, names: &[S]) -> Result<OutLock, String> {
         let shown = dir.display();
+        safe::check_entries(dir, &[LOCK_FILE])?;
+        safe::check_entries(dir, names)?;
         std::fs::create_dir_all(dir).map_err(|e| format!("{shown}: cannot create: {e}"))?;
         let path = dir.join(LOCK_FILE);
-        let mut file = OpenOptions::new()
-            .read(true)
-            .write(true)
-            .create(true)
-            .truncate(false)
-            .open(&path)
-            .map_err(|e| format!("{}: cannot open: {e}", path.display()))?;
+        let mut opts = OpenOptions::new();
+        opts.read(true).write(true).create(true).truncate(false);
+        let mut file =
+            safe::open_nofollow(&opts, &path).map_err(|e| safe::io_message(&path, "open", &e))?;
         match file.try_lock() {
             Ok(()) => {}
             Err(TryLockError::WouldBlock) => {
+                // what the holder wrote (its pid and command line), bounded and quoted
+                // printable: a lock file is a file of the folder like any other
                 let mut holder = String::new();
-                let _ = file.read_to_string(&mut holder);
-                let holder = holder.trim().replace('\n', "; ");
+                let _ = (&mut file).take(4096).read_to_string(&mut holder);
+                let holder = safe::excerpt_to(&holder.trim().replace('\n', "; "), 400);
                 let who = if holder.is_empty() {
                     String::new()
                 } else {
@@ -124,7 +142,8 @@ pub fn new_run_id() -> String {
 
 /// The `run_id` recorded in `dir/summary.json`, if that file exists and has one.
 pub fn summary_run_id(dir: &Path) -> Option<String> {
-    let text = std::fs::read_to_string(dir.join("summary.json")).ok()?;
+    // a regular file of bounded size (a pipe there would block the restart)
+    let text = safe::read_text(&dir.join("summary.json"), 1 << 26).ok()?;
     let v: serde_json::Value = serde_json::from_str(&text).ok()?;
     v.get("run_id")?.as_str().map(str::to_owned)
 }
@@ -170,6 +189,28 @@ mod tests {
         );
         drop(first);
         OutLock::acquire(d.path()).unwrap();
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_linked_lock_file_or_entry_is_refused_before_anything_is_written() {
+        let d = tempfile::tempdir().unwrap();
+        let target = d.path().join("elsewhere");
+        std::fs::write(&target, "keep").unwrap();
+        let out = d.path().join("out");
+        std::fs::create_dir(&out).unwrap();
+        std::os::unix::fs::symlink(&target, out.join(LOCK_FILE)).unwrap();
+        let e = OutLock::acquire(&out).unwrap_err();
+        assert!(e.ends_with(".gsph.lock: is a symbolic link; gsph writes no file through a link (remove it or choose another --out)"), "{e}");
+        std::fs::remove_file(out.join(LOCK_FILE)).unwrap();
+        std::os::unix::fs::symlink(&target, out.join("run.log")).unwrap();
+        let e = OutLock::acquire_for(&out, &["summary.json", "run.log"]).unwrap_err();
+        assert!(e.contains("run.log: is a symbolic link"), "{e}");
+        assert!(
+            !out.join(LOCK_FILE).exists(),
+            "nothing created before the check"
+        );
+        assert_eq!(std::fs::read_to_string(&target).unwrap(), "keep");
     }
 
     #[test]

@@ -15,6 +15,7 @@
 //! summary: {…}
 //! ```
 
+use crate::output::safe::open_nofollow;
 use sha2::{Digest, Sha256};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -86,12 +87,15 @@ impl RunLog {
         resumed_at: Option<u64>,
     ) -> std::io::Result<RunLog> {
         let path = dir.join(RUN_LOG);
-        let mut f = std::fs::OpenOptions::new()
-            .create(true)
-            .write(true)
-            .append(resumed_at.is_some())
-            .truncate(resumed_at.is_none())
-            .open(&path)?;
+        // never through a link planted in the folder (output::safe)
+        let mut f = open_nofollow(
+            std::fs::OpenOptions::new()
+                .create(true)
+                .write(true)
+                .append(resumed_at.is_some())
+                .truncate(resumed_at.is_none()),
+            &path,
+        )?;
         let mut head = String::new();
         let verb = match resumed_at {
             Some(step) => format!("restarted from the checkpoint at step {step}"),
@@ -134,7 +138,7 @@ impl RunLog {
 
     /// Appends `text` (a line or more), best effort: the log never fails a run.
     pub fn append(&self, text: &str) {
-        if let Ok(mut f) = std::fs::OpenOptions::new().append(true).open(&self.path) {
+        if let Ok(mut f) = open_nofollow(std::fs::OpenOptions::new().append(true), &self.path) {
             let mut t = text.to_owned();
             if !t.ends_with('\n') {
                 t.push('\n');
@@ -162,6 +166,20 @@ mod tests {
             sha256_hex("abc"),
             "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad"
         );
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_linked_run_log_is_never_written_through() {
+        let d = tempfile::tempdir().unwrap();
+        let target = d.path().join("victim");
+        std::fs::write(&target, "keep").unwrap();
+        std::os::unix::fs::symlink(&target, d.path().join(RUN_LOG)).unwrap();
+        for resumed in [None, Some(3)] {
+            let e = RunLog::start(d.path(), "a", &SceneInfo::default(), resumed).unwrap_err();
+            assert!(e.to_string().contains("is a symbolic link"), "{e}");
+        }
+        assert_eq!(std::fs::read_to_string(&target).unwrap(), "keep");
     }
 
     #[test]

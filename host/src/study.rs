@@ -106,11 +106,21 @@ fn check_metric(scene_path: &Path, opts: &StudyOptions, key: &str) -> Result<(),
     ))
 }
 
+/// The files a study writes into its folder (checked for links before it starts).
+pub const STUDY_FILES: [&str; 6] = [
+    "study.csv",
+    "study.md",
+    "error_vs_time.png",
+    "error_vs_time.svg",
+    "error_vs_particles.png",
+    "error_vs_particles.svg",
+];
+
 /// Runs the study; returns the rows and the metric used.
 pub fn study(scene_path: &Path, opts: &StudyOptions) -> Result<(Vec<StudyRow>, String), String> {
     // everything that can be refused is refused before the first run: every scene of the
     // grid, the output folder, the metric
-    let _lock = crate::outdir::OutLock::acquire(&opts.out)?;
+    let _lock = crate::outdir::OutLock::acquire_for(&opts.out, &STUDY_FILES)?;
     for &res in &opts.resolutions {
         for &scheme in &opts.schemes {
             let mut set = opts.overrides.clone();

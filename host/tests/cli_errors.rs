@@ -238,6 +238,8 @@ fn cases() -> Vec<Case> {
         case("two coincident walls", wall_bar(), "run", &["--set", "walls=[{point=[0.0],normal=[1.0]},{point=[0.0],normal=[1.0]}]"], &["walls: walls[0] and walls[1] are the same plane with the same normal"]),
         case("50 parallel walls closer than the kernel's reach", fifty_walls, "run", &[], &["walls[0] and walls[1] are parallel and 1.000e-6 m apart, less than the kernel's reach"]),
         case("walls meeting at 45° near the particles", WEDGE_2D.to_string(), "run", &[], &["walls[0] and walls[1] meet at 45.0°, not at a right angle, within the kernel's reach"]),
+        case("particle file that is a device", f(), "run", &["--set", "bodies.0.shape={ type = \"particles\", file = \"/dev/zero\" }"], &["bodies[0].shape.file: /dev/zero: not a regular file"]),
+        case("long value quoted as an excerpt", f(), "check", &["--set", "materials.0.rho0=dddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddd"], &["materials[0].rho0: invalid type: string \"dddddddddddddddddddddddddddddddddddddddd…\", expected f64"]),
     ]
 }
 

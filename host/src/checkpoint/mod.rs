@@ -25,8 +25,10 @@
 //! the older checkpoint needs.
 
 use crate::codec::{fnv1a64, Dec, DecodeError, Enc};
-use crate::output::atomic::{commit_tmp, tmp_path};
-use crate::output::{read_frame, read_snapshot_times, write_atomic, Frame, SnapshotWriter};
+use crate::output::safe::excerpt;
+use crate::output::{
+    read_frame, read_snapshot_times, write_atomic, AtomicFile, Frame, SnapshotWriter,
+};
 use crate::sim::Sim;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -143,6 +145,7 @@ impl Checkpoint {
     /// Reads and checks `dir/checkpoint.bin`.
     pub fn read(dir: &Path) -> Result<Checkpoint, CheckpointError> {
         let path = dir.join(CHECKPOINT_BIN);
+        crate::output::safe::regular_file(&path).map_err(|e| err(&path, e))?;
         let bytes = std::fs::read(&path).map_err(|e| err(&path, format!("cannot read: {e}")))?;
         if bytes.len() < HEADER {
             return Err(err(&path, format!("truncated ({} bytes)", bytes.len())));
@@ -184,7 +187,8 @@ impl Checkpoint {
             return Err(err(
                 &path,
                 format!(
-                    "written by gsph {made_by}; this is gsph {}",
+                    "written by gsph {}; this is gsph {}",
+                    excerpt(&made_by),
                     env!("CARGO_PKG_VERSION")
                 ),
             ));
@@ -196,6 +200,22 @@ impl Checkpoint {
             overrides: d.get().map_err(&de)?,
             name: d.get().map_err(&de)?,
         };
+        // the origin and name start messages of the restarted run: a path and a name,
+        // not a file's worth of text (the checksum does not prove who wrote them)
+        for (what, v) in [
+            ("scene origin", &source.origin),
+            ("scene name", &source.name),
+        ] {
+            if v.len() > 4096 || v.chars().any(char::is_control) {
+                return Err(err(
+                    &path,
+                    format!(
+                        "bad checkpoint: the {what} `{}` is not a path or name",
+                        excerpt(v)
+                    ),
+                ));
+            }
+        }
         let steps: u64 = d.get().map_err(&de)?;
         let seconds: f64 = d.get().map_err(&de)?;
         let policy = Policy {
@@ -368,10 +388,12 @@ impl Control {
     ) -> std::io::Result<()> {
         if let Some(w) = writer {
             if self.frames_saved != Some(driver.frames) {
-                let h5 = self.dir.join(CHECKPOINT_H5);
-                let tmp = tmp_path(&h5);
-                std::fs::copy(w.tmp_path(), &tmp)?;
-                commit_tmp(&tmp, &h5)?;
+                // copied into a fresh temp file renamed over checkpoint.h5 (a copy onto a
+                // fixed name would follow a link planted there)
+                let mut src = std::fs::File::open(w.tmp_path())?;
+                let mut dst = AtomicFile::create(self.dir.join(CHECKPOINT_H5))?;
+                std::io::copy(&mut src, &mut dst)?;
+                dst.commit()?;
                 self.frames_saved = Some(driver.frames);
             }
         }

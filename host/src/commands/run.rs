@@ -173,8 +173,7 @@ fn merge(flags: Policy, scene: &Scene) -> Policy {
 
 /// Loads a scene file with its overrides, keeping the text for checkpoints.
 fn load(path: &Path, overrides: &[String]) -> Result<(Scene, SceneSource), String> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| format!("{}: cannot read scene: {e}", path.display()))?;
+    let text = scene::read_scene(path).map_err(|e| e.to_string())?;
     let origin = path.display().to_string();
     let sc = scene::parse(&text, &origin, overrides).map_err(|e| e.to_string())?;
     let name = scene::scene_name(&sc, path);

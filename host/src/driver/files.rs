@@ -37,7 +37,9 @@ impl Files {
         let resume = ckpt.and_then(|c| c.resume.as_ref());
         let dir = opts.out.clone().filter(|_| crate::dist_rank() == 0);
         let lock = match &dir {
-            Some(d) => Some(OutLock::acquire(d).map_err(RunError::Refused)?),
+            // no entry it writes or removes may be a link (checked before anything is
+            // created)
+            Some(d) => Some(OutLock::acquire_for(d, &run_entries()).map_err(RunError::Refused)?),
             None => None,
         };
         let source = ckpt.map(|c| &c.source);

@@ -223,6 +223,32 @@ pub const RESULT_FILES: [&str; 6] = [
     "snapshots.xdmf",
 ];
 
+/// Every entry of its output folder a run writes or removes (besides the lock file): the
+/// results, run.log, the partial snapshots, the checkpoint, and the fixed temp names of the
+/// files HDF5 writes by name. Checked for links before the run touches the folder
+/// ([`crate::outdir::OutLock::acquire_for`]).
+pub fn run_entries() -> Vec<String> {
+    use crate::output::atomic::tmp_path;
+    use crate::output::{SNAPSHOTS_PARTIAL_H5, SNAPSHOTS_PARTIAL_XDMF};
+    let mut names: Vec<String> = RESULT_FILES
+        .iter()
+        .chain(&[
+            crate::runlog::RUN_LOG,
+            SNAPSHOTS_PARTIAL_H5,
+            SNAPSHOTS_PARTIAL_XDMF,
+            crate::checkpoint::CHECKPOINT_BIN,
+            crate::checkpoint::CHECKPOINT_H5,
+        ])
+        .map(|s| s.to_string())
+        .collect();
+    let tmp: Vec<String> = names
+        .iter()
+        .map(|n| tmp_path(Path::new(n)).display().to_string())
+        .collect();
+    names.extend(tmp);
+    names
+}
+
 /// Removes the files of an earlier run so that a failed run leaves nothing that looks
 /// complete; a `fresh` run (not a restart) removes the earlier run's checkpoint too, so it
 /// can never be resumed over the new results. Called only once the new run is validated and

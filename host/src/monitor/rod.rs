@@ -112,7 +112,8 @@ impl Rod {
 /// header), each row one point of the half profile (r from the axis, z from the impact
 /// face), in millimetres. Errors name the file and line.
 pub fn read_outline(path: &Path) -> Result<Vec<(f64, f64)>, String> {
-    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let text = crate::output::safe::read_text(path, crate::output::safe::MAX_TABLE)
+        .map_err(|e| format!("{}: {e}", path.display()))?;
     let mut rows = text
         .lines()
         .enumerate()
@@ -121,9 +122,10 @@ pub fn read_outline(path: &Path) -> Result<Vec<(f64, f64)>, String> {
         Some((_, h)) if h.replace(' ', "") == "r_mm,z_mm" => {}
         Some((k, h)) => {
             return Err(format!(
-                "{} line {}: the header must be `r_mm,z_mm` (got `{h}`)",
+                "{} line {}: the header must be `r_mm,z_mm` (got `{}`)",
                 path.display(),
-                k + 1
+                k + 1,
+                crate::output::safe::excerpt(h)
             ))
         }
         None => return Err(format!("{}: no header `r_mm,z_mm`", path.display())),
@@ -136,9 +138,10 @@ pub fn read_outline(path: &Path) -> Result<Vec<(f64, f64)>, String> {
                 .collect();
             if v.len() != 2 || v.iter().any(|x| !x.is_finite()) {
                 return Err(format!(
-                    "{} line {}: expected two finite numbers r_mm,z_mm (got `{l}`)",
+                    "{} line {}: expected two finite numbers r_mm,z_mm (got `{}`)",
                     path.display(),
-                    k + 1
+                    k + 1,
+                    crate::output::safe::excerpt(l)
                 ));
             }
             Ok((v[0], v[1]))

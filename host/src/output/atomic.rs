@@ -7,6 +7,11 @@
 //! writer is dropped without committing is removed (by `tempfile`, also on unwinding).
 //! [`tmp_path`] and [`commit_tmp`] serve files that a library writes by name (HDF5
 //! snapshots and checkpoints): a fixed sibling `<name>.tmp`.
+//!
+//! The temp file is created with `O_EXCL` (never through a link) and the rename replaces a
+//! link at the destination instead of following it, so an atomic write never writes outside
+//! its folder. It is created with mode `0o666` less the umask, as `open` makes files (not
+//! tempfile's `0o600`).
 
 use std::ffi::OsString;
 use std::fs::{self, File};
@@ -78,10 +83,16 @@ impl AtomicFile {
             .file_name()
             .map(|n| n.to_string_lossy())
             .unwrap_or_default();
-        let file = tempfile::Builder::new()
-            .prefix(&format!(".{name}."))
-            .suffix(".tmp")
-            .tempfile_in(dir)?;
+        let prefix = format!(".{name}.");
+        let mut b = tempfile::Builder::new();
+        b.prefix(&prefix).suffix(".tmp");
+        // as the umask says (tempfile's default is 0600: a group could not read results)
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            b.permissions(fs::Permissions::from_mode(super::safe::FILE_MODE));
+        }
+        let file = b.tempfile_in(dir)?;
         Ok(Self {
             path,
             writer: Some(BufWriter::new(file)),
@@ -188,6 +199,31 @@ mod tests {
         g.write_all(b"partial").unwrap();
         drop(g);
         assert_eq!(names(dir.path()), vec!["out.txt"]);
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn files_follow_the_umask_and_links_are_replaced_not_followed() {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("summary.json");
+        write_atomic(&p, b"{}").unwrap();
+        let mode = fs::metadata(&p).unwrap().permissions().mode() & 0o777;
+        // the umask of this process (the test harness's), read back from a plain create
+        let plain = dir.path().join("plain");
+        File::create(&plain).unwrap();
+        let want = fs::metadata(&plain).unwrap().permissions().mode() & 0o777;
+        assert_eq!(mode, want, "{mode:o} vs {want:o}");
+        let target = dir.path().join("target");
+        fs::write(&target, b"keep").unwrap();
+        let link = dir.path().join("final.csv");
+        std::os::unix::fs::symlink(&target, &link).unwrap();
+        write_atomic(&link, b"new").unwrap();
+        assert_eq!(fs::read(&target).unwrap(), b"keep");
+        assert!(!fs::symlink_metadata(&link)
+            .unwrap()
+            .file_type()
+            .is_symlink());
     }
 
     #[test]

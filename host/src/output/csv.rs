@@ -14,6 +14,7 @@ use std::path::Path;
 
 use super::atomic::AtomicFile;
 use super::meta::{derived_row, DERIVED_COLUMNS};
+use super::safe::excerpt;
 use super::table::{ParticleRow, ParticleTable, COLUMNS, NUM_FLOAT_COLUMNS};
 
 /// The CSV header line (without newline): [`COLUMNS`], then [`DERIVED_COLUMNS`].
@@ -51,15 +52,29 @@ pub fn write_csv(path: impl AsRef<Path>, table: &ParticleTable) -> io::Result<()
 /// Errors name the path and line, in one line.
 pub fn read_csv(path: impl AsRef<Path>) -> Result<ParticleTable, String> {
     let path = path.as_ref();
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
-    parse_csv(&text).map_err(|e| format!("{}: {e}", path.display()))
+    let at = |e: String| format!("{}: {e}", path.display());
+    // a regular file, streamed line by line (a line at most MAX_LINE bytes: a file
+    // without line breaks is refused after that much, not read whole)
+    super::safe::regular_file(path).map_err(at)?;
+    let file = std::fs::File::open(path).map_err(|e| at(format!("cannot read: {e}")))?;
+    parse_lines(super::safe::lines(std::io::BufReader::new(file))).map_err(at)
 }
 
 /// Parses CSV text in the [`write_csv`] format.
 pub fn parse_csv(text: &str) -> Result<ParticleTable, String> {
-    let mut lines = text.lines().enumerate();
-    let header = lines.next().map(|(_, l)| l.trim_end()).unwrap_or("");
+    parse_lines(text.lines().map(|l| Ok(l.to_string())))
+}
+
+/// [`parse_csv`] of lines given one by one (`Err`: a line could not be read).
+fn parse_lines(
+    lines: impl Iterator<Item = Result<String, String>>,
+) -> Result<ParticleTable, String> {
+    let mut lines = lines.enumerate();
+    let header = match lines.next() {
+        Some((_, l)) => l?,
+        None => String::new(),
+    };
+    let header = header.trim_end();
     let derived = if header == csv_header() {
         DERIVED_COLUMNS.len()
     } else if header == legacy_header() {
@@ -69,6 +84,7 @@ pub fn parse_csv(text: &str) -> Result<ParticleTable, String> {
     };
     let mut table = ParticleTable::default();
     for (i, line) in lines {
+        let line = line?;
         let line = line.trim_end();
         if line.is_empty() {
             continue;
@@ -83,7 +99,7 @@ pub fn parse_csv(text: &str) -> Result<ParticleTable, String> {
         };
         let parse_u32 = |name: &str, s: &str| {
             s.parse::<u32>()
-                .map_err(|e| format!("line {lineno}: column `{name}`: `{s}`: {e}"))
+                .map_err(|e| format!("line {lineno}: column `{name}`: `{}`: {e}", excerpt(s)))
         };
         let id = parse_u32("id", next("id")?)?;
         let material = parse_u32("material", next("material")?)?;
@@ -92,12 +108,12 @@ pub fn parse_csv(text: &str) -> Result<ParticleTable, String> {
             let s = next(name)?;
             *v = s
                 .parse::<f64>()
-                .map_err(|e| format!("line {lineno}: column `{name}`: `{s}`: {e}"))?;
+                .map_err(|e| format!("line {lineno}: column `{name}`: `{}`: {e}", excerpt(s)))?;
         }
         for name in &DERIVED_COLUMNS[..derived] {
             let s = next(name)?;
             s.parse::<f64>()
-                .map_err(|e| format!("line {lineno}: column `{name}`: `{s}`: {e}"))?;
+                .map_err(|e| format!("line {lineno}: column `{name}`: `{}`: {e}", excerpt(s)))?;
         }
         if fields.next().is_some() {
             return Err(format!(

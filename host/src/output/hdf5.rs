@@ -112,9 +112,11 @@ impl SnapshotWriter {
             stopped: None,
             finished: false,
         };
+        // exclusive: the name was just removed, and HDF5 creating by name must not follow a
+        // link planted since (O_EXCL fails on one)
         let started = hdf5::File::with_options()
             .with_fcpl(|p| p.istore_k(ISTORE_K))
-            .create(writer.tmp_path())
+            .create_excl(writer.tmp_path())
             .map_err(OutputError::from)
             .and_then(|file| {
                 write_run_attributes(&file, dim, info)?;
@@ -171,6 +173,8 @@ impl SnapshotWriter {
                 frame.step
             )));
         }
+        // HDF5 opens by name: never a link put in the file's place during the run
+        super::safe::refuse_link(&self.tmp_path()).map_err(OutputError::Format)?;
         let file = open_rw(&self.tmp_path())?;
         write_group(&file, frame, self.dim)?;
         file.close()?;

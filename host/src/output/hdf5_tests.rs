@@ -385,7 +385,10 @@ fn a_missing_directory_fails_cleanly() {
 fn errors_display_on_one_line() {
     let e = read_frame("/nonexistent/snapshots.h5", 0).unwrap_err();
     let s = e.to_string();
-    assert!(s.starts_with("HDF5 error") && !s.contains('\n'), "{s}");
+    assert!(s.starts_with("I/O error") && !s.contains('\n'), "{s}");
+    let dir = tempfile::tempdir().unwrap();
+    let e = read_frame(dir.path(), 0).unwrap_err().to_string();
+    assert_eq!(e, "bad output data: not a regular file");
     let io = OutputError::from(io::Error::other("a\nb"));
     assert_eq!(io.to_string(), "I/O error: a b");
 }

@@ -23,7 +23,8 @@
 //! the partial pair, its status saying why.
 //!
 //! Files: [`table`] (the particle table), [`meta`] (units, derived quantities, [`RunInfo`]),
-//! [`atomic`] (temp-file-and-rename helpers), [`csv`], `hdf5` (the snapshot writer), `hdf5_read`
+//! [`atomic`] (temp-file-and-rename helpers), [`safe`] (no file written through a link, only
+//! regular files read, short excerpts in messages), [`csv`], `hdf5` (the snapshot writer), `hdf5_read`
 //! (its reader), [`xdmf`] (the sidecar), [`error`] ([`OutputError`]).
 //!
 //! The snapshots need the cargo feature `hdf5` (on by default). Without it
@@ -41,6 +42,7 @@ pub mod hdf5_read;
 pub mod meta;
 #[cfg(not(feature = "hdf5"))]
 mod no_hdf5;
+pub mod safe;
 pub mod table;
 pub mod xdmf;
 

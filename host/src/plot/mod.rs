@@ -140,23 +140,42 @@ fn format_of(path: &Path) -> Result<Format, PlotError> {
 }
 
 /// Renders `item` into a `size` (width, height) picture at `path`, PNG or SVG by extension.
+///
+/// The picture is drawn in memory and written atomically ([`crate::output::write_atomic`]:
+/// a temp file renamed over `path`), so a failed plot leaves no half-written file and a link
+/// at `path` is replaced, never written through.
 pub(crate) fn render<T: Draw>(item: &T, path: &Path, size: (u32, u32)) -> Result<(), PlotError> {
     ensure_fonts()?;
-    match format_of(path)? {
+    let bytes = match format_of(path)? {
         Format::Png => {
-            let root = BitMapBackend::new(path, size).into_drawing_area();
-            root.fill(&WHITE)?;
-            item.draw(&root)?;
-            root.present()?;
+            let (w, h) = size;
+            let mut rgb = vec![0u8; w as usize * h as usize * 3];
+            {
+                let root = BitMapBackend::with_buffer(&mut rgb, size).into_drawing_area();
+                root.fill(&WHITE)?;
+                item.draw(&root)?;
+                root.present()?;
+            }
+            let mut png = Vec::new();
+            use image::ImageEncoder;
+            image::codecs::png::PngEncoder::new(&mut png)
+                .write_image(&rgb, w, h, image::ColorType::Rgb8)
+                .map_err(|e| PlotError::Draw(e.to_string()))?;
+            png
         }
         Format::Svg => {
-            let root = SVGBackend::new(path, size).into_drawing_area();
-            root.fill(&WHITE)?;
-            item.draw(&root)?;
-            root.present()?;
+            let mut svg = String::new();
+            {
+                let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
+                root.fill(&WHITE)?;
+                item.draw(&root)?;
+                root.present()?;
+            }
+            svg.into_bytes()
         }
-    }
-    Ok(())
+    };
+    crate::output::write_atomic(path, &bytes)
+        .map_err(|e| PlotError::Draw(format!("{}: {e}", path.display())))
 }
 
 /// A text style of the plot font at `size` pixels.

@@ -3,6 +3,7 @@
 //! and a rod's final outline against a measured one.
 
 use super::{ParticlePlot, Series, SeriesStyle, XyPlot};
+use crate::output::safe::{excerpt, read_text, shorten_list, MAX_TABLE};
 use crate::output::{read_frame, read_snapshot_times};
 use std::path::{Path, PathBuf};
 
@@ -91,8 +92,10 @@ pub fn series_rows<'a>(
                 .map(|(v, name)| {
                     v.trim().parse::<f64>().map_err(|_| {
                         format!(
-                            "{} line {line}, column {name}: `{v}` is not a number",
-                            path.display()
+                            "{} line {line}, column {}: `{}` is not a number",
+                            path.display(),
+                            excerpt(name),
+                            excerpt(v)
                         )
                     })
                 })
@@ -110,15 +113,16 @@ pub fn series(
     out: Option<PathBuf>,
 ) -> Result<PathBuf, String> {
     let path = dir.join("series.csv");
-    let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let text = read_text(&path, MAX_TABLE).map_err(|e| format!("{}: {e}", path.display()))?;
     let mut lines = text.lines();
     let header: Vec<&str> = lines.next().unwrap_or("").split(',').collect();
     let idx = |c: &str| {
         header.iter().position(|h| *h == c).ok_or_else(|| {
             format!(
-                "{}: no column `{c}` (columns: {})",
+                "{}: no column `{}` (columns: {})",
                 path.display(),
-                header.join(", ")
+                excerpt(c),
+                shorten_list(&header)
             )
         })
     };
@@ -227,7 +231,7 @@ pub fn rod(
 /// profile (dashed), like seed 000 fig 1 and seed 004 fig 2a.
 pub fn profile(dir: &Path, out: Option<PathBuf>) -> Result<PathBuf, String> {
     let path = dir.join("profile.csv");
-    let text = std::fs::read_to_string(&path).map_err(|e| {
+    let text = read_text(&path, MAX_TABLE).map_err(|e| {
         format!(
             "{}: {e} (only runs with an exact stress profile write it)",
             path.display()

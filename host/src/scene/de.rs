@@ -4,6 +4,7 @@
 //! saying where. This deserializer records the path on the way back up (`materials[0].rho0`),
 //! and words unknown and missing keys as `KEY: unknown key (known: ...)` and `KEY: missing`.
 
+use crate::output::safe::{excerpt, shorten_quotes};
 use serde::de::{self, DeserializeSeed, IntoDeserializer, MapAccess, SeqAccess, Visitor};
 use std::fmt;
 
@@ -33,10 +34,11 @@ impl PathError {
         let mut s = String::new();
         for seg in self.rev_path.iter().rev() {
             match seg {
-                Seg::Key(k) if s.is_empty() => s.push_str(k),
+                // a key is text of the file: quoted as an excerpt
+                Seg::Key(k) if s.is_empty() => s.push_str(&excerpt(k)),
                 Seg::Key(k) => {
                     s.push('.');
-                    s.push_str(k);
+                    s.push_str(&excerpt(k));
                 }
                 Seg::Index(i) => s.push_str(&format!("[{i}]")),
             }
@@ -48,7 +50,9 @@ impl PathError {
 impl fmt::Display for PathError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let key = self.key();
-        let msg = self.msg.replace('\n', " ");
+        // serde quotes a wrong value whole (`invalid type: string "..."`): the value is
+        // text of the file, quoted as an excerpt
+        let msg = shorten_quotes(&self.msg.replace('\n', " "));
         if key.is_empty() {
             f.write_str(&msg)
         } else {

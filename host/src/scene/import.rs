@@ -31,24 +31,35 @@
 //! materials continues it exactly.
 //!
 //! # STL surfaces
-//! Read with the `stl_io` crate (ASCII or binary; a binary file whose 80-byte header
-//! starts with `solid`, as some exporters write, is recognised by its length). The surface
-//! must be closed: every edge (vertices identified by their exact coordinates) shared by
+//! Read with the `stl_io` crate, streamed (ASCII or binary; a binary file whose 80-byte
+//! header starts with `solid`, as some exporters write, is recognised by its length; at
+//! most [`MAX_FACETS`](super::stl::MAX_FACETS) facets, an ASCII line at most
+//! [`MAX_LINE`](crate::output::safe::MAX_LINE) bytes). The surface must be closed: every edge (vertices identified by their exact coordinates) shared by
 //! exactly two facets; coordinates finite; no facet of zero area (collinear vertices to
 //! the file's single precision). The body is the `box` lattice over the surface's bounding
 //! box (same sites, same particle volume) kept where the site is inside the surface.
 //!
-//! The inside test casts one ray along +x per lattice column (y, z) and counts the facets
-//! it crosses (odd: inside). Whether the ray crosses a facet is decided in the facet's
+//! The facets must also be consistently oriented: the two facets on an edge run it in
+//! opposite directions (the STL rule: corners counter-clockwise seen from outside, normals
+//! outward; a flipped facet is refused naming it and its neighbour).
+//!
+//! The inside test casts one ray along +x per lattice column (y, z) and sums the facets it
+//! crosses by their orientation: +1 through a facet facing -x (into a solid), -1 through one
+//! facing +x. The sum before a site is the surface's winding number about it; the site is
+//! inside where it is not 0. So several shells fill their union, overlapping ones included
+//! (two outward solids sharing a region wind twice about it; a parity count would leave that
+//! region empty), a cavity whose facets face into it (as exporters write a hollow) winds
+//! back to 0 and stays empty, and a surface turned inside out as a whole still fills
+//! (winding -1). Whether the ray crosses a facet is decided in the facet's
 //! projection onto the y-z plane with exact orientation predicates (Shewchuk's, the
 //! `robust` crate) and a symbolic perturbation of the ray, (y + ε, z + ε²), for the exact
 //! ties (a ray through an edge or a vertex, as lattice rays through the diagonals of a
 //! cube's faces are). The side of each edge is then decided exactly and the same way for
-//! both facets sharing it, so the count is that of a ray in general position: its parity
-//! is right for every closed surface, however the ray meets edges and vertices; only
-//! sites on the surface itself (to rounding) may fall either way. The generalised winding
-//! number would also be robust, but costs a facet sum per site (sites × facets); binning
-//! the facets by lattice column makes the rays cost about columns × facets per column.
+//! both facets sharing it, so the crossings are those of a ray in general position: the
+//! winding number is right for every closed surface, however the ray meets edges and
+//! vertices; only sites on the surface itself (to rounding) may fall either way. Binning
+//! the facets by lattice column makes the rays cost about columns × facets per column
+//! (a winding-number sum over all facets per site would cost sites × facets).
 
 use super::spec::{BodySpec, Scene, ShapeSpec};
 use crate::output::{read_frame, read_snapshot_times, ParticleTable};
@@ -226,17 +237,6 @@ fn is_hdf5(path: &Path) -> bool {
             .is_some_and(|e| e.eq_ignore_ascii_case("h5") || e.eq_ignore_ascii_case("hdf5"))
 }
 
-/// Checks that `path` is a regular file (not a directory, a device or a pipe that never
-/// ends).
-pub(super) fn regular_file(path: &Path) -> Result<(), String> {
-    let meta = std::fs::metadata(path).map_err(|e| format!("cannot read: {e}"))?;
-    if meta.is_file() {
-        Ok(())
-    } else {
-        Err("not a regular file".into())
-    }
-}
-
 /// Opens the particle file of a `particles` shape (`key` is the shape's key, e.g.
 /// `bodies[0].shape`): counts a CSV file's rows, or reads the snapshot of `step` of an
 /// HDF5 file (which must be of dimension `dim`).
@@ -247,8 +247,12 @@ pub(super) fn open_particles(
     dim: usize,
 ) -> Result<ParticleSource, String> {
     let path = Path::new(file);
+    if let Err(e) = crate::output::safe::check_file_name(file) {
+        return Err(format!("{key}.file: {e}"));
+    }
     let at = |msg: String| format!("{key}.file: {file}: {msg}");
-    regular_file(path).map_err(at)?;
+    // not a directory, a device or a pipe that never ends
+    crate::output::safe::regular_file(path).map_err(at)?;
     if is_hdf5(path) {
         return read_snapshot(key, file, step, dim).map(|f| ParticleSource::Snapshot(Box::new(f)));
     }

@@ -2,30 +2,68 @@
 //! `csv` crate, and the row count taken before reading (for the memory estimate).
 
 use super::*;
+use crate::output::safe::{excerpt, shorten_list, MAX_LINE};
+use crate::scene::build::MAX_PARTICLES;
 
 /// Data lines of a CSV file (lines that are neither blank nor comments, less the header),
-/// counted without keeping them.
+/// counted without keeping them, in bounded memory: a line longer than [`MAX_LINE`] bytes
+/// (a file with no line breaks, or not a CSV file) or more rows than a scene may have
+/// particles ([`MAX_PARTICLES`]) is refused as soon as it is seen.
 pub(super) fn count_rows(path: &Path) -> Result<usize, String> {
     let file = std::fs::File::open(path).map_err(|e| format!("cannot read: {e}"))?;
-    let mut r = BufReader::new(file);
-    let mut line = Vec::new();
-    let mut n = 0usize;
-    let mut lineno = 0usize;
+    let mut r = BufReader::with_capacity(1 << 16, file);
+    let (mut lines, mut lineno, mut len) = (0usize, 1usize, 0usize);
+    // the first byte of the line that is not white space (blank lines and `#` comments
+    // are not rows)
+    let mut first: Option<u8> = None;
+    let too_many = || {
+        format!(
+            "more than {MAX_PARTICLES:.0e} particle rows (the particle limit of a scene)",
+            MAX_PARTICLES = MAX_PARTICLES as f64
+        )
+    };
     loop {
-        line.clear();
-        lineno += 1;
-        let got = r
-            .read_until(b'\n', &mut line)
+        let buf = r
+            .fill_buf()
             .map_err(|e| format!("line {lineno}: cannot read: {e}"))?;
-        if got == 0 {
+        if buf.is_empty() {
             break;
         }
-        let t = line.trim_ascii();
-        if !t.is_empty() && t[0] != b'#' {
-            n += 1;
+        let used = buf.len();
+        for &b in buf {
+            if b == b'\n' {
+                if first.is_some_and(|c| c != b'#') {
+                    lines += 1;
+                    if lines > MAX_PARTICLES + 1 {
+                        return Err(too_many());
+                    }
+                }
+                lineno += 1;
+                len = 0;
+                first = None;
+            } else {
+                len += 1;
+                if len > MAX_LINE {
+                    return Err(format!(
+                        "line {lineno}: longer than {MAX_LINE} bytes (a particle file's row is at most {} numbers; is this a CSV file?)",
+                        STATE_COLUMNS.len() + 1 + IGNORED_COLUMNS.len()
+                    ));
+                }
+                if first.is_none() && !b.is_ascii_whitespace() {
+                    first = Some(b);
+                }
+            }
         }
+        r.consume(used);
     }
-    Ok(n.saturating_sub(1))
+    if first.is_some_and(|c| c != b'#') {
+        lines += 1;
+    }
+    let rows = lines.saturating_sub(1);
+    if rows > MAX_PARTICLES {
+        return Err(too_many());
+    }
+    Ok(rows)
 }
 
 /// What a column of a CSV header is.
@@ -47,7 +85,7 @@ fn parse_header(line: &str, lineno: usize, dim: usize) -> Result<Vec<Slot>, Stri
             return Err(format!("{at}: empty column name"));
         }
         if seen.contains(&name) {
-            return Err(format!("{at}: column `{name}` appears twice"));
+            return Err(format!("{at}: column `{}` appears twice", excerpt(name)));
         }
         seen.push(name);
         let slot = if let Some(c) = STATE_COLUMNS.iter().position(|&s| s == name) {
@@ -58,7 +96,8 @@ fn parse_header(line: &str, lineno: usize, dim: usize) -> Result<Vec<Slot>, Stri
             Slot::Ignored
         } else {
             return Err(format!(
-                "{at}: unknown column `{name}` (known: {}, material; skipped: {})",
+                "{at}: unknown column `{}` (known: {}, material; skipped: {})",
+                excerpt(name),
                 STATE_COLUMNS.join(", "),
                 IGNORED_COLUMNS.join(", ")
             ));
@@ -71,7 +110,7 @@ fn parse_header(line: &str, lineno: usize, dim: usize) -> Result<Vec<Slot>, Stri
             return Err(format!(
                 "line {lineno}: no column `{axis}` (a {dim}D scene needs {}; the header names {})",
                 ["x", "y", "z"][..dim].join(", "),
-                seen.join(", ")
+                shorten_list(&seen)
             ));
         }
     }
@@ -154,10 +193,10 @@ pub(super) fn parse_csv(path: &Path, shown: &str, dim: usize) -> Result<FilePart
             };
             let number = || {
                 field.parse::<f64>().map_err(|_| {
-                    let shown: String = field.chars().take(40).collect();
                     format!(
-                        "line {lineno}, column `{}`: `{shown}` is not a number",
-                        name(slot)
+                        "line {lineno}, column `{}`: `{}` is not a number",
+                        name(slot),
+                        excerpt(field)
                     )
                 })
             };
@@ -167,7 +206,8 @@ pub(super) fn parse_csv(path: &Path, shown: &str, dim: usize) -> Result<FilePart
                     let v = number()?;
                     if !(v >= 0.0 && v <= u32::MAX as f64 && v.fract() == 0.0) {
                         return Err(format!(
-                            "line {lineno}, column `material`: `{field}` is not a material index (0, 1, ...)"
+                            "line {lineno}, column `material`: `{}` is not a material index (0, 1, ...)",
+                            excerpt(field)
                         ));
                     }
                     material.as_mut().expect("column kept").push(v as u32);
@@ -176,10 +216,10 @@ pub(super) fn parse_csv(path: &Path, shown: &str, dim: usize) -> Result<FilePart
             }
         }
         lines.push(lineno as usize);
-        if lines.len() > super::super::build::MAX_PARTICLES {
+        if lines.len() > MAX_PARTICLES {
             return Err(format!(
-                "more than {:.0e} particle rows (the limit of a scene)",
-                super::super::build::MAX_PARTICLES as f64
+                "more than {:.0e} particle rows (the particle limit of a scene)",
+                MAX_PARTICLES as f64
             ));
         }
     }

@@ -256,6 +256,8 @@ fn resolve_table(
                     v.type_str()
                 ));
             };
+            crate::output::safe::check_file_name(&file)
+                .map_err(|e| format!("{key}.include: {e}"))?;
             let path = match base {
                 Some(dir) if Path::new(&file).is_relative() => dir.join(&file),
                 _ => Path::new(&file).to_path_buf(),
@@ -264,6 +266,8 @@ fn resolve_table(
                 .map_err(|e| format!("{key}.include: cannot read {}: {e}", path.display()))?;
             let parsed: Table = text.parse().map_err(|e: toml::de::Error| {
                 let cause = e.message().split_whitespace().collect::<Vec<_>>().join(" ");
+                // (the parser quotes what it found: an excerpt of it)
+                let cause = crate::output::safe::shorten_quotes(&cause);
                 format!("{key}.include: {}: malformed TOML: {cause}", path.display())
             })?;
             // the file's own `name`, else its stem (not the name of a library material

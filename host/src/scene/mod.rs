@@ -21,11 +21,12 @@ mod validate_parts;
 pub mod walls;
 mod window;
 
-pub use build::{build_particles, check_particles, InitialParticles};
+pub use build::{build_particles, check_particles, InitialParticles, MAX_PARTICLES};
 pub use spec::*;
 pub use walls::WallSpec;
 pub use window::{WindowGeometry, WindowSpec};
 
+use crate::output::safe::{excerpt, excerpt_to, shorten_quotes};
 use gsph_core::kernel::Kernel;
 use std::path::Path;
 
@@ -63,10 +64,21 @@ fn err<T>(msg: impl Into<String>) -> Result<T, SceneError> {
     Err(SceneError(msg.into()))
 }
 
+/// The largest scene file read (far above any scene written by hand or by a script).
+pub const MAX_SCENE: u64 = 1 << 26;
+
+/// The text of a scene file: a regular file (not a directory, a pipe or a device) of at most
+/// [`MAX_SCENE`] bytes.
+pub fn read_scene(path: &Path) -> Result<String, SceneError> {
+    crate::output::safe::read_text(path, MAX_SCENE).map_err(|e| {
+        let cause = e.strip_prefix("cannot read: ").unwrap_or(&e);
+        SceneError(format!("{}: cannot read scene: {cause}", path.display()))
+    })
+}
+
 /// Reads and validates a scene file, applying `overrides` (`KEY=VALUE`) first.
 pub fn load(path: &Path, overrides: &[String]) -> Result<Scene, SceneError> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| SceneError(format!("{}: cannot read scene: {e}", path.display())))?;
+    let text = read_scene(path)?;
     parse(&text, &path.display().to_string(), overrides)
 }
 
@@ -105,8 +117,7 @@ pub fn load_for_scheme(
     overrides: &[String],
     scheme: &str,
 ) -> Result<(Scene, Vec<&'static str>), SceneError> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| SceneError(format!("{}: cannot read scene: {e}", path.display())))?;
+    let text = read_scene(path)?;
     let mut set = overrides.to_vec();
     set.push(format!("scheme={scheme}"));
     parse_inner(&text, &path.display().to_string(), &set, Mode::Strip)
@@ -124,9 +135,9 @@ fn parse_inner(
     for o in overrides {
         match o.strip_prefix(UNSET) {
             Some(key) => remove_key(&mut value, key)
-                .map_err(|e| SceneError(format!("--unset {key}: {}", e.0)))?,
+                .map_err(|e| SceneError(format!("--unset {}: {}", excerpt(key), e.0)))?,
             None => apply_override(&mut value, o)
-                .map_err(|e| SceneError(format!("--set {o}: {}", e.0)))?,
+                .map_err(|e| SceneError(format!("--set {}: {}", shown_override(o), e.0)))?,
         }
     }
     if mode == Mode::Settings {
@@ -184,7 +195,17 @@ fn toml_error(text: &str, origin: &str, e: &toml::de::Error) -> String {
         }
         None => String::new(),
     };
-    format!("{origin}{at}: malformed TOML: {}", cause.join("; "))
+    // (the parser quotes what it found: an excerpt of it)
+    format!(
+        "{origin}{at}: malformed TOML: {}",
+        shorten_quotes(&cause.join("; "))
+    )
+}
+
+/// `KEY=VALUE` of a `--set` as a message shows it: whole up to 120 characters (an inline
+/// table), else an excerpt; control characters escaped.
+fn shown_override(o: &str) -> String {
+    excerpt_to(o, 120)
 }
 
 /// Where the value behind an error came from: the last `--set` that wrote the key the message
@@ -204,7 +225,10 @@ fn source_of(msg: &str, up: bool, origin: &str, overrides: &[String]) -> String 
             o.split_once('=')
                 .is_some_and(|(k, _)| hit(&bracketed(k.trim())))
         })
-        .map_or_else(|| origin.to_string(), |o| format!("--set {o}"))
+        .map_or_else(
+            || origin.to_string(),
+            |o| format!("--set {}", shown_override(o)),
+        )
 }
 
 /// `bodies.0.spacing` -> `bodies[0].spacing` (the form messages use).

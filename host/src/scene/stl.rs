@@ -1,10 +1,21 @@
 //! Closed STL surfaces filled with a lattice (shape `stl`; the method is described in
 //! [`super::import`]'s module docs, "STL surfaces").
+//!
+//! The file is streamed, never read whole: a binary file facet by facet (its header's facet
+//! count at most [`MAX_FACETS`]), an ASCII file line by line (a line at most
+//! [`MAX_LINE`] bytes, so a file without line breaks is refused after that much); what is
+//! kept is 36 bytes a facet, less than the file holds for it.
 
-use super::import::regular_file;
+use crate::output::safe::{check_file_name, regular_file, shorten_quotes, MAX_LINE};
 use rayon::prelude::*;
 use std::collections::HashMap;
+use std::io::{BufReader, Read, Seek, SeekFrom};
 use std::path::Path;
+
+/// Most facets an STL surface may have: the particle limit of a scene
+/// ([`super::MAX_PARTICLES`]; a surface of more facets than the lattice filling it has sites
+/// describes detail the lattice cannot hold).
+pub const MAX_FACETS: usize = super::MAX_PARTICLES;
 
 /// A closed triangulated surface, its vertices placed (`scale * vertex + offset`).
 #[derive(Debug, Clone)]
@@ -17,23 +28,102 @@ pub(super) struct Mesh {
     pub hi: [f64; 3],
 }
 
-/// The bytes of an STL file for `stl_io`: a binary file whose header starts with `solid`
-/// (the ASCII keyword; some exporters write it) has it blanked, else `stl_io` would read
-/// the file as ASCII. Such a file is recognised by its length, 84 + 50 × the facet count in
-/// its header.
-fn stl_bytes(mut bytes: Vec<u8>) -> Vec<u8> {
-    if bytes.starts_with(b"solid") && bytes.len() >= 84 {
-        let n = u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]) as u64;
-        if bytes.len() as u64 == 84 + 50 * n {
-            bytes[..5].fill(b' ');
+/// How [`StlInput`] presents a file to `stl_io`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Format {
+    Ascii,
+    Binary,
+}
+
+/// A file as `stl_io` reads it, streamed. Binary: the first byte reads as a line break,
+/// so that `stl_io`'s probe (which reads the first line and takes a file starting with
+/// `solid ` for ASCII) reads one byte and decides binary, also for a binary file whose
+/// 80-byte header starts with `solid`, as some exporters write (the header is not data).
+/// ASCII: a line longer than [`MAX_LINE`] bytes is an error naming it (else `stl_io`
+/// would gather a file without line breaks into one string).
+struct StlInput<R> {
+    inner: R,
+    format: Format,
+    pos: u64,
+    line: usize,
+    run: usize,
+}
+
+impl<R: Read> Read for StlInput<R> {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        let n = self.inner.read(buf)?;
+        match self.format {
+            Format::Binary if self.pos == 0 && n > 0 => buf[0] = b'\n',
+            Format::Binary => {}
+            Format::Ascii => {
+                for &b in &buf[..n] {
+                    if b == b'\n' {
+                        self.line += 1;
+                        self.run = 0;
+                    } else {
+                        self.run += 1;
+                        if self.run > MAX_LINE {
+                            return Err(std::io::Error::new(
+                                std::io::ErrorKind::InvalidData,
+                                format!(
+                                    "line {}: longer than {MAX_LINE} bytes (is this an STL file?)",
+                                    self.line
+                                ),
+                            ));
+                        }
+                    }
+                }
+            }
         }
+        self.pos += n as u64;
+        Ok(n)
     }
-    bytes
+}
+
+impl<R: Seek> Seek for StlInput<R> {
+    fn seek(&mut self, to: SeekFrom) -> std::io::Result<u64> {
+        let p = self.inner.seek(to)?;
+        if p != self.pos {
+            // stl_io seeks back to the start after its probe, nowhere else
+            self.pos = p;
+            self.line = 1;
+            self.run = 0;
+        }
+        Ok(p)
+    }
 }
 
 /// `(x, y, z)` of a vertex for messages.
 fn point(v: &[f32; 3]) -> String {
     format!("({}, {}, {})", v[0], v[1], v[2])
+}
+
+/// A message of `stl_io` on one line, what it quotes of the file cut to an excerpt.
+fn tidy(e: &std::io::Error) -> String {
+    let one: Vec<String> = e.to_string().split_whitespace().map(String::from).collect();
+    let s = shorten_quotes(&one.join(" "));
+    if s.chars().count() > 200 {
+        s.chars().take(200).collect::<String>() + "…"
+    } else {
+        s
+    }
+}
+
+/// The format of an STL file of `len` bytes starting with `head` (as `stl_io` decides it,
+/// a binary file whose header starts with `solid` recognised by its length, 84 + 50 × the
+/// facet count in its header), and the facet count of a binary file.
+fn format_of(head: &[u8], len: u64) -> (Format, u64) {
+    let count = if head.len() >= 84 {
+        u64::from(u32::from_le_bytes([head[80], head[81], head[82], head[83]]))
+    } else {
+        0
+    };
+    let binary_length = head.len() >= 84 && len == 84 + 50 * count;
+    if head.starts_with(b"solid ") && !binary_length {
+        (Format::Ascii, 0)
+    } else {
+        (Format::Binary, count)
+    }
 }
 
 /// Reads and checks a closed STL surface (`key` is the shape's key).
@@ -43,105 +133,61 @@ pub(super) fn read_stl(
     scale: f64,
     offset: [f64; 3],
 ) -> Result<Mesh, String> {
+    check_file_name(file).map_err(|e| format!("{key}.file: {e}"))?;
     let at = |msg: String| format!("{key}.file: {file}: {msg}");
     let path = Path::new(file);
-    regular_file(path).map_err(at)?;
-    let bytes = std::fs::read(path).map_err(|e| at(format!("cannot read: {e}")))?;
-    let mut cursor = std::io::Cursor::new(stl_bytes(bytes));
-    let reader =
-        stl_io::create_stl_reader(&mut cursor).map_err(|e| at(format!("not an STL file: {e}")))?;
+    let len = regular_file(path).map_err(at)?;
+    let open = || std::fs::File::open(path).map_err(|e| at(format!("cannot read: {e}")));
+    let mut head = Vec::with_capacity(MAX_LINE + 1);
+    open()?
+        .take(MAX_LINE as u64 + 1)
+        .read_to_end(&mut head)
+        .map_err(|e| at(format!("cannot read: {e}")))?;
+    let (format, count) = format_of(&head, len);
+    if format == Format::Ascii && !head.contains(&b'\n') && head.len() > MAX_LINE {
+        return Err(at(format!(
+            "line 1: longer than {MAX_LINE} bytes (is this an STL file?)"
+        )));
+    }
+    if count > MAX_FACETS as u64 {
+        return Err(at(format!(
+            "the header declares {count} facets, more than the limit {:.0e} (a scene's particle limit)",
+            MAX_FACETS as f64
+        )));
+    }
+    drop(head);
+    let mut input = StlInput {
+        inner: BufReader::new(open()?),
+        format,
+        pos: 0,
+        line: 1,
+        run: 0,
+    };
+    let reader = stl_io::create_stl_reader(&mut input)
+        .map_err(|e| at(format!("not an STL file: {}", tidy(&e))))?;
     let mut raw: Vec<[[f32; 3]; 3]> = Vec::new();
     for (k, t) in reader.enumerate() {
+        if k == MAX_FACETS {
+            return Err(at(format!(
+                "more than {:.0e} facets (a scene's particle limit)",
+                MAX_FACETS as f64
+            )));
+        }
         let t = t.map_err(|e| {
             at(if e.kind() == std::io::ErrorKind::UnexpectedEof {
                 format!("facet {k}: the file ends before the facet does")
             } else {
-                format!(
-                    "facet {k}: {}",
-                    e.to_string()
-                        .split_whitespace()
-                        .collect::<Vec<_>>()
-                        .join(" ")
-                )
+                format!("facet {k}: {}", tidy(&e))
             })
         })?;
         let v = t.vertices.map(|p| p.0);
-        for (j, p) in v.iter().enumerate() {
-            if p.iter().any(|c| !c.is_finite()) {
-                return Err(at(format!(
-                    "facet {k}: vertex {j} is not finite {}",
-                    point(p)
-                )));
-            }
-        }
+        check_facet(k, &v).map_err(at)?;
         raw.push(v);
     }
     if raw.is_empty() {
         return Err(at("no facets".into()));
     }
-    // zero-area facets: |e1 x e2| within the single-precision round-off of the corners
-    for (k, t) in raw.iter().enumerate() {
-        let p = t.map(|v| v.map(f64::from));
-        let d = |a: usize, b: usize| [p[b][0] - p[a][0], p[b][1] - p[a][1], p[b][2] - p[a][2]];
-        let (e1, e2, e3) = (d(0, 1), d(0, 2), d(1, 2));
-        let norm = |u: [f64; 3]| (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt();
-        let cross = norm([
-            e1[1] * e2[2] - e1[2] * e2[1],
-            e1[2] * e2[0] - e1[0] * e2[2],
-            e1[0] * e2[1] - e1[1] * e2[0],
-        ]);
-        let l = norm(e1).max(norm(e2)).max(norm(e3));
-        let c = p.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
-        if cross <= 8.0 * f32::EPSILON as f64 * l * l.max(c) {
-            return Err(at(format!(
-                "facet {k}: zero area (its corners {}, {}, {} are collinear or coincide, to the file's single precision)",
-                point(&t[0]),
-                point(&t[1]),
-                point(&t[2])
-            )));
-        }
-    }
-    // closed: every edge, between vertices identified by their exact coordinates, shared
-    // by exactly two facets
-    let mut ids: HashMap<[u32; 3], u32> = HashMap::new();
-    let mut id_of = |v: &[f32; 3]| {
-        let bits = v.map(|c| (c + 0.0).to_bits()); // -0 and 0 are one vertex
-        let n = ids.len() as u32;
-        *ids.entry(bits).or_insert(n)
-    };
-    let mut edges: HashMap<(u32, u32), (u32, usize)> = HashMap::new();
-    for (k, t) in raw.iter().enumerate() {
-        let v = [id_of(&t[0]), id_of(&t[1]), id_of(&t[2])];
-        for j in 0..3 {
-            let (a, b) = (v[j], v[(j + 1) % 3]);
-            let e = edges.entry((a.min(b), a.max(b))).or_insert((0, k));
-            e.0 += 1;
-        }
-    }
-    let worst = edges
-        .iter()
-        .filter(|(_, &(n, _))| n != 2)
-        .min_by_key(|(_, &(_, first))| first);
-    if let Some((_, &(n, first))) = worst {
-        let t = &raw[first];
-        let ends = (0..3)
-            .map(|j| (&t[j], &t[(j + 1) % 3]))
-            .find(|(a, b)| {
-                let (a, b) = (id_of(a), id_of(b));
-                edges.get(&(a.min(b), a.max(b))).is_some_and(|e| e.0 != 2)
-            })
-            .expect("the facet has the edge");
-        let how = if n == 1 {
-            "belongs to no other facet: the surface is not closed".to_string()
-        } else {
-            format!("is shared by {n} facets: the surface is not a simple closed one")
-        };
-        return Err(at(format!(
-            "facet {first}: its edge from {} to {} {how} (every edge must be shared by exactly two facets)",
-            point(ends.0),
-            point(ends.1)
-        )));
-    }
+    check_closed(&raw).map_err(at)?;
     let place = |v: &[f32; 3]| {
         let mut p = [0.0; 3];
         for a in 0..3 {
@@ -159,6 +205,123 @@ pub(super) fn read_stl(
         }
     }
     Ok(Mesh { tris, lo, hi })
+}
+
+/// Facet `k`: finite corners, not of zero area (|e1 x e2| within the single-precision
+/// round-off of the corners).
+fn check_facet(k: usize, t: &[[f32; 3]; 3]) -> Result<(), String> {
+    for (j, p) in t.iter().enumerate() {
+        if p.iter().any(|c| !c.is_finite()) {
+            return Err(format!("facet {k}: vertex {j} is not finite {}", point(p)));
+        }
+    }
+    let p = t.map(|v| v.map(f64::from));
+    let d = |a: usize, b: usize| [p[b][0] - p[a][0], p[b][1] - p[a][1], p[b][2] - p[a][2]];
+    let (e1, e2, e3) = (d(0, 1), d(0, 2), d(1, 2));
+    let norm = |u: [f64; 3]| (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt();
+    let cross = norm([
+        e1[1] * e2[2] - e1[2] * e2[1],
+        e1[2] * e2[0] - e1[0] * e2[2],
+        e1[0] * e2[1] - e1[1] * e2[0],
+    ]);
+    let l = norm(e1).max(norm(e2)).max(norm(e3));
+    let c = p.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
+    if cross <= 8.0 * f32::EPSILON as f64 * l * l.max(c) {
+        return Err(format!(
+            "facet {k}: zero area (its corners {}, {}, {} are collinear or coincide, to the file's single precision)",
+            point(&t[0]),
+            point(&t[1]),
+            point(&t[2])
+        ));
+    }
+    Ok(())
+}
+
+/// An edge between two vertices: the facets on it (the first two) and how many, and the
+/// sum of its directions in them (+1 from the lower vertex id to the higher, -1 back).
+#[derive(Clone, Copy)]
+struct Edge {
+    count: u32,
+    facets: [usize; 2],
+    direction: i32,
+}
+
+/// Closed and consistently oriented: every edge, between vertices identified by their exact
+/// coordinates, shared by exactly two facets that run it in opposite directions (the
+/// winding-number inside test counts each crossing by the facet's orientation).
+fn check_closed(raw: &[[[f32; 3]; 3]]) -> Result<(), String> {
+    let mut ids: HashMap<[u32; 3], u32> = HashMap::new();
+    let mut id_of = |v: &[f32; 3]| {
+        let bits = v.map(|c| (c + 0.0).to_bits()); // -0 and 0 are one vertex
+        let n = ids.len() as u32;
+        *ids.entry(bits).or_insert(n)
+    };
+    let mut edges: HashMap<(u32, u32), Edge> = HashMap::new();
+    for (k, t) in raw.iter().enumerate() {
+        let v = [id_of(&t[0]), id_of(&t[1]), id_of(&t[2])];
+        for j in 0..3 {
+            let (a, b) = (v[j], v[(j + 1) % 3]);
+            let e = edges.entry((a.min(b), a.max(b))).or_insert(Edge {
+                count: 0,
+                facets: [k, k],
+                direction: 0,
+            });
+            if e.count == 1 {
+                e.facets[1] = k;
+            }
+            e.count += 1;
+            e.direction += if a < b { 1 } else { -1 };
+        }
+    }
+    // the edge whose first facet comes first in the file
+    let mut ends = |first: usize, bad: &dyn Fn(&Edge) -> bool| {
+        let t = &raw[first];
+        (0..3)
+            .map(|j| (t[j], t[(j + 1) % 3]))
+            .find(|(a, b)| {
+                let (a, b) = (id_of(a), id_of(b));
+                edges.get(&(a.min(b), a.max(b))).is_some_and(bad)
+            })
+            .expect("the facet has the edge")
+    };
+    let open = |e: &Edge| e.count != 2;
+    if let Some(e) = edges
+        .values()
+        .filter(|e| open(e))
+        .min_by_key(|e| e.facets[0])
+    {
+        let (a, b) = ends(e.facets[0], &open);
+        let how = if e.count == 1 {
+            "belongs to no other facet: the surface is not closed".to_string()
+        } else {
+            format!(
+                "is shared by {} facets: the surface is not a simple closed one",
+                e.count
+            )
+        };
+        return Err(format!(
+            "facet {}: its edge from {} to {} {how} (every edge must be shared by exactly two facets)",
+            e.facets[0],
+            point(&a),
+            point(&b)
+        ));
+    }
+    let flipped = |e: &Edge| e.direction != 0;
+    if let Some(e) = edges
+        .values()
+        .filter(|e| flipped(e))
+        .min_by_key(|e| e.facets[0])
+    {
+        let (a, b) = ends(e.facets[0], &flipped);
+        return Err(format!(
+            "facets {} and {} both run their shared edge from {} to {}: one of them is flipped (a surface's facets run counter-clockwise seen from outside, the STL rule the inside test relies on)",
+            e.facets[0],
+            e.facets[1],
+            point(&a),
+            point(&b)
+        ));
+    }
+    Ok(())
 }
 
 /// Sign of a value: -1, 0 or 1.
@@ -187,8 +350,9 @@ fn side(a: [f64; 2], b: [f64; 2], p: [f64; 2]) -> (f64, i8) {
     (0.0, if dv != 0.0 { -sign(dv) } else { sign(du) })
 }
 
-/// Where the ray `(y, z) = p` along x crosses facet `t`, if it does.
-fn crossing(t: &[[f64; 3]; 3], p: [f64; 2]) -> Option<f64> {
+/// Where the ray `(y, z) = p` along x crosses facet `t`, if it does, and the sign of the
+/// facet's normal along x there (+1: the ray leaves the facet's solid through it).
+fn crossing(t: &[[f64; 3]; 3], p: [f64; 2]) -> Option<(f64, i8)> {
     let q = |k: usize| [t[k][1], t[k][2]];
     let (wa, sa) = side(q(1), q(2), p);
     let (wb, sb) = side(q(2), q(0), p);
@@ -206,7 +370,7 @@ fn crossing(t: &[[f64; 3]; 3], p: [f64; 2]) -> Option<f64> {
     } else {
         (t[0][0] + t[1][0] + t[2][0]) / 3.0
     };
-    Some(x.clamp(lo, hi))
+    Some((x.clamp(lo, hi), sa))
 }
 
 impl Mesh {
@@ -281,19 +445,24 @@ impl Mesh {
             .map(|c| {
                 let (ky, kz) = (c % ny, c / ny);
                 let p = [at(1, ky), at(2, kz)];
-                let mut xs: Vec<f64> = pairs[start[c]..start[c + 1]]
+                let mut xs: Vec<(f64, i8)> = pairs[start[c]..start[c + 1]]
                     .iter()
                     .filter_map(|&(_, t)| crossing(&self.tris[t as usize], p))
                     .collect();
-                xs.sort_unstable_by(f64::total_cmp);
+                xs.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
                 let mut out = Vec::new();
-                let mut passed = 0;
+                // the winding number of the surface about the site: +1 past a facet facing
+                // -x (into the solid), -1 past one facing +x; inside where it is not 0, so
+                // that overlapping solids fill their union and a cavity (facets facing into
+                // it) stays empty
+                let (mut passed, mut winding) = (0, 0i64);
                 for kx in 0..n[0] {
                     let x = at(0, kx);
-                    while passed < xs.len() && xs[passed] < x {
+                    while passed < xs.len() && xs[passed].0 < x {
+                        winding -= i64::from(xs[passed].1);
                         passed += 1;
                     }
-                    if passed % 2 == 1 {
+                    if winding != 0 {
                         out.push(([x, p[0], p[1]], vol));
                     }
                 }

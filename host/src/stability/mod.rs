@@ -349,6 +349,7 @@ pub fn run_suite(opts: &StabilityOptions) -> Result<Vec<Row>, String> {
         }
     }
     if let Some(out) = &opts.out {
+        crate::output::safe::check_entries(out, &["stability.csv", "stability.md"])?;
         std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
         crate::output::write_atomic(out.join("stability.csv"), to_csv(&rows).as_bytes())
             .map_err(|e| format!("{}: {e}", out.display()))?;

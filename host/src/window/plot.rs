@@ -10,6 +10,30 @@ use super::hugoniot::{to_csv, HugoniotPoint};
 use crate::plot::xy::{Series, SeriesStyle, XyPlot};
 use std::path::Path;
 
+/// Every file `gsph hugoniot` writes into its folder for the points of `opts` (checked for
+/// links before it starts): each point's profile and plots, the partial and final tables and
+/// the plot.
+pub fn files(opts: &super::hugoniot::HugoniotOptions) -> Vec<String> {
+    let mut names: Vec<String> = [
+        "hugoniot.partial.csv",
+        "hugoniot.csv",
+        "hugoniot.png",
+        "hugoniot.svg",
+    ]
+    .map(String::from)
+    .to_vec();
+    for up in &opts.ups {
+        let stem = format!("profile_up{up}");
+        names.push(format!("{stem}.csv"));
+        for plot in ["stress", "density"] {
+            for ext in ["png", "svg"] {
+                names.push(format!("{stem}_{plot}.{ext}"));
+            }
+        }
+    }
+    names
+}
+
 /// Writes the files of one point into `dir`: `profile_up<UP>.csv` with
 /// `profile_up<UP>_stress.png` and `profile_up<UP>_density.png` (fig 9), PNG and SVG (the
 /// plots only with the feature `plot`).
@@ -152,8 +176,8 @@ pub fn plot_runs(dirs: &[std::path::PathBuf], labels: &[String], out: &Path) -> 
     let mut runs = Vec::new();
     for (k, dir) in dirs.iter().enumerate() {
         let path = dir.join("hugoniot.csv");
-        let text =
-            std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+        let text = crate::output::safe::read_text(&path, crate::output::safe::MAX_TABLE)
+            .map_err(|e| format!("{}: {e}", path.display()))?;
         let mut lines = text.lines();
         let header: Vec<&str> = lines.next().unwrap_or("").split(',').collect();
         let col = |name: &str| {

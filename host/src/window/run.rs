@@ -18,7 +18,7 @@ pub fn run_hugoniot(
     // points are done, and the partial table is then removed
     // refused before any computation: an --out that is a file, or a folder another
     // process writes
-    let _lock = crate::outdir::OutLock::acquire(out)?;
+    let _lock = crate::outdir::OutLock::acquire_for(out, &crate::window::plot::files(opts))?;
     let partial = out.join("hugoniot.partial.csv");
     let mut rows = String::new();
     #[cfg(not(feature = "plot"))]
