@@ -495,3 +495,32 @@ fn every_bundled_scene_builds_and_steps() {
     }
     assert!(windowed_scenes > 0 && refused == windowed_scenes);
 }
+
+/// The library reads a scene file as `gsph run` does: only a regular file (`/dev/zero` was
+/// read until memory ran out), and its messages quote a short excerpt of what it read
+/// (`/proc/self/environ` reached `gsph_last_error` and Python exceptions whole).
+#[test]
+fn from_file_reads_only_regular_files_and_quotes_excerpts() {
+    let e = match gsph::api::Simulation::from_file(Path::new("/dev/zero"), &[]) {
+        Err(e) => e.to_string(),
+        Ok(_) => panic!("/dev/zero accepted as a scene"),
+    };
+    assert!(
+        e.contains("/dev/zero") && e.contains("not a regular file"),
+        "{e}"
+    );
+    let tmp = tempfile::tempdir().unwrap();
+    let secret = format!("GSPH_SECRET_{}", "x".repeat(200));
+    let p = tmp.path().join("scene.toml");
+    std::fs::write(&p, format!("{secret}=1\0\n")).unwrap();
+    let e = match gsph::api::Simulation::from_file(&p, &[]) {
+        Err(e) => e.to_string(),
+        Ok(_) => panic!("a file that is not a scene was accepted"),
+    };
+    assert!(
+        !e.contains(&secret),
+        "the message quotes the whole line: {e}"
+    );
+    assert!(e.len() < 400, "{} bytes: {e}", e.len());
+    assert_eq!(e.lines().count(), 1, "{e}");
+}

@@ -163,8 +163,8 @@ impl Simulation {
     /// Reads, validates and builds a scene file, applying `overrides` in order (`KEY=VALUE`
     /// as `gsph run --set`, `unset:KEY` as `--unset KEY`: [`unset`]).
     pub fn from_file(path: &Path, overrides: &[String]) -> ApiResult<Self> {
-        let text = std::fs::read_to_string(path)
-            .map_err(|e| ApiError::Scene(format!("{}: cannot read scene: {e}", path.display())))?;
+        // a regular file of bounded size, as `gsph run` reads it
+        let text = scene::read_scene(path)?;
         let stem = path
             .file_stem()
             .map(|s| s.to_string_lossy().into_owned())
