@@ -155,6 +155,21 @@ impl<const D: usize> Sim<D> {
         2.0 * dmax2.sqrt() >= self.kernel.support() * hmin * (self.skin - growth)
     }
 
+    /// The first rebuild of a new simulation, then the overlap check of its particles
+    /// (`spacing` indexed by id); a neighbour overflow caused by particles on top of each
+    /// other is reported as that overlap ([`Sim::overlap_near`]).
+    pub(super) fn first_rebuild(&mut self, spacing: &[f64]) -> Result<(), SimError> {
+        if let Err(e) = self.rebuild() {
+            if let SimError::Neighbors(NeighborError::Overflow { particle, .. }) = e {
+                if let Some(overlap) = self.overlap_near(particle, spacing) {
+                    return Err(overlap);
+                }
+            }
+            return Err(e);
+        }
+        self.check_overlap(spacing)
+    }
+
     /// The neighbour lists could not be built because particle `id` has more neighbours
     /// than their capacity: when that is because particles sit on top of each other there
     /// (points given twice in a particle file, overlapping bodies), the overlap naming two

@@ -18,6 +18,7 @@ use std::any::Any;
 
 pub use crate::sim_error::SimError;
 
+mod by_id;
 #[cfg(feature = "mpi")]
 mod dist;
 mod edit;
@@ -25,6 +26,7 @@ mod lists;
 mod measure;
 mod state_io;
 pub mod walls;
+use by_id::{cause_by_id, overflow_by_id};
 pub use edit::HeldState;
 
 /// The step function for dimension `D` (looked up once per run; the specialisations are
@@ -39,56 +41,6 @@ fn select<const D: usize>(scheme: Scheme, effects: EffectSet) -> Option<StepFn<D
         2 => select_2d(family, effects).and_then(|f| cast(&f)),
         3 => select_3d(family, effects).and_then(|f| cast(&f)),
         _ => None,
-    }
-}
-
-/// A neighbour overflow naming the particle by its id (particles are renumbered in memory).
-fn overflow_by_id(e: NeighborError, ids: &[u32]) -> NeighborError {
-    match e {
-        NeighborError::Overflow {
-            particle,
-            found,
-            capacity,
-        } => NeighborError::Overflow {
-            particle: ids[particle] as usize,
-            found,
-            capacity,
-        },
-        other => other,
-    }
-}
-
-/// A step error naming the particle by its id; when several particles fail the finite
-/// check, the one of lowest id (so the message does not depend on the memory order).
-fn cause_by_id<const D: usize>(cause: StepError, ids: &[u32], sys: &System<'_, D>) -> StepError {
-    let bad = |i: usize| check_finite_one(sys, i).err();
-    match cause {
-        StepError::NonFinite { .. } | StepError::NonPositiveDensity { .. } => {
-            let worst = (0..sys.len())
-                .filter_map(|i| bad(i).map(|c| (ids[i], c)))
-                .min_by_key(|(id, _)| *id);
-            match worst {
-                Some((id, StepError::NonFinite { field, .. })) => StepError::NonFinite {
-                    particle: id as usize,
-                    field,
-                },
-                Some((id, StepError::NonPositiveDensity { .. })) => StepError::NonPositiveDensity {
-                    particle: id as usize,
-                },
-                // the core named a particle the finite check passes (a time step, say)
-                _ => match cause {
-                    StepError::NonFinite { particle, field } => StepError::NonFinite {
-                        particle: ids[particle] as usize,
-                        field,
-                    },
-                    StepError::NonPositiveDensity { particle } => StepError::NonPositiveDensity {
-                        particle: ids[particle] as usize,
-                    },
-                    other => other,
-                },
-            }
-        }
-        other => other,
     }
 }
 
@@ -385,18 +337,7 @@ impl<const D: usize> Sim<D> {
         // particles a moving window feeds in later
         sim.append(parts);
         sim.check_walls().map_err(SimError::Walls)?;
-        match sim.rebuild() {
-            // too many neighbours because particles sit on top of each other: say that
-            Err(SimError::Neighbors(NeighborError::Overflow { particle, .. }))
-                if sim.overlap_near(particle, &parts.spacing).is_some() =>
-            {
-                return Err(sim
-                    .overlap_near(particle, &parts.spacing)
-                    .expect("found above"));
-            }
-            r => r?,
-        }
-        sim.check_overlap(&parts.spacing)?;
+        sim.first_rebuild(&parts.spacing)?;
         Ok(sim)
     }
 

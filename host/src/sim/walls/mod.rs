@@ -151,6 +151,7 @@ impl<const D: usize> Halo<D> for Mirrors<D> {
 }
 
 /// The fields [`pressed`] reads of a mirror's source.
+#[cfg(feature = "mpi")]
 const PRESSED: Fields =
     Fields(Fields::V.0 | Fields::RHO.0 | Fields::P.0 | Fields::CL.0 | Fields::S.0);
 
