@@ -4,6 +4,11 @@
 
 use gsph_core::kernel::Kernel;
 
+/// Most particles a scene may have (all bodies together), and so any file of particles
+/// it reads: beyond this a spacing or `resolution_scale` is almost surely wrong, and
+/// building would exhaust memory.
+pub const MAX_PARTICLES: usize = 100_000_000;
+
 /// Bytes of memory available to this process: `MemAvailable` of /proc/meminfo, lowered
 /// to the cgroup's limit (less its usage) where one is set. `None` where neither can be
 /// read (no refusal is made then).

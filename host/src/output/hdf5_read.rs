@@ -8,7 +8,7 @@
 //! it leads to another file (external links), no dataset read is stored outside it (external
 //! storage, virtual datasets) or filtered by anything but deflate and shuffle (a filter
 //! plugin would be loaded and run to decode it), and each dataset's declared size is bounded
-//! before it is allocated: at most [`MAX_PARTICLES`](crate::scene::MAX_PARTICLES) particles,
+//! before it is allocated: at most [`MAX_PARTICLES`](crate::memory::MAX_PARTICLES) particles,
 //! the values a particle has, stored in the file (a contiguous dataset's bytes at most the
 //! file's size; a chunked one's at most [`MAX_DEFLATE_RATIO`] times its stored chunks, deflate's
 //! own bound), and the whole snapshot within the memory available. So a small file declaring
@@ -235,7 +235,7 @@ pub fn read_frame(path: impl AsRef<Path>, step: u64) -> Result<Frame, OutputErro
     let step = g.attr("step")?.read_scalar::<u64>()?;
     // the particle count, from the shape of `id`, bounded before anything is allocated
     let n = g.dataset("id")?.size();
-    let limit = crate::scene::MAX_PARTICLES;
+    let limit = crate::memory::MAX_PARTICLES;
     if n > limit {
         return Err(bad(format!(
             "{}/id: {n} particles, more than the limit {:.0e} of a scene",

@@ -85,9 +85,7 @@ impl InitialParticles {
     }
 }
 
-/// Most particles a scene may have (all bodies together): beyond this a spacing or
-/// `resolution_scale` is almost surely wrong, and building would exhaust memory.
-pub const MAX_PARTICLES: usize = 100_000_000;
+pub use crate::memory::MAX_PARTICLES;
 /// Most lattice cells the bounding box of the particles may span (at the finest spacing):
 /// the neighbour search keeps a grid over that box.
 pub const MAX_CELLS: f64 = (1u64 << 30) as f64;
