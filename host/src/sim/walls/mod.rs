@@ -28,12 +28,12 @@
 //!
 //! Ghosts are a function of the owned particles' positions at the last neighbour-list
 //! rebuild (`build_x`), so a checkpoint holds owned particles only and a restart recreates
-//! the same ghosts. How they are made, numbered and bounded: [`images`].
+//! the same ghosts. How they are made, numbered and bounded: `images.rs`.
 //!
 //! Under MPI (feature `mpi`) the mirrors sit after the other ranks' ghosts and image
 //! those too, so an owned particle sees every mirror it would see in one process (a
 //! mirror within reach of a particle images a particle within reach of it, which this
-//! rank holds); [`Both`] refreshes the ranks' ghosts first, then the mirrors from them.
+//! rank holds); `Both` refreshes the ranks' ghosts first, then the mirrors from them.
 
 mod images;
 mod plane;
