@@ -187,7 +187,7 @@ fn cases() -> Vec<Case> {
         case("wrong value type via --set", f(), "check", &["--set", "materials.0.rho0=dense"], &["materials[0].rho0: invalid type: string \"dense\", expected f64"]),
         case("wrong type inside a tagged table", flyer_with("name = \"metal\"", "name = \"metal\"\neos = { c0 = \"fast\" }"), "check", &[], &["scene.toml: materials[0].eos.c0: invalid type"]),
         case("body with no particle (2D disc)", DISC_2D.to_string(), "check", &[], &["scene.toml: bodies[0]: the shape holds no particle"]),
-        case("too many particles", f(), "run", &["--set", "resolution_scale=1e9"], &["bodies[0].spacing", "limit 1e8"]),
+        case("too many particles", f(), "run", &["--set", "resolution_scale=1e9"], &["bodies[0].spacing", "limit 1e8 (`max_particles` raises it)"]),
         case("no bodies", f(), "check", &["--set", "bodies=[]"], &["bodies: at least one body is required"]),
         case("no materials", f(), "check", &["--set", "materials=[]"], &["materials: at least one material is required"]),
         case("duplicate material name", second_metal, "check", &[], &["scene.toml: materials[1].name: duplicate material name `metal`"]),
@@ -240,6 +240,7 @@ fn cases() -> Vec<Case> {
         case("walls meeting at 45° near the particles", WEDGE_2D.to_string(), "run", &[], &["walls[0] and walls[1] meet at 45.0°, not at a right angle, within the kernel's reach"]),
         case("particle file that is a device", f(), "run", &["--set", "bodies.0.shape={ type = \"particles\", file = \"/dev/zero\" }"], &["bodies[0].shape.file: /dev/zero: not a regular file"]),
         case("long value quoted as an excerpt", f(), "check", &["--set", "materials.0.rho0=dddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddd"], &["materials[0].rho0: invalid type: string \"dddddddddddddddddddddddddddddddddddddddd…\", expected f64"]),
+        case("more particles than max_particles", f(), "run", &["--set", "max_particles=50"], &["bodies[1].spacing", "more than the limit 5e1 (`max_particles` raises it)"]),
     ]
 }
 

@@ -117,7 +117,7 @@ fn a_continued_run_starts_from_the_previous_final_state() {
         ("first/snapshots.h5", "from_h5"),
     ] {
         run(d, "next.toml", &impact("1e-12", &continued(file, "")), out);
-        let start = read_frame(d.join(out).join("snapshots.h5"), 0).unwrap();
+        let start = read_frame(d.join(out).join("snapshots.h5"), 0, usize::MAX).unwrap();
         assert_eq!(start.time, 0.0);
         assert_same_state(&start.table, &last, &STATE, file);
         assert_same_state(&start.table, &last, &["p", "h"], file);
@@ -129,8 +129,8 @@ fn a_continued_run_starts_from_the_previous_final_state() {
         &impact("1e-12", &continued("first/snapshots.h5", ", step = 0")),
         "again",
     );
-    let first = read_frame(d.join("first/snapshots.h5"), 0).unwrap();
-    let again = read_frame(d.join("again/snapshots.h5"), 0).unwrap();
+    let first = read_frame(d.join("first/snapshots.h5"), 0, usize::MAX).unwrap();
+    let again = read_frame(d.join("again/snapshots.h5"), 0, usize::MAX).unwrap();
     assert_same_state(&again.table, &first.table, &STATE, "step 0");
 }
 
@@ -156,7 +156,7 @@ fn a_continued_run_keeps_plastic_strain_damage_and_temperature() {
         &impact("1e-12", &continued("first/final.csv", "")),
         "next",
     );
-    let start = read_frame(d.join("next/snapshots.h5"), 0).unwrap();
+    let start = read_frame(d.join("next/snapshots.h5"), 0, usize::MAX).unwrap();
     assert_same_state(
         &start.table,
         &last,
@@ -186,7 +186,9 @@ material = "al"
     );
     run(d, "box.toml", &boxed, "box");
     // the box's particles at t = 0 as a CSV file of positions, masses and densities
-    let start = read_frame(d.join("box/snapshots.h5"), 0).unwrap().table;
+    let start = read_frame(d.join("box/snapshots.h5"), 0, usize::MAX)
+        .unwrap()
+        .table;
     let mut csv = String::from("x,y,m,rho\n");
     for r in by_id(&start) {
         csv.push_str(&format!("{:e},{:e},{:e},{:e}\n", r.x, r.y, r.m, r.rho));

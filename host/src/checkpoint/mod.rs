@@ -315,15 +315,16 @@ impl Checkpoint {
         Ok(())
     }
 
-    /// The snapshots written up to the checkpoint, from `dir/checkpoint.h5`.
-    pub fn frames(&self) -> Result<Vec<Frame>, CheckpointError> {
+    /// The snapshots written up to the checkpoint, from `dir/checkpoint.h5`, each of at
+    /// most `limit` particles (the scene's particle limit).
+    pub fn frames(&self, limit: usize) -> Result<Vec<Frame>, CheckpointError> {
         let step = self.step;
         let path = self.dir.join(CHECKPOINT_H5);
         let times = read_snapshot_times(&path).map_err(|e| err(&path, e))?;
         let frames: Vec<Frame> = times
             .iter()
             .filter(|&&(s, _)| s <= step)
-            .map(|&(s, _)| read_frame(&path, s).map_err(|e| err(&path, e)))
+            .map(|&(s, _)| read_frame(&path, s, limit).map_err(|e| err(&path, e)))
             .collect::<Result<_, _>>()?;
         if frames.len() as u64 != self.driver.frames {
             return Err(err(

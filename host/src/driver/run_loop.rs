@@ -105,7 +105,7 @@ fn set_up<const D: usize>(
         monitor
             .restore_accumulated(&ck.driver.monitor)
             .map_err(|e| RunError::Checkpoint(format!("{}: {e}", ck.dir.display())))?;
-        frames = ck.frames().map_err(ckpt_err)?;
+        frames = ck.frames(scene.particle_limit()).map_err(ckpt_err)?;
         resumed = Some(ck.driver.clone());
     }
     // MPI: every rank built the same run (else refused on every rank), then the

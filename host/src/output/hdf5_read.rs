@@ -8,7 +8,7 @@
 //! it leads to another file (external links), no dataset read is stored outside it (external
 //! storage, virtual datasets) or filtered by anything but deflate and shuffle (a filter
 //! plugin would be loaded and run to decode it), and each dataset's declared size is bounded
-//! before it is allocated: at most [`MAX_PARTICLES`](crate::memory::MAX_PARTICLES) particles,
+//! before it is allocated: at most the scene's `max_particles` where a scene reads it,
 //! the values a particle has, stored in the file (a contiguous dataset's bytes at most the
 //! file's size; a chunked one's at most [`MAX_DEFLATE_RATIO`] times its stored chunks, deflate's
 //! own bound), and the whole snapshot within the memory available. So a small file declaring
@@ -217,8 +217,10 @@ fn read_values<T: hdf5::H5Type>(
 const BYTES_PER_PARTICLE: u64 = (FLOAT_COLUMNS.len() as u64 + 6) * 8 + 8;
 
 /// Reads the snapshot of `step` from a file written by
-/// [`SnapshotWriter`](super::hdf5::SnapshotWriter).
-pub fn read_frame(path: impl AsRef<Path>, step: u64) -> Result<Frame, OutputError> {
+/// [`SnapshotWriter`](super::hdf5::SnapshotWriter), of at most `limit` particles (a
+/// scene's `max_particles` where a scene reads it; `usize::MAX` leaves the bound to the
+/// memory this machine has), checked before anything is allocated.
+pub fn read_frame(path: impl AsRef<Path>, step: u64, limit: usize) -> Result<Frame, OutputError> {
     let path = path.as_ref();
     let (file, len) = open(path)?;
     let name = group_name(step);
@@ -235,10 +237,9 @@ pub fn read_frame(path: impl AsRef<Path>, step: u64) -> Result<Frame, OutputErro
     let step = g.attr("step")?.read_scalar::<u64>()?;
     // the particle count, from the shape of `id`, bounded before anything is allocated
     let n = g.dataset("id")?.size();
-    let limit = crate::memory::MAX_PARTICLES;
     if n > limit {
         return Err(bad(format!(
-            "{}/id: {n} particles, more than the limit {:.0e} of a scene",
+            "{}/id: {n} particles, more than the scene's limit {:.0e} (`max_particles` raises it)",
             g.name(),
             limit as f64
         )));

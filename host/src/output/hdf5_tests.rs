@@ -74,9 +74,9 @@ fn round_trip_two_frames_of_different_sizes() {
         vec![(0, 0.0), (123, 1.25e-6)]
     );
     for f in &frames {
-        assert_eq!(&read_frame(&h5, f.step).unwrap(), f);
+        assert_eq!(&read_frame(&h5, f.step, usize::MAX).unwrap(), f);
     }
-    let e = read_frame(&h5, 7).unwrap_err();
+    let e = read_frame(&h5, 7, usize::MAX).unwrap_err();
     assert!(matches!(e, OutputError::Format(_)) && e.to_string().contains("step 7"));
 
     let x = std::fs::read_to_string(dir.path().join(SNAPSHOTS_XDMF)).unwrap();
@@ -224,7 +224,10 @@ fn partial_pair_follows_the_run_and_finish_replaces_it() {
     // the partial file is whole between snapshots: another reader sees both
     let partial = dir.path().join(SNAPSHOTS_PARTIAL_H5);
     assert_eq!(read_snapshot_times(&partial).unwrap().len(), 2);
-    assert_eq!(read_frame(&partial, 10).unwrap(), frame(10, 2e-6, 5));
+    assert_eq!(
+        read_frame(&partial, 10, usize::MAX).unwrap(),
+        frame(10, 2e-6, 5)
+    );
     w.finish().unwrap();
     assert_eq!(names(dir.path()), vec![SNAPSHOTS_H5, SNAPSHOTS_XDMF]);
 }
@@ -246,7 +249,10 @@ fn interrupt_marks_the_partial_pair() {
         vec![SNAPSHOTS_PARTIAL_H5, SNAPSHOTS_PARTIAL_XDMF]
     );
     let partial = dir.path().join(SNAPSHOTS_PARTIAL_H5);
-    assert_eq!(read_frame(&partial, 0).unwrap(), frame(0, 0.0, 4));
+    assert_eq!(
+        read_frame(&partial, 0, usize::MAX).unwrap(),
+        frame(0, 0.0, 4)
+    );
 }
 
 #[test]
@@ -339,7 +345,7 @@ fn files_of_format_version_1_still_read() {
     let f = frame(3, 1.5, 6);
     write_version_1(&path, &f);
     assert_eq!(read_snapshot_times(&path).unwrap(), vec![(3, 1.5)]);
-    assert_eq!(read_frame(&path, 3).unwrap(), f);
+    assert_eq!(read_frame(&path, 3, usize::MAX).unwrap(), f);
     assert_eq!(read_run_info(&path).unwrap(), None);
 }
 
@@ -349,7 +355,7 @@ fn empty_frame_round_trips() {
     let mut w = writer(dir.path());
     w.append(&frame(5, 1.0, 0)).unwrap();
     w.finish().unwrap();
-    let f = read_frame(dir.path().join(SNAPSHOTS_H5), 5).unwrap();
+    let f = read_frame(dir.path().join(SNAPSHOTS_H5), 5, usize::MAX).unwrap();
     assert_eq!(f, frame(5, 1.0, 0));
 }
 
@@ -383,11 +389,13 @@ fn a_missing_directory_fails_cleanly() {
 
 #[test]
 fn errors_display_on_one_line() {
-    let e = read_frame("/nonexistent/snapshots.h5", 0).unwrap_err();
+    let e = read_frame("/nonexistent/snapshots.h5", 0, usize::MAX).unwrap_err();
     let s = e.to_string();
     assert!(s.starts_with("I/O error") && !s.contains('\n'), "{s}");
     let dir = tempfile::tempdir().unwrap();
-    let e = read_frame(dir.path(), 0).unwrap_err().to_string();
+    let e = read_frame(dir.path(), 0, usize::MAX)
+        .unwrap_err()
+        .to_string();
     assert_eq!(e, "bad output data: not a regular file");
     let io = OutputError::from(io::Error::other("a\nb"));
     assert_eq!(io.to_string(), "I/O error: a b");

@@ -74,7 +74,11 @@ pub fn read_run_info(_path: impl AsRef<Path>) -> Result<Option<RunInfo>, OutputE
 }
 
 /// Refuses as [`read_snapshot_times`] does.
-pub fn read_frame(_path: impl AsRef<Path>, _step: u64) -> Result<Frame, OutputError> {
+pub fn read_frame(
+    _path: impl AsRef<Path>,
+    _step: u64,
+    _limit: usize,
+) -> Result<Frame, OutputError> {
     Err(OutputError::Unsupported(NO_HDF5.into()))
 }
 
@@ -93,7 +97,7 @@ mod tests {
         assert_eq!(read_run_info(dir).unwrap_err().to_string(), NO_HDF5);
         let read = read_snapshot_times(dir).unwrap_err().to_string();
         assert_eq!(read, NO_HDF5);
-        assert_eq!(read_frame(dir, 0).unwrap_err().to_string(), NO_HDF5);
+        assert_eq!(read_frame(dir, 0, 1).unwrap_err().to_string(), NO_HDF5);
         assert!(!dir.exists());
     }
 }

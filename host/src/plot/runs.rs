@@ -40,7 +40,8 @@ pub fn particles(
             .last()
             .ok_or_else(|| format!("{}: no snapshots", h5.display()))?,
     };
-    let frame = read_frame(&h5, s).map_err(|e| format!("{}: {e}", h5.display()))?;
+    // no scene here: the memory available bounds what is read
+    let frame = read_frame(&h5, s, usize::MAX).map_err(|e| format!("{}: {e}", h5.display()))?;
     let name = dir
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())

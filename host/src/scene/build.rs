@@ -147,6 +147,7 @@ pub fn build_particles(scene: &Scene) -> Result<InitialParticles, SceneError> {
         ..Default::default()
     };
     let mut total = 0.0;
+    let limit = scene.particle_limit();
     for (b, body) in scene.bodies.iter().enumerate() {
         let key = format!("bodies[{b}]");
         let mi = scene
@@ -162,7 +163,7 @@ pub fn build_particles(scene: &Scene) -> Result<InitialParticles, SceneError> {
         // particles are counted against the limits
         let (source, count_key) = match &body.shape {
             ShapeSpec::Particles { file, step, .. } => {
-                let src = import::open_particles(&shape_key, file, *step, scene.dim)
+                let src = import::open_particles(&shape_key, file, *step, scene.dim, limit)
                     .map_err(SceneError)?;
                 total += src.rows() as f64;
                 (Source::File(src), format!("{key}.shape.file"))
@@ -173,8 +174,8 @@ pub fn build_particles(scene: &Scene) -> Result<InitialParticles, SceneError> {
                 offset,
             } => {
                 let offset = offset.as_deref().map_or([0.0; 3], |o| [o[0], o[1], o[2]]);
-                let mesh =
-                    import::read_stl(&shape_key, file, *scale, offset).map_err(SceneError)?;
+                let mesh = import::read_stl(&shape_key, file, *scale, offset, limit)
+                    .map_err(SceneError)?;
                 total += mesh.sites(dx);
                 (Source::Mesh(mesh), format!("{key}.spacing"))
             }
@@ -183,14 +184,15 @@ pub fn build_particles(scene: &Scene) -> Result<InitialParticles, SceneError> {
                 (Source::Lattice, format!("{key}.spacing"))
             }
         };
-        if !at_most(total, MAX_PARTICLES as f64) {
+        if !at_most(total, limit as f64) {
+            let lim = limit as f64;
             return Err(SceneError(match &source {
                 Source::File(src) => format!(
-                    "{count_key}: the file holds {} particles, about {total:.2e} with the bodies before it, more than the limit {MAX_PARTICLES:.0e}",
+                    "{count_key}: the file holds {} particles, about {total:.2e} with the bodies before it, more than the limit {lim:.0e} (`max_particles` raises it)",
                     src.rows()
                 ),
                 _ => format!(
-                    "{key}.spacing: spacing {dx:e} m (spacing / resolution_scale) makes about {total:.2e} particles, more than the limit {MAX_PARTICLES:.0e}"
+                    "{key}.spacing: spacing {dx:e} m (spacing / resolution_scale) makes about {total:.2e} particles, more than the limit {lim:.0e} (`max_particles` raises it)"
                 ),
             }));
         }

@@ -33,7 +33,7 @@
 //! # STL surfaces
 //! Read with the `stl_io` crate, streamed (ASCII or binary; a binary file whose 80-byte
 //! header starts with `solid`, as some exporters write, is recognised by its length; at
-//! most [`MAX_FACETS`](super::stl::MAX_FACETS) facets, an ASCII line at most
+//! most `max_particles` facets, an ASCII line at most
 //! [`MAX_LINE`](crate::output::safe::MAX_LINE) bytes). The surface must be closed: every edge (vertices identified by their exact coordinates) shared by
 //! exactly two facets; coordinates finite; no facet of zero area (collinear vertices to
 //! the file's single precision). The body is the `box` lattice over the surface's bounding
@@ -239,12 +239,14 @@ fn is_hdf5(path: &Path) -> bool {
 
 /// Opens the particle file of a `particles` shape (`key` is the shape's key, e.g.
 /// `bodies[0].shape`): counts a CSV file's rows, or reads the snapshot of `step` of an
-/// HDF5 file (which must be of dimension `dim`).
+/// HDF5 file (which must be of dimension `dim`); either holds at most `limit` particles
+/// (the scene's `max_particles`), checked before they are read.
 pub(super) fn open_particles(
     key: &str,
     file: &str,
     step: Option<u64>,
     dim: usize,
+    limit: usize,
 ) -> Result<ParticleSource, String> {
     let path = Path::new(file);
     if let Err(e) = crate::output::safe::check_file_name(file) {
@@ -254,14 +256,15 @@ pub(super) fn open_particles(
     // not a directory, a device or a pipe that never ends
     crate::output::safe::regular_file(path).map_err(at)?;
     if is_hdf5(path) {
-        return read_snapshot(key, file, step, dim).map(|f| ParticleSource::Snapshot(Box::new(f)));
+        return read_snapshot(key, file, step, dim, limit)
+            .map(|f| ParticleSource::Snapshot(Box::new(f)));
     }
     if step.is_some() {
         return Err(format!(
             "{key}.step: selects a snapshot of an HDF5 file; {file} is read as CSV"
         ));
     }
-    let rows = count_rows(path).map_err(at)?;
+    let rows = count_rows(path, limit).map_err(at)?;
     Ok(ParticleSource::Csv {
         path: path.to_path_buf(),
         rows,
@@ -277,9 +280,9 @@ pub(super) fn read_particles(
     file_material: Option<u32>,
 ) -> Result<FileParticles, String> {
     let mut f = match src {
-        ParticleSource::Csv { path, .. } => {
+        ParticleSource::Csv { path, rows } => {
             let shown = path.display().to_string();
-            parse_csv(&path, &shown, dim).map_err(|e| format!("{key}.file: {shown}: {e}"))?
+            parse_csv(&path, &shown, dim, rows).map_err(|e| format!("{key}.file: {shown}: {e}"))?
         }
         ParticleSource::Snapshot(f) => *f,
     };
@@ -309,6 +312,7 @@ fn read_snapshot(
     file: &str,
     step: Option<u64>,
     dim: usize,
+    limit: usize,
 ) -> Result<FileParticles, String> {
     let at = |msg: String| format!("{key}.file: {file}: {msg}");
     let times = read_snapshot_times(file).map_err(|e| at(e.to_string()))?;
@@ -325,7 +329,7 @@ fn read_snapshot(
             ))
         }
     };
-    let frame = read_frame(file, step).map_err(|e| at(e.to_string()))?;
+    let frame = read_frame(file, step, limit).map_err(|e| at(e.to_string()))?;
     if frame.dim != dim {
         return Err(at(format!(
             "the snapshot of step {step} is {}D, the scene is {dim}D",

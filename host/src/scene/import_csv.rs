@@ -3,13 +3,12 @@
 
 use super::*;
 use crate::output::safe::{excerpt, shorten_list, MAX_LINE};
-use crate::scene::build::MAX_PARTICLES;
 
 /// Data lines of a CSV file (lines that are neither blank nor comments, less the header),
 /// counted without keeping them, in bounded memory: a line longer than [`MAX_LINE`] bytes
 /// (a file with no line breaks, or not a CSV file) or more rows than a scene may have
-/// particles ([`MAX_PARTICLES`]) is refused as soon as it is seen.
-pub(super) fn count_rows(path: &Path) -> Result<usize, String> {
+/// particles (`limit`, the scene's `max_particles`) is refused as soon as it is seen.
+pub(super) fn count_rows(path: &Path, limit: usize) -> Result<usize, String> {
     let file = std::fs::File::open(path).map_err(|e| format!("cannot read: {e}"))?;
     let mut r = BufReader::with_capacity(1 << 16, file);
     let (mut lines, mut lineno, mut len) = (0usize, 1usize, 0usize);
@@ -18,8 +17,8 @@ pub(super) fn count_rows(path: &Path) -> Result<usize, String> {
     let mut first: Option<u8> = None;
     let too_many = || {
         format!(
-            "more than {MAX_PARTICLES:.0e} particle rows (the particle limit of a scene)",
-            MAX_PARTICLES = MAX_PARTICLES as f64
+            "more than {:.0e} particle rows, the scene's particle limit (`max_particles` raises it)",
+            limit as f64
         )
     };
     loop {
@@ -34,7 +33,7 @@ pub(super) fn count_rows(path: &Path) -> Result<usize, String> {
             if b == b'\n' {
                 if first.is_some_and(|c| c != b'#') {
                     lines += 1;
-                    if lines > MAX_PARTICLES + 1 {
+                    if lines > limit.saturating_add(1) {
                         return Err(too_many());
                     }
                 }
@@ -60,7 +59,7 @@ pub(super) fn count_rows(path: &Path) -> Result<usize, String> {
         lines += 1;
     }
     let rows = lines.saturating_sub(1);
-    if rows > MAX_PARTICLES {
+    if rows > limit {
         return Err(too_many());
     }
     Ok(rows)
@@ -131,7 +130,12 @@ fn parse_header(line: &str, lineno: usize, dim: usize) -> Result<Vec<Slot>, Stri
 /// Parses a CSV particle file (see the module docs) with the `csv` crate: fields may be
 /// quoted, lines end in LF or CRLF, `#` starts a comment line, a UTF-8 byte-order mark is
 /// skipped; errors name the line.
-pub(super) fn parse_csv(path: &Path, shown: &str, dim: usize) -> Result<FileParticles, String> {
+pub(super) fn parse_csv(
+    path: &Path,
+    shown: &str,
+    dim: usize,
+    counted: usize,
+) -> Result<FileParticles, String> {
     let file = std::fs::File::open(path).map_err(|e| format!("cannot read: {e}"))?;
     let mut reader = csv::ReaderBuilder::new()
         .has_headers(false)
@@ -216,10 +220,9 @@ pub(super) fn parse_csv(path: &Path, shown: &str, dim: usize) -> Result<FilePart
             }
         }
         lines.push(lineno as usize);
-        if lines.len() > MAX_PARTICLES {
+        if lines.len() > counted {
             return Err(format!(
-                "more than {:.0e} particle rows (the particle limit of a scene)",
-                MAX_PARTICLES as f64
+                "more rows than the {counted} counted before reading (was the file written to meanwhile?)"
             ));
         }
     }

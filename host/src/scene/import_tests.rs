@@ -4,6 +4,7 @@
 
 use super::super::{build_particles, load, InitialParticles, Scene};
 use super::*;
+use crate::memory::MAX_PARTICLES;
 use std::collections::HashMap;
 
 type Tri = [[f32; 3]; 3];
@@ -225,6 +226,7 @@ fn an_stl_sphere_holds_its_volume() {
         dir.path().join("ball.stl").to_str().unwrap(),
         1.0,
         [0.0; 3],
+        MAX_PARTICLES,
     )
     .unwrap();
     let exact = 4.0 / 3.0 * std::f64::consts::PI * r.powi(3);
@@ -277,6 +279,7 @@ fn rays_through_vertices_and_edges_count_once() {
         dir.path().join("octa.stl").to_str().unwrap(),
         1.0,
         [0.0; 3],
+        MAX_PARTICLES,
     )
     .unwrap();
     assert!((mesh.volume() - 4.0 / 3.0 * 0.375f64.powi(3)).abs() < 1e-15);
@@ -363,7 +366,7 @@ fn a_binary_stl_whose_header_says_solid_reads() {
     let mut bytes = std::fs::read(&p).unwrap();
     bytes[..11].copy_from_slice(b"solid cube ");
     std::fs::write(&p, bytes).unwrap();
-    let m = read_stl("b", p.to_str().unwrap(), 1.0, [0.0; 3]).unwrap();
+    let m = read_stl("b", p.to_str().unwrap(), 1.0, [0.0; 3], MAX_PARTICLES).unwrap();
     assert_eq!(m.tris.len(), 12);
     assert!((m.volume() - 1.0).abs() < 1e-12);
 }
@@ -637,7 +640,7 @@ fn fill_agrees_with_the_plane_test_of_a_convex_polyhedron() {
     let file = dir.path().join("p.stl");
     for (k, dx) in [0.1, 0.0731, 0.05, 0.125].into_iter().enumerate() {
         let offset = [0.013 * k as f64, -0.007 * k as f64, 0.0];
-        let mesh = read_stl("b", file.to_str().unwrap(), 1.0, offset).unwrap();
+        let mesh = read_stl("b", file.to_str().unwrap(), 1.0, offset, MAX_PARTICLES).unwrap();
         let planes: Vec<([f64; 3], f64)> = mesh
             .tris
             .iter()
@@ -684,4 +687,37 @@ fn fill_agrees_with_the_plane_test_of_a_convex_polyhedron() {
         }
         assert!(inside > 1000, "{inside}");
     }
+}
+
+/// The particle limit of a scene is its key `max_particles` (default 1e8): a particle file
+/// or an STL surface beyond it is refused naming the key, counted before it is read, and
+/// the key raised lets it through.
+#[test]
+fn max_particles_bounds_particle_files_and_stl_facets() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let boxed = built(d, &format!("{AL_2D}{BOX_2D}"));
+    std::fs::write(d.join("box.csv"), csv_of(&boxed, &["x", "y", "m", "rho"])).unwrap();
+    let body = particles_body("box.csv", "");
+    let e = load_err(d, &format!("max_particles = 20\n{AL_2D}{body}"));
+    assert!(
+        e.contains("box.csv: more than 2e1 particle rows, the scene's particle limit (`max_particles` raises it)"),
+        "{e}"
+    );
+    assert_eq!(
+        built(d, &format!("max_particles = 50\n{AL_2D}{body}")).len(),
+        50
+    );
+    // an STL surface of 12 facets (a cube) under a limit of 4
+    std::fs::write(d.join("cube.stl"), ascii_stl(&cube([0.0; 3], [1e-3; 3]))).unwrap();
+    let e = load_err(
+        d,
+        &format!("max_particles = 4\n{}", stl_body("cube.stl", "")),
+    );
+    assert!(
+        e.contains("more than 4e0 facets (the scene's particle limit; `max_particles` raises it)"),
+        "{e}"
+    );
+    let e = load_err(d, &format!("max_particles = 0\n{AL_2D}{body}"));
+    assert!(e.contains("max_particles: must be at least 1"), "{e}");
 }

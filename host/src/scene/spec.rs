@@ -69,6 +69,11 @@ pub struct Scene {
     /// Stop after this many steps (safety net).
     #[serde(default)]
     pub max_steps: Option<u64>,
+    /// Most particles the scene may have, and so rows of a particle file or facets of an
+    /// STL file it reads (default [`crate::memory::MAX_PARTICLES`], 1e8); memory is
+    /// checked separately.
+    #[serde(default)]
+    pub max_particles: Option<u64>,
     /// Scheme options.
     #[serde(default)]
     pub options: OptionsSpec,
@@ -192,6 +197,15 @@ impl Scene {
     /// The CFL number (the scene's, or [`DEFAULT_CFL`]).
     pub fn cfl(&self) -> f64 {
         self.cfl.unwrap_or(DEFAULT_CFL)
+    }
+
+    /// Most particles the scene may have (`max_particles`, default
+    /// [`crate::memory::MAX_PARTICLES`]).
+    pub fn particle_limit(&self) -> usize {
+        self.max_particles
+            .map_or(crate::memory::MAX_PARTICLES, |n| {
+                usize::try_from(n).unwrap_or(usize::MAX)
+            })
     }
 
     /// Deserialises from a TOML table. The error is one line, `KEY: cause` (the key path

@@ -2,7 +2,9 @@
 //! [`super::import`]'s module docs, "STL surfaces").
 //!
 //! The file is streamed, never read whole: a binary file facet by facet (its header's facet
-//! count at most [`MAX_FACETS`]), an ASCII file line by line (a line at most
+//! count at most the scene's particle limit, `max_particles`: a surface of more facets
+//! than the lattice filling it has sites describes detail the lattice cannot hold), an
+//! ASCII file line by line (a line at most
 //! [`MAX_LINE`] bytes, so a file without line breaks is refused after that much); what is
 //! kept is 36 bytes a facet, less than the file holds for it.
 
@@ -11,11 +13,6 @@ use rayon::prelude::*;
 use std::collections::HashMap;
 use std::io::{BufReader, Read, Seek, SeekFrom};
 use std::path::Path;
-
-/// Most facets an STL surface may have: the particle limit of a scene
-/// ([`super::MAX_PARTICLES`]; a surface of more facets than the lattice filling it has sites
-/// describes detail the lattice cannot hold).
-pub const MAX_FACETS: usize = super::MAX_PARTICLES;
 
 /// A closed triangulated surface, its vertices placed (`scale * vertex + offset`).
 #[derive(Debug, Clone)]
@@ -126,12 +123,14 @@ fn format_of(head: &[u8], len: u64) -> (Format, u64) {
     }
 }
 
-/// Reads and checks a closed STL surface (`key` is the shape's key).
+/// Reads and checks a closed STL surface (`key` is the shape's key) of at most
+/// `max_facets` facets (the scene's particle limit).
 pub(super) fn read_stl(
     key: &str,
     file: &str,
     scale: f64,
     offset: [f64; 3],
+    max_facets: usize,
 ) -> Result<Mesh, String> {
     check_file_name(file).map_err(|e| format!("{key}.file: {e}"))?;
     let at = |msg: String| format!("{key}.file: {file}: {msg}");
@@ -149,10 +148,10 @@ pub(super) fn read_stl(
             "line 1: longer than {MAX_LINE} bytes (is this an STL file?)"
         )));
     }
-    if count > MAX_FACETS as u64 {
+    if count > max_facets as u64 {
         return Err(at(format!(
-            "the header declares {count} facets, more than the limit {:.0e} (a scene's particle limit)",
-            MAX_FACETS as f64
+            "the header declares {count} facets, more than the limit {:.0e} (the scene's particle limit; `max_particles` raises it)",
+            max_facets as f64
         )));
     }
     drop(head);
@@ -167,10 +166,10 @@ pub(super) fn read_stl(
         .map_err(|e| at(format!("not an STL file: {}", tidy(&e))))?;
     let mut raw: Vec<[[f32; 3]; 3]> = Vec::new();
     for (k, t) in reader.enumerate() {
-        if k == MAX_FACETS {
+        if k == max_facets {
             return Err(at(format!(
-                "more than {:.0e} facets (a scene's particle limit)",
-                MAX_FACETS as f64
+                "more than {:.0e} facets (the scene's particle limit; `max_particles` raises it)",
+                max_facets as f64
             )));
         }
         let t = t.map_err(|e| {

@@ -198,6 +198,9 @@ fn validate_with(s: &Scene, bodies_required: bool) -> R {
     if s.neighbor_capacity == Some(0) {
         return fail("neighbor_capacity", "must be at least 1");
     }
+    if s.max_particles == Some(0) {
+        return fail("max_particles", "must be at least 1");
+    }
     if s.max_steps == Some(0) {
         return fail("max_steps", "must be at least 1");
     }
