@@ -2,8 +2,10 @@
 # Two gsph binaries side by side (e.g. before and after a change that touches a scheme, a
 # pass or the neighbour search): whether each scheme's final.csv is bitwise the same on the
 # flyer plate, the 1D Riemann problem and a short 3D impact, then the stepping wall time
-# (`wall_s`) on the colliding rings, 300 steps, one thread, the two binaries alternating.
-#   scripts/ab.sh OLD_GSPH NEW_GSPH [REPEATS]     (about 3 minutes with 3 repeats)
+# (`wall_s`) on the colliding rings (300 steps) and the 2D steel -> SiC impact (half
+# resolution, 150 steps), one thread, the two binaries alternating within each round; last
+# the median over rounds of new/old for each case and scheme.
+#   scripts/ab.sh OLD_GSPH NEW_GSPH [REPEATS]     (about 5 minutes with 3 repeats)
 # Build the old one from a worktree: git worktree add /tmp/old REV &&
 #   (cd /tmp/old && cargo build --release -p gsph) and pass /tmp/old/target/release/gsph.
 set -euo pipefail
@@ -23,16 +25,39 @@ for b in old new; do
 done
 cmp -s "$o/old_3d/final.csv" "$o/new_3d/final.csv" && r=identical || r=DIFFERENT
 echo "steel_sic_impact_3d (6,250 particles, 40 steps, ts2): $r"
-echo "== wall_s, rings, 300 steps, one thread (repeat scheme binary seconds)"
+echo "== wall_s, one thread (round case scheme binary seconds)"
+times=$o/times.txt
 for rep in $(seq "$reps"); do
-  for s in av ts2 tkc; do
-    # alternate which binary goes first, so neither always runs on a cooler machine
-    order=(old new); (( rep % 2 == 0 )) && order=(new old)
-    for b in "${order[@]}"; do
-      "${!b}" run cases/rings.toml --set scheme=$s --set max_steps=300 --unset monitor \
-        --set output.snapshots=1 --threads 1 --quiet --out "$o/r_${b}_$s" >/dev/null
-      echo "$rep $s $b $(python3 -c "import json,sys;print(json.load(open(sys.argv[1]))['wall_s'])" "$o/r_${b}_$s/summary.json")"
+  for c in rings impact; do
+    for s in av ts2 tkc; do
+      # alternate which binary goes first, so neither always runs on a cooler machine
+      order=(old new); (( rep % 2 == 0 )) && order=(new old)
+      for b in "${order[@]}"; do
+        if [ "$c" = rings ]; then
+          "${!b}" run cases/rings.toml --set scheme=$s --set max_steps=300 --unset monitor \
+            --set output.snapshots=1 --threads 1 --quiet --out "$o/r_${b}_$s" >/dev/null
+        else
+          unset_riemann=(); [ "$s" = av ] && unset_riemann=(--unset options.riemann)
+          "${!b}" run cases/steel_sic_impact.toml --set scheme=$s --set resolution_scale=0.5 \
+            --set max_steps=150 "${unset_riemann[@]}" --unset monitor --set output.snapshots=1 \
+            --threads 1 --quiet --out "$o/r_${b}_$s" >/dev/null
+        fi
+        w=$(python3 -c "import json,sys;print(json.load(open(sys.argv[1]))['wall_s'])" "$o/r_${b}_$s/summary.json")
+        echo "$rep $c $s $b $w" | tee -a "$times"
+      done
     done
   done
 done
+echo "== median over rounds of new/old wall_s"
+python3 - "$times" <<'PY'
+import sys, statistics
+rows = [l.split() for l in open(sys.argv[1])]
+t = {(r[0], r[1], r[2], r[3]): float(r[4]) for r in rows}
+for c in ("rings", "impact"):
+    for s in ("av", "ts2", "tkc"):
+        ratios = sorted(t[(k, c, s, "new")] / t[(k, c, s, "old")]
+                        for k in {r[0] for r in rows})
+        print(f"{c} {s}: new/old {statistics.median(ratios):.3f} "
+              f"(rounds: {', '.join(f'{x:.3f}' for x in ratios)})")
+PY
 rm -rf "$o"
