@@ -1,3 +1,5 @@
+#![cfg(target_os = "linux")]
+
 //! A signal during the set-up of `gsph run` (issue 25): before the run touches its output
 //! folder, SIGTERM and SIGINT end the process at once with 128 + the signal's number, and
 //! leave that folder as it was. Before, the handler only set a flag that the first step
@@ -7,6 +9,28 @@
 use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
+
+/// Waits until process `pid` catches SIGINT and SIGTERM (`SigCgt` in `/proc/PID/status`).
+fn handlers_installed(pid: u32) {
+    let t0 = Instant::now();
+    loop {
+        let status = std::fs::read_to_string(format!("/proc/{pid}/status")).unwrap_or_default();
+        let caught = status
+            .lines()
+            .find_map(|l| l.strip_prefix("SigCgt:"))
+            .and_then(|m| u64::from_str_radix(m.trim(), 16).ok())
+            .unwrap_or(0);
+        // bit n - 1 is signal n: SIGINT 2, SIGTERM 15
+        if caught & (1 << 1) != 0 && caught & (1 << 14) != 0 {
+            return;
+        }
+        assert!(
+            t0.elapsed() < Duration::from_secs(60),
+            "gsph run installed no handlers within 60 s"
+        );
+        std::thread::sleep(Duration::from_millis(5));
+    }
+}
 
 #[test]
 fn a_signal_during_set_up_ends_the_run_at_once_and_touches_nothing() {
@@ -25,7 +49,9 @@ fn a_signal_during_set_up_ends_the_run_at_once_and_touches_nothing() {
             .stderr(Stdio::piped())
             .spawn()
             .unwrap();
-        std::thread::sleep(Duration::from_millis(200));
+        // wait until the run has installed its handlers (a fixed delay raced with a
+        // loaded CI machine: the signal then arrived first and killed the process)
+        handlers_installed(child.id());
         let t0 = Instant::now();
         let sent = Command::new("kill")
             .args([signal, &child.id().to_string()])
