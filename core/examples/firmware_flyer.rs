@@ -199,7 +199,8 @@ mod runner {
             st.cl[i] = MATERIAL.c_long(st.rho[i], eos.c2);
             st.h[i] = 1.2 * DX;
         }
-        let step = select_1d::<Serial>(Family::Ts, EFFECTS.kernel_part()).ok_or(StepError::NotCompiled)?;
+        let step =
+            select_1d::<Serial>(Family::Ts, EFFECTS.kernel_part()).ok_or(StepError::NotCompiled)?;
         let t_end: Real = 0.5e-6;
         let mut t = 0.0;
         let mut steps = 0;

@@ -73,7 +73,8 @@ impl EffectSet {
             | Self::ARTIFICIAL_STRESS.0,
     );
     /// The effects compiled into a specialisation (the rest are run-time flags).
-    pub const COMPILED: EffectSet = EffectSet(Self::STRENGTH.0 | Self::CORRECTION.0 | Self::MUSCL.0);
+    pub const COMPILED: EffectSet =
+        EffectSet(Self::STRENGTH.0 | Self::CORRECTION.0 | Self::MUSCL.0);
 
     /// Every named effect with its bit, in display order.
     pub const NAMED: [(&'static str, EffectSet); 9] = [

@@ -218,13 +218,34 @@ const NO_ART: u16 = ALL & !EffectSet::ARTIFICIAL_STRESS.0;
 fn variants<F: SchemeFamily, const S: bool, const C: bool, const M: bool>(
 ) -> Vec<(&'static str, StepFn<2, Rayon>)> {
     vec![
-        ("every flag read (the dispatch table)", F::step::<2, Variant<S, C, M, ALL>, Rayon>),
-        ("plasticity compiled out", F::step::<2, Variant<S, C, M, NO_PLASTICITY>, Rayon>),
-        ("damage compiled out", F::step::<2, Variant<S, C, M, NO_DAMAGE>, Rayon>),
-        ("heat compiled out", F::step::<2, Variant<S, C, M, NO_HEAT>, Rayon>),
-        ("periodic compiled out", F::step::<2, Variant<S, C, M, NO_PERIODIC>, Rayon>),
-        ("artificial stress compiled out", F::step::<2, Variant<S, C, M, NO_ART>, Rayon>),
-        ("every flag compiled out", F::step::<2, Variant<S, C, M, 0>, Rayon>),
+        (
+            "every flag read (the dispatch table)",
+            F::step::<2, Variant<S, C, M, ALL>, Rayon>,
+        ),
+        (
+            "plasticity compiled out",
+            F::step::<2, Variant<S, C, M, NO_PLASTICITY>, Rayon>,
+        ),
+        (
+            "damage compiled out",
+            F::step::<2, Variant<S, C, M, NO_DAMAGE>, Rayon>,
+        ),
+        (
+            "heat compiled out",
+            F::step::<2, Variant<S, C, M, NO_HEAT>, Rayon>,
+        ),
+        (
+            "periodic compiled out",
+            F::step::<2, Variant<S, C, M, NO_PERIODIC>, Rayon>,
+        ),
+        (
+            "artificial stress compiled out",
+            F::step::<2, Variant<S, C, M, NO_ART>, Rayon>,
+        ),
+        (
+            "every flag compiled out",
+            F::step::<2, Variant<S, C, M, 0>, Rayon>,
+        ),
     ]
 }
 
@@ -262,7 +283,12 @@ fn flags_off(scheme: &str, variants: &[(&'static str, StepFn<2, Rayon>)]) -> Vec
                 sim.step(dt).unwrap_or_else(|e| panic!("{e}"));
             }
             t[v] = t0.elapsed().as_secs_f64();
-            let state: Vec<f64> = sim.x.iter().flat_map(|x| [x[0], x[1]]).chain(sim.e.clone()).collect();
+            let state: Vec<f64> = sim
+                .x
+                .iter()
+                .flat_map(|x| [x[0], x[1]])
+                .chain(sim.e.clone())
+                .collect();
             match &finals[v] {
                 None => finals[v] = Some(state),
                 Some(s) => assert!(s == &state, "{scheme}: a variant is not repeatable"),
@@ -375,7 +401,10 @@ fn main() {
     let tables = pool.install(|| {
         [
             ("av", flags_off("av", &variants::<Av, true, false, false>())),
-            ("ts2", flags_off("ts2", &variants::<Ts, true, false, true>())),
+            (
+                "ts2",
+                flags_off("ts2", &variants::<Ts, true, false, true>()),
+            ),
             ("tkc", flags_off("tkc", &variants::<Pm, true, true, true>())),
         ]
     });

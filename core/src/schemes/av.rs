@@ -145,12 +145,21 @@ impl SchemeFamily for Av {
         if ws.av.len() != sys.len()
             || ws.aux.len() != sys.len()
             || ws.geom.len() != pairs
-            || (params.has::<E>(EffectSet::ARTIFICIAL_STRESS) && (ws.art.len() != sys.len() || ws.fac.len() != pairs))
+            || (params.has::<E>(EffectSet::ARTIFICIAL_STRESS)
+                && (ws.art.len() != sys.len() || ws.fac.len() != pairs))
         {
             return Err(StepError::Storage { field: "av" });
         }
         if !ws.primed {
-            exchange(params.effects, halo, &EXCHANGES[0], sys, ws.grad, ws.grad_stress, ws.corr);
+            exchange(
+                params.effects,
+                halo,
+                &EXCHANGES[0],
+                sys,
+                ws.grad,
+                ws.grad_stress,
+                ws.corr,
+            );
             rates::<D, E, X>(sys, ws, params, exec);
             ws.primed = true;
         }
@@ -180,7 +189,15 @@ impl SchemeFamily for Av {
                 }
             },
         );
-        exchange(params.effects, halo, &EXCHANGES[0], sys, ws.grad, ws.grad_stress, ws.corr);
+        exchange(
+            params.effects,
+            halo,
+            &EXCHANGES[0],
+            sys,
+            ws.grad,
+            ws.grad_stress,
+            ws.corr,
+        );
         rates::<D, E, X>(sys, ws, params, exec);
         // Second kick with the rates of the predicted state.
         exec.run(

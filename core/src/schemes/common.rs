@@ -88,11 +88,7 @@ pub(crate) fn geometry_pass<const D: usize, E: Effects, X: Executor>(
             for k in 0..gs.len() {
                 let i = off + k;
                 let (xi, hi) = (x[i], h[i]);
-                let fk: &mut [Real] = if art {
-                    fs.of(k)
-                } else {
-                    &mut []
-                };
+                let fk: &mut [Real] = if art { fs.of(k) } else { &mut [] };
                 for (q, (g, &j)) in gs.of(k).iter_mut().zip(nb.owned(i)).enumerate() {
                     let j = j as usize;
                     let mut rij = xi - x[j];

@@ -261,7 +261,15 @@ impl SchemeFamily for Pm {
         }
         let dt = params.dt;
         let [start, pair, dynamic] = &EXCHANGES;
-        exchange(params.effects, halo, start, sys, ws.grad, ws.grad_stress, ws.corr);
+        exchange(
+            params.effects,
+            halo,
+            start,
+            sys,
+            ws.grad,
+            ws.grad_stress,
+            ws.corr,
+        );
         geometry_pass::<D, E, X>(sys.x, sys.h, params, ws.geom, ws.fac, exec);
         refresh_aux::<D, true, X>(sys, ws.aux, params, exec);
         {
@@ -283,7 +291,15 @@ impl SchemeFamily for Pm {
                 );
             }
         }
-        exchange(params.effects, halo, pair, sys, ws.grad, ws.grad_stress, ws.corr);
+        exchange(
+            params.effects,
+            halo,
+            pair,
+            sys,
+            ws.grad,
+            ws.grad_stress,
+            ws.corr,
+        );
         if E::MUSCL {
             // With MUSCL the Riemann dissipation nearly vanishes in smooth flow, and the
             // explicit Euler of the seed (forces and strain rates from the same old state)
@@ -302,7 +318,15 @@ impl SchemeFamily for Pm {
                     }
                 },
             );
-            exchange(params.effects, halo, dynamic, sys, ws.grad, ws.grad_stress, ws.corr);
+            exchange(
+                params.effects,
+                halo,
+                dynamic,
+                sys,
+                ws.grad,
+                ws.grad_stress,
+                ws.corr,
+            );
             refresh_aux::<D, true, X>(sys, ws.aux, params, exec);
             if params.has::<E>(EffectSet::ARTIFICIAL_STRESS) {
                 artificial_stress_tensors::<D, E, X>(sys, ws.art, params, exec);

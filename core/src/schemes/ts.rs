@@ -542,12 +542,28 @@ impl SchemeFamily for Ts {
         //    |1 + i w dt| > 1 lets waves grow wherever the Riemann dissipation vanishes:
         //    always in the deviatoric step, and in smooth flow with MUSCL.
         let [front, continuity, deviatoric, hydro] = &EXCHANGES;
-        exchange(params.effects, halo, front, sys, ws.grad, ws.grad_stress, ws.corr);
+        exchange(
+            params.effects,
+            halo,
+            front,
+            sys,
+            ws.grad,
+            ws.grad_stress,
+            ws.corr,
+        );
         geometry_pass::<D, E, X>(sys.x, sys.h, params, ws.geom, ws.fac, exec);
         let (geom, fac): (&[PairGeom<D>], &[Real]) = (ws.geom, ws.fac);
         refresh_aux::<D, false, X>(sys, ws.aux, params, exec);
         front_gradient_pass::<D, E, X>(sys, geom, ws.aux, ws.sums, ws.grad, params, exec);
-        exchange(params.effects, halo, continuity, sys, ws.grad, ws.grad_stress, ws.corr);
+        exchange(
+            params.effects,
+            halo,
+            continuity,
+            sys,
+            ws.grad,
+            ws.grad_stress,
+            ws.corr,
+        );
         continuity_pass::<D, E, X>(
             sys, ws.grad, geom, ws.aux, ws.ts_star, ws.sums, params, exec,
         );
@@ -564,7 +580,15 @@ impl SchemeFamily for Ts {
                 }
             },
         );
-        exchange(params.effects, halo, deviatoric, sys, ws.grad, ws.grad_stress, ws.corr);
+        exchange(
+            params.effects,
+            halo,
+            deviatoric,
+            sys,
+            ws.grad,
+            ws.grad_stress,
+            ws.corr,
+        );
         // 2. Deviatoric step (with strength or artificial stress): no dissipation.
         refresh_aux::<D, false, X>(sys, ws.aux, params, exec);
         let art_on = params.has::<E>(EffectSet::ARTIFICIAL_STRESS);
@@ -589,7 +613,15 @@ impl SchemeFamily for Ts {
             );
         }
         // 3. Hydrodynamic step with the new pressure (reconstruction slopes from step 1).
-        exchange(params.effects, halo, hydro, sys, ws.grad, ws.grad_stress, ws.corr);
+        exchange(
+            params.effects,
+            halo,
+            hydro,
+            sys,
+            ws.grad,
+            ws.grad_stress,
+            ws.corr,
+        );
         hydro_pass::<D, E, X>(
             sys, ws.grad, geom, ws.aux, ws.ts_star, ws.sums, params, exec,
         );
