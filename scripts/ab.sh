@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Two gsph binaries side by side (e.g. before and after a change that touches a scheme, a
 # pass or the neighbour search): whether each scheme's final.csv is bitwise the same on the
-# flyer plate, the 1D Riemann problem and a short 3D impact, then the stepping wall time
+# flyer plate, the 1D Riemann problem, a short 3D impact, the 2D impact with damage, the bar
+# on a rigid wall, the periodic 2D Riemann strip and the rings with artificial stress, then
+# the stepping wall time
 # (`wall_s`) on the colliding rings (300 steps) and the 2D steel -> SiC impact (half
 # resolution, 150 steps), one thread, the two binaries alternating within each round; last
 # the median over rounds of new/old for each case and scheme.
@@ -25,6 +27,19 @@ for b in old new; do
 done
 cmp -s "$o/old_3d/final.csv" "$o/new_3d/final.csv" && r=identical || r=DIFFERENT
 echo "steel_sic_impact_3d (6,250 particles, 40 steps, ts2): $r"
+# every run-time effect: damage and heat (2D impact), walls (the bar), periodic (2D
+# Riemann strip), artificial stress (rings), each scheme
+same() { cmp -s "$o/old_$1/final.csv" "$o/new_$1/final.csv" && echo identical || echo DIFFERENT; }
+for s in av pm ts1 ts2 tkc; do
+  extra=(); [ "$s" = av ] && extra=(--unset options.riemann)
+  for b in old new; do
+    "${!b}" run cases/steel_sic_impact.toml --set scheme=$s --set resolution_scale=0.25 --set max_steps=60 "${extra[@]}" --out "$o/${b}_imp_$s" --quiet >/dev/null
+    "${!b}" run cases/wall_bar.toml --set scheme=$s --set t_end=4e-6 --out "$o/${b}_wall_$s" --quiet >/dev/null
+    "${!b}" run cases/riemann_al_2d.toml --set scheme=$s --set resolution_scale=0.5 --set max_steps=60 --out "$o/${b}_r2_$s" --quiet >/dev/null
+    "${!b}" run cases/rings.toml --set scheme=$s --set max_steps=40 --set resolution_scale=0.5 --out "$o/${b}_ring_$s" --quiet >/dev/null
+  done
+  echo "steel_sic_impact 2D (damage, heat) $s: $(same imp_$s); wall_bar $s: $(same wall_$s); riemann_al_2d (periodic) $s: $(same r2_$s); rings (artificial stress) $s: $(same ring_$s)"
+done
 echo "== wall_s, one thread (round case scheme binary seconds)"
 times=$o/times.txt
 for rep in $(seq "$reps"); do

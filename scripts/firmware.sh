@@ -122,8 +122,8 @@ for p in f64 f32; do
   echo "${RUN[$p]}"
   FW[$p]=$(result "${RUN[$p]}")
   FOOT[$p]=$(footprint "$ELF/firmware_flyer-$p-n100.elf")
-  grep -q '^kernel step_1d_ts_strength_plasticity (' <<<"${RUN[$p]}" ||
-    die "the $p firmware did not select step_1d_ts_strength_plasticity"
+  grep -q '^kernel step_1d_ts_strength (' <<<"${RUN[$p]}" ||
+    die "the $p firmware did not select step_1d_ts_strength"
 done
 
 echo "== gsph run cases/flyer_plate.toml --set scheme=ts1 --set output.snapshots=1"

@@ -66,7 +66,7 @@ mod runner {
     /// round-off (measured: a few machine epsilons, 3e-16 in f64 and 9e-7 in f32).
     pub const ENERGY_TOLERANCE: Real = 1.0e3 * Real::EPSILON;
 
-    /// The effects of the run: the step is `select_1d(Family::Ts, EFFECTS)`.
+    /// The effects of the run: the step is `select_1d(Family::Ts, EFFECTS.kernel_part())`.
     const EFFECTS: EffectSet = EffectSet::STRENGTH.union(EffectSet::PLASTICITY);
 
     /// Neighbour capacity per particle.
@@ -121,7 +121,7 @@ mod runner {
     pub fn write_kernel(w: &mut impl fmt::Write) -> fmt::Result {
         let name = CATALOGUE
             .iter()
-            .find(|s| s.dim == 1 && s.family == Family::Ts && s.effects == EFFECTS)
+            .find(|s| s.dim == 1 && s.family == Family::Ts && s.effects == EFFECTS.kernel_part())
             .map_or("none", |s| s.name);
         let compiled = CATALOGUE.iter().filter(|s| s.compiled).count();
         write!(
@@ -199,7 +199,8 @@ mod runner {
             st.cl[i] = MATERIAL.c_long(st.rho[i], eos.c2);
             st.h[i] = 1.2 * DX;
         }
-        let step = select_1d::<Serial>(Family::Ts, EFFECTS).ok_or(StepError::NotCompiled)?;
+        let step =
+            select_1d::<Serial>(Family::Ts, EFFECTS.kernel_part()).ok_or(StepError::NotCompiled)?;
         let t_end: Real = 0.5e-6;
         let mut t = 0.0;
         let mut steps = 0;
@@ -262,6 +263,7 @@ mod runner {
                 periodic: Periodic::none(),
                 nbrs: list.view(),
                 options: SchemeOptions::default(),
+                effects: EFFECTS,
             };
             let pairs = list.view().unordered_pairs();
             if pairs > geom.len() {

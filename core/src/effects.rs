@@ -1,34 +1,40 @@
 //! Effects: the physics a scene calls for (DESIGN §5).
 //!
-//! A run's effect set is resolved once from the scene (materials and options). Each
-//! compiled specialisation of a scheme is monomorphised over one effect set `E: Effects`,
-//! whose associated constants are compile-time booleans: branches such as
-//! `if E::STRENGTH { .. }` are folded away by the compiler, so a hydro-only run contains no
-//! strength code at all. [`EffectSet`] is the run-time value of the same set, used to pick
-//! the specialisation and to size per-particle storage (absent effects get no storage).
+//! A run's effect set is resolved once from the scene (materials and options). Two kinds:
+//!
+//! - **Compiled** ([`EffectSet::COMPILED`]: strength, kernel correction, MUSCL) change the
+//!   arithmetic of every pair, the passes a step makes and what it reads of neighbours.
+//!   Each compiled specialisation of a scheme is monomorphised over one such set
+//!   `E: Effects`, whose associated constants are compile-time booleans: branches such as
+//!   `if E::STRENGTH { .. }` are folded away, so a hydro-only run contains no strength code.
+//! - **Run-time** (plasticity, damage, heat, periodic boundaries, artificial stress) act per
+//!   particle or as one predictable term of a pair; the step reads them as flags where it
+//!   needs them: periodic boundaries and artificial stress from
+//!   [`crate::state::StepParams::effects`], plasticity, damage and heat from the storage
+//!   their fields have (a run without an effect stores nothing for it:
+//!   [`crate::state::System::has_plasticity`] and siblings). `cargo bench -p gsph --bench
+//!   effects` measures what each flag costs when it is off.
+//!
+//! [`EffectSet`] is the run-time value of a set: the whole set sizes the per-particle
+//! storage (absent effects get none) and reaches the step in its parameters; its
+//! [`EffectSet::kernel_part`] picks the specialisation.
 
 /// A compile-time effect set. Implemented by the marker types that `gsph-macros`
 /// generates (see [`crate::dispatch`]); never implemented by hand.
 pub trait Effects: Copy + Send + Sync + 'static {
     /// Deviatoric stress (some material has a shear modulus).
     const STRENGTH: bool;
-    /// Plastic flow (some material has a finite yield stress). Implies `STRENGTH`.
-    const PLASTICITY: bool;
-    /// Scalar damage (JH1 ceramic). Implies `PLASTICITY`.
-    const DAMAGE: bool;
-    /// Temperature and thermal softening (Johnson–Cook). Implies `PLASTICITY`.
-    const HEAT: bool;
     /// Kernel gradient correction (Randles–Libersky L matrix, `tkc`).
     const CORRECTION: bool;
     /// MUSCL reconstruction of the Riemann states (`ts2`, `tkc`).
     const MUSCL: bool;
-    /// Periodic boundaries along at least one axis.
-    const PERIODIC: bool;
-    /// Monaghan's artificial stress against the tensile instability (Gray, Monaghan &
-    /// Swift 2001), in every scheme's pair forces.
-    const ARTIFICIAL_STRESS: bool;
-    /// The set as a run-time value.
+    /// The set as a run-time value (compiled effects only).
     const SET: EffectSet;
+    /// The run-time effects whose flags this instantiation reads; the others are compiled
+    /// out (always off). Every step of the dispatch table reads all of them
+    /// ([`EffectSet::RUNTIME`]); the effects benchmark instantiates steps without some, to
+    /// measure what reading a flag costs when it is off.
+    const RUNTIME: EffectSet = EffectSet::RUNTIME;
 }
 
 /// A run-time effect set (bit set). The `Display` form is the list of names joined by `+`,
@@ -39,24 +45,36 @@ pub struct EffectSet(pub u16);
 impl EffectSet {
     /// No effects: hydrodynamics only.
     pub const HYDRO: EffectSet = EffectSet(0);
-    /// See [`Effects::STRENGTH`].
+    /// Deviatoric stress (some material has a shear modulus); compiled.
     pub const STRENGTH: EffectSet = EffectSet(1 << 0);
-    /// See [`Effects::PLASTICITY`].
+    /// Plastic flow (some material has a finite yield stress); implies strength.
     pub const PLASTICITY: EffectSet = EffectSet(1 << 1);
-    /// See [`Effects::DAMAGE`].
+    /// Scalar damage (JH1 ceramic); implies plasticity.
     pub const DAMAGE: EffectSet = EffectSet(1 << 2);
-    /// See [`Effects::HEAT`].
+    /// Temperature and thermal softening (Johnson–Cook); implies plasticity.
     pub const HEAT: EffectSet = EffectSet(1 << 3);
-    /// See [`Effects::CORRECTION`].
+    /// Kernel gradient correction (`tkc`); compiled.
     pub const CORRECTION: EffectSet = EffectSet(1 << 4);
-    /// See [`Effects::MUSCL`].
+    /// MUSCL reconstruction (`ts2`, `tkc`); compiled.
     pub const MUSCL: EffectSet = EffectSet(1 << 5);
-    /// See [`Effects::PERIODIC`].
+    /// Periodic boundaries along at least one axis.
     pub const PERIODIC: EffectSet = EffectSet(1 << 6);
     /// Moving window (handled by the host driver; no pair-kernel code depends on it).
     pub const MOVING_WINDOW: EffectSet = EffectSet(1 << 7);
-    /// See [`Effects::ARTIFICIAL_STRESS`].
+    /// Monaghan's artificial stress against the tensile instability (Gray, Monaghan &
+    /// Swift 2001), in every scheme's pair forces.
     pub const ARTIFICIAL_STRESS: EffectSet = EffectSet(1 << 8);
+    /// The run-time effects: flags of every step ([`Effects::RUNTIME`]).
+    pub const RUNTIME: EffectSet = EffectSet(
+        Self::PLASTICITY.0
+            | Self::DAMAGE.0
+            | Self::HEAT.0
+            | Self::PERIODIC.0
+            | Self::ARTIFICIAL_STRESS.0,
+    );
+    /// The effects compiled into a specialisation (the rest are run-time flags).
+    pub const COMPILED: EffectSet =
+        EffectSet(Self::STRENGTH.0 | Self::CORRECTION.0 | Self::MUSCL.0);
 
     /// Every named effect with its bit, in display order.
     pub const NAMED: [(&'static str, EffectSet); 9] = [
@@ -86,11 +104,10 @@ impl EffectSet {
     pub const fn contains(self, o: EffectSet) -> bool {
         self.0 & o.0 == o.0
     }
-    /// The effects that select a compiled specialisation (everything but the host-only
-    /// moving window).
+    /// The effects that select a compiled specialisation ([`Self::COMPILED`]).
     #[inline]
     pub const fn kernel_part(self) -> EffectSet {
-        self.without(Self::MOVING_WINDOW)
+        EffectSet(self.0 & Self::COMPILED.0)
     }
     /// Adds the effects implied by the ones present (plasticity needs strength, damage and
     /// heat need plasticity).

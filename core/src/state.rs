@@ -6,7 +6,7 @@
 //! allocates no storage for strength, damage, heat, gradients or kernel correction.
 //! [`Layout`] tells the caller which arrays a given scheme family and effect set needs.
 
-use crate::effects::EffectSet;
+use crate::effects::{EffectSet, Effects};
 use crate::exec::{split_opt, Split};
 use crate::kernel::Kernel;
 use crate::limiter::Limiter;
@@ -59,6 +59,25 @@ impl<'a, const D: usize> System<'a, D> {
     #[inline]
     pub fn is_empty(&self) -> bool {
         self.x.is_empty()
+    }
+    /// The run-time effect `plasticity` ([`EffectSet::PLASTICITY`]) in a step of `E`: a
+    /// run stores plastic strains exactly when it has the effect (absent effects get no
+    /// storage).
+    #[inline(always)]
+    pub fn has_plasticity<E: Effects>(&self) -> bool {
+        E::RUNTIME.contains(EffectSet::PLASTICITY) && !self.eps_p.is_empty()
+    }
+    /// The run-time effect `damage` ([`EffectSet::DAMAGE`]): damage is stored exactly when
+    /// the run has the effect.
+    #[inline(always)]
+    pub fn has_damage<E: Effects>(&self) -> bool {
+        E::RUNTIME.contains(EffectSet::DAMAGE) && !self.damage.is_empty()
+    }
+    /// The run-time effect `heat` ([`EffectSet::HEAT`]): temperatures are stored exactly
+    /// when the run has the effect.
+    #[inline(always)]
+    pub fn has_heat<E: Effects>(&self) -> bool {
+        E::RUNTIME.contains(EffectSet::HEAT) && !self.temp.is_empty()
     }
     /// Reborrows with a shorter lifetime (to split or hand to an executor).
     pub fn reborrow(&mut self) -> System<'_, D> {
@@ -512,6 +531,20 @@ pub struct StepParams<'a, const D: usize> {
     pub nbrs: Neighbors<'a>,
     /// Scheme options.
     pub options: SchemeOptions,
+    /// The run's whole effect set (closed). The step is compiled for its
+    /// [`EffectSet::kernel_part`]; it reads the run-time effects periodic and
+    /// artificial stress from here ([`Self::has`]), and plasticity, damage and heat from
+    /// their storage ([`System::has_plasticity`] …), which the caller sizes by this set.
+    pub effects: EffectSet,
+}
+
+impl<const D: usize> StepParams<'_, D> {
+    /// True if the run has every effect of `e`: a run-time flag of a step of `E` (false
+    /// where `E` compiles the flag out, [`Effects::RUNTIME`]).
+    #[inline(always)]
+    pub fn has<E: Effects>(&self, e: EffectSet) -> bool {
+        E::RUNTIME.contains(e) && self.effects.contains(e)
+    }
 }
 
 /// A step that cannot continue.

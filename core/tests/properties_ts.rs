@@ -25,26 +25,20 @@ fn config(cases: u32) -> ProptestConfig {
     }
 }
 
-/// `ts1` (strength, plasticity) or, with `MUSCL`, `ts2`: the effect sets the dispatch table
-/// names `ts_strength_plasticity[_muscl]`, stepped directly (monomorphising the whole
-/// dispatch table here would take minutes to compile).
+/// `ts1` (strength; plasticity is the run-time flag its plastic-strain storage gives) or,
+/// with `MUSCL`, `ts2`: the effect sets the dispatch table names `ts_strength[_muscl]`,
+/// stepped directly (monomorphising the whole dispatch table here would take a while to
+/// compile).
 #[derive(Clone, Copy, Debug)]
 struct Plastic<const MUSCL: bool>;
 impl<const M: bool> Effects for Plastic<M> {
     const STRENGTH: bool = true;
-    const PLASTICITY: bool = true;
-    const DAMAGE: bool = false;
-    const HEAT: bool = false;
     const CORRECTION: bool = false;
     const MUSCL: bool = M;
-    const PERIODIC: bool = false;
-    const ARTIFICIAL_STRESS: bool = false;
     const SET: EffectSet = if M {
-        EffectSet::STRENGTH
-            .union(EffectSet::PLASTICITY)
-            .union(EffectSet::MUSCL)
+        EffectSet::STRENGTH.union(EffectSet::MUSCL)
     } else {
-        EffectSet::STRENGTH.union(EffectSet::PLASTICITY)
+        EffectSet::STRENGTH
     };
 }
 
@@ -190,6 +184,7 @@ fn run<const D: usize, E: Effects>(c: &Case) -> Result<Totals, StepError> {
             periodic: Periodic::none(),
             nbrs: list.view(),
             options,
+            effects: E::SET.union(EffectSet::PLASTICITY),
         };
         let pairs = list.view().unordered_pairs();
         let mut ws = Workspace {

@@ -24,11 +24,25 @@
 //! per particle-step, ratio to hydro-only, bytes per particle, ratio, pairs per step. Time
 //! per step is the mean over all timed steps of the row (warm-up included).
 //!
-//! Run: `cargo bench -p gsph --bench effects` (under a minute on 2 cores, after the build).
+//! A second table measures what the run-time flags (plasticity, damage, heat, periodic,
+//! artificial stress: `gsph_core::effects`) cost when they are OFF, the price of compiling 42
+//! steps instead of one per effect set. On the elastic block (no flag on) each scheme's
+//! step is run as the dispatch table has it (every flag read at run time) and as
+//! instantiations that compile one flag out, or all of them
+//! (`gsph_core::effects::Effects::RUNTIME`), swapped into the same simulation. Each round
+//! runs every variant for `OFF_STEPS` steps from the same state, in an order that rotates
+//! between rounds; the table gives the median over `OFF_ROUNDS` rounds of each variant's
+//! time over the dispatch table's, and checks that every variant ends in the same state,
+//! bit for bit (a flag that is off changes nothing).
+//!
+//! Run: `cargo bench -p gsph --bench effects` (a few minutes on 2 cores, after the build).
 
 use criterion::{Criterion, SamplingMode};
+use gsph::exec::Rayon;
 use gsph::scene::{build_particles, parse};
 use gsph::sim::Sim;
+use gsph_core::effects::{EffectSet, Effects};
+use gsph_core::schemes::{av::Av, pm::Pm, ts::Ts, SchemeFamily, StepFn};
 use std::time::{Duration, Instant};
 
 /// Particles along each axis.
@@ -170,6 +184,137 @@ fn block(row: &Row) -> (Sim<2>, f64) {
     (sim, dt)
 }
 
+/// Steps each variant runs per round of the flags-off table.
+const OFF_STEPS: u64 = 40;
+/// Rounds of the flags-off table.
+const OFF_ROUNDS: usize = 9;
+
+/// A step instantiation: the compiled effects of a scheme (`S`trength, `C`orrection,
+/// `M`USCL) with the run-time flags `R` read (the others compiled out).
+#[derive(Clone, Copy, Debug)]
+struct Variant<const S: bool, const C: bool, const M: bool, const R: u16>;
+
+impl<const S: bool, const C: bool, const M: bool, const R: u16> Effects for Variant<S, C, M, R> {
+    const STRENGTH: bool = S;
+    const CORRECTION: bool = C;
+    const MUSCL: bool = M;
+    const SET: EffectSet = EffectSet(
+        (if S { EffectSet::STRENGTH.0 } else { 0 })
+            | (if C { EffectSet::CORRECTION.0 } else { 0 })
+            | (if M { EffectSet::MUSCL.0 } else { 0 }),
+    );
+    const RUNTIME: EffectSet = EffectSet(R);
+}
+
+const ALL: u16 = EffectSet::RUNTIME.0;
+const NO_PLASTICITY: u16 = ALL & !EffectSet::PLASTICITY.0;
+const NO_DAMAGE: u16 = ALL & !EffectSet::DAMAGE.0;
+const NO_HEAT: u16 = ALL & !EffectSet::HEAT.0;
+const NO_PERIODIC: u16 = ALL & !EffectSet::PERIODIC.0;
+const NO_ART: u16 = ALL & !EffectSet::ARTIFICIAL_STRESS.0;
+
+/// The variants of one scheme's step (compiled effects `S`, `C`, `M`): the label and the
+/// step, the dispatch table's first.
+fn variants<F: SchemeFamily, const S: bool, const C: bool, const M: bool>(
+) -> Vec<(&'static str, StepFn<2, Rayon>)> {
+    vec![
+        (
+            "every flag read (the dispatch table)",
+            F::step::<2, Variant<S, C, M, ALL>, Rayon>,
+        ),
+        (
+            "plasticity compiled out",
+            F::step::<2, Variant<S, C, M, NO_PLASTICITY>, Rayon>,
+        ),
+        (
+            "damage compiled out",
+            F::step::<2, Variant<S, C, M, NO_DAMAGE>, Rayon>,
+        ),
+        (
+            "heat compiled out",
+            F::step::<2, Variant<S, C, M, NO_HEAT>, Rayon>,
+        ),
+        (
+            "periodic compiled out",
+            F::step::<2, Variant<S, C, M, NO_PERIODIC>, Rayon>,
+        ),
+        (
+            "artificial stress compiled out",
+            F::step::<2, Variant<S, C, M, NO_ART>, Rayon>,
+        ),
+        (
+            "every flag compiled out",
+            F::step::<2, Variant<S, C, M, 0>, Rayon>,
+        ),
+    ]
+}
+
+/// The flags-off table of one scheme: `(label, median time over the dispatch table's)`.
+fn flags_off(scheme: &str, variants: &[(&'static str, StepFn<2, Rayon>)]) -> Vec<(String, f64)> {
+    let mut sets = overrides("+ strength");
+    sets.push(format!("scheme={scheme}"));
+    let scene = parse(&base_scene(), "effects", &sets).unwrap_or_else(|e| panic!("{e}"));
+    let mut parts = build_particles(&scene).unwrap_or_else(|e| panic!("{e}"));
+    let k = 2.0 * std::f64::consts::PI / (WAVELENGTH * SPACING);
+    for (x, v) in parts.x.iter().zip(parts.v.iter_mut()) {
+        for a in 0..2 {
+            v[a] = AMPLITUDE * ((k * x[a]).sin() + 0.5 * (k * x[1 - a]).sin());
+        }
+    }
+    let mut base = Sim::<2>::new(&scene, &parts).unwrap_or_else(|e| panic!("{e}"));
+    let dt = base.stable_dt(0.5);
+    base.step(dt).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(
+        base.effects.without(EffectSet::COMPILED),
+        EffectSet::HYDRO,
+        "{scheme}: a run-time flag is on"
+    );
+    let n = variants.len();
+    let mut ratios = vec![Vec::new(); n];
+    let mut finals: Vec<Option<Vec<f64>>> = vec![None; n];
+    for round in 0..OFF_ROUNDS {
+        let mut t = vec![0.0; n];
+        for q in 0..n {
+            let v = (q + round) % n;
+            let mut sim = base.clone();
+            sim.replace_step(variants[v].1);
+            let t0 = Instant::now();
+            for _ in 0..OFF_STEPS {
+                sim.step(dt).unwrap_or_else(|e| panic!("{e}"));
+            }
+            t[v] = t0.elapsed().as_secs_f64();
+            let state: Vec<f64> = sim
+                .x
+                .iter()
+                .flat_map(|x| [x[0], x[1]])
+                .chain(sim.e.clone())
+                .collect();
+            match &finals[v] {
+                None => finals[v] = Some(state),
+                Some(s) => assert!(s == &state, "{scheme}: a variant is not repeatable"),
+            }
+        }
+        for v in 0..n {
+            ratios[v].push(t[v] / t[0]);
+        }
+    }
+    for v in 1..n {
+        assert!(
+            finals[v] == finals[0],
+            "{scheme}: `{}` ends in another state than the dispatch table's step",
+            variants[v].0
+        );
+    }
+    variants
+        .iter()
+        .zip(ratios)
+        .map(|((label, _), mut r)| {
+            r.sort_by(f64::total_cmp);
+            (label.to_string(), r[r.len() / 2])
+        })
+        .collect()
+}
+
 /// What one row measured.
 struct Measured {
     effects: String,
@@ -251,4 +396,29 @@ fn main() {
             m.pairs
         );
     }
+
+    // what the run-time flags cost when they are off
+    let tables = pool.install(|| {
+        [
+            ("av", flags_off("av", &variants::<Av, true, false, false>())),
+            (
+                "ts2",
+                flags_off("ts2", &variants::<Ts, true, false, true>()),
+            ),
+            ("tkc", flags_off("tkc", &variants::<Pm, true, true, true>())),
+        ]
+    });
+    println!(
+        "\nRun-time flags when off: the elastic block ({} particles, one thread, {OFF_STEPS} steps a round), median over {OFF_ROUNDS} rounds of the time over the dispatch table's step (every flag read). A variant below 1 is what the flag costs when off:\n",
+        N * N
+    );
+    println!("| variant | av | ts2 | tkc |");
+    println!("| --- | ---: | ---: | ---: |");
+    for (k, (label, _)) in tables[0].1.iter().enumerate() {
+        println!(
+            "| {label} | {:.3} | {:.3} | {:.3} |",
+            tables[0].1[k].1, tables[1].1[k].1, tables[2].1[k].1
+        );
+    }
+    println!("\nEvery variant ended each scheme's run in the same state, bit for bit.");
 }

@@ -62,7 +62,8 @@ fn rates<const D: usize, E: Effects, X: Executor>(
     );
     geometry_pass::<D, E, X>(sys.x, sys.h, params, geom, fac, exec);
     refresh_aux::<D, false, X>(sys, aux, params, exec);
-    if E::ARTIFICIAL_STRESS {
+    let art_on = params.has::<E>(EffectSet::ARTIFICIAL_STRESS);
+    if art_on {
         artificial_stress_tensors::<D, E, X>(sys, art, params, exec);
     }
     let (geom, fac, art, aux): (&[PairGeom<D>], &[Real], &[Matrix<D>], &[Aux]) =
@@ -94,7 +95,7 @@ fn rates<const D: usize, E: Effects, X: Executor>(
                 }
                 let sig = sig_i + cauchy::<D, E>(sys, j);
                 let mut t = sig.dot_vec(&pr.grad) * (inv_i * aj.inv_rho) - pr.grad * pi_ij;
-                if E::ARTIFICIAL_STRESS {
+                if art_on {
                     t += pair_acceleration(1.0, fac[e.pair], &art[i], &art[j], &pr.grad);
                 }
                 let mj = sys.m[j];
@@ -144,12 +145,21 @@ impl SchemeFamily for Av {
         if ws.av.len() != sys.len()
             || ws.aux.len() != sys.len()
             || ws.geom.len() != pairs
-            || (E::ARTIFICIAL_STRESS && (ws.art.len() != sys.len() || ws.fac.len() != pairs))
+            || (params.has::<E>(EffectSet::ARTIFICIAL_STRESS)
+                && (ws.art.len() != sys.len() || ws.fac.len() != pairs))
         {
             return Err(StepError::Storage { field: "av" });
         }
         if !ws.primed {
-            exchange::<D, E>(halo, &EXCHANGES[0], sys, ws.grad, ws.grad_stress, ws.corr);
+            exchange(
+                params.effects,
+                halo,
+                &EXCHANGES[0],
+                sys,
+                ws.grad,
+                ws.grad_stress,
+                ws.corr,
+            );
             rates::<D, E, X>(sys, ws, params, exec);
             ws.primed = true;
         }
@@ -172,14 +182,22 @@ impl SchemeFamily for Av {
                         let (trial, rate) = (a.s_half + a.ds * hdt, a.rate);
                         return_deviator::<D, E>(&mut s, k, mat, trial, rate, dt, false);
                     }
-                    if E::PERIODIC {
+                    if params.has::<E>(EffectSet::PERIODIC) {
                         s.x[k] = params.periodic.wrap(s.x[k]);
                     }
                     refresh_eos(&mut s, k, mat, params);
                 }
             },
         );
-        exchange::<D, E>(halo, &EXCHANGES[0], sys, ws.grad, ws.grad_stress, ws.corr);
+        exchange(
+            params.effects,
+            halo,
+            &EXCHANGES[0],
+            sys,
+            ws.grad,
+            ws.grad_stress,
+            ws.corr,
+        );
         rates::<D, E, X>(sys, ws, params, exec);
         // Second kick with the rates of the predicted state.
         exec.run(

@@ -1,7 +1,7 @@
 //! Pieces shared by every scheme: the pair loop, the SPH gradient, the constitutive
 //! update (Hooke + Jaumann + plastic return) and the equation-of-state refresh.
 
-use crate::effects::Effects;
+use crate::effects::{EffectSet, Effects};
 use crate::exec::{Executor, Rows, Split};
 use crate::halo::{Exchange, GhostWorkspace, Halo};
 use crate::material::{strength, Material, Strength};
@@ -9,11 +9,12 @@ use crate::math::{real, Matrix, Real, Sym3, Vector};
 use crate::neighbors::Entry;
 use crate::state::{smoothing_length, Aux, Correction, Gradients, PairGeom, StepParams, System};
 
-/// Calls the caller's halo hook with `x` when the step with effects `E` makes it (see
-/// [`crate::halo`]). Takes the three workspace arrays neighbours read, not the workspace,
+/// Calls the caller's halo hook with `x` when the step of a run with `effects` makes it
+/// (see [`crate::halo`]). Takes the three workspace arrays neighbours read, not the workspace,
 /// so that a step can hold the pair geometry borrowed across the call.
 #[inline(always)]
-pub(crate) fn exchange<const D: usize, E: Effects>(
+pub(crate) fn exchange<const D: usize>(
+    effects: EffectSet,
     halo: &mut dyn Halo<D>,
     x: &Exchange,
     sys: &mut System<'_, D>,
@@ -21,7 +22,7 @@ pub(crate) fn exchange<const D: usize, E: Effects>(
     grad_stress: &mut [[Vector<D>; 6]],
     corr: &mut [Correction<D>],
 ) {
-    if x.applies(E::SET) {
+    if x.applies(effects) {
         let ws = GhostWorkspace {
             grad,
             grad_stress,
@@ -63,7 +64,11 @@ pub(crate) fn geometry_pass<const D: usize, E: Effects, X: Executor>(
     let kernel = params.kernel;
     let support = kernel.support();
     let asp = params.options.artificial_stress;
-    let inv_wref = if E::ARTIFICIAL_STRESS {
+    let (art, periodic) = (
+        params.has::<E>(EffectSet::ARTIFICIAL_STRESS),
+        params.has::<E>(EffectSet::PERIODIC),
+    );
+    let inv_wref = if art {
         super::artificial_stress::inverse_reference::<D>(kernel, params.h_factor)
     } else {
         0.0
@@ -83,15 +88,11 @@ pub(crate) fn geometry_pass<const D: usize, E: Effects, X: Executor>(
             for k in 0..gs.len() {
                 let i = off + k;
                 let (xi, hi) = (x[i], h[i]);
-                let fk: &mut [Real] = if E::ARTIFICIAL_STRESS {
-                    fs.of(k)
-                } else {
-                    &mut []
-                };
+                let fk: &mut [Real] = if art { fs.of(k) } else { &mut [] };
                 for (q, (g, &j)) in gs.of(k).iter_mut().zip(nb.owned(i)).enumerate() {
                     let j = j as usize;
                     let mut rij = xi - x[j];
-                    if E::PERIODIC {
+                    if periodic {
                         rij = params.periodic.min_image(rij);
                     }
                     let r2 = rij.norm_squared();
@@ -105,12 +106,17 @@ pub(crate) fn geometry_pass<const D: usize, E: Effects, X: Executor>(
                             r,
                             dw,
                         };
-                        (geo, real::powi(shape * inv_wref, asp.exponent))
+                        let f = if art {
+                            real::powi(shape * inv_wref, asp.exponent)
+                        } else {
+                            0.0
+                        };
+                        (geo, f)
                     } else {
                         (PairGeom::default(), 0.0)
                     };
                     *g = geo;
-                    if E::ARTIFICIAL_STRESS {
+                    if art {
                         fk[q] = f;
                     }
                 }
@@ -278,7 +284,7 @@ pub(crate) fn return_deviator<const D: usize, E: Effects>(
     dt: Real,
     commit: bool,
 ) {
-    if !E::PLASTICITY {
+    if !sys.has_plasticity::<E>() {
         sys.s[k] = trial;
         return;
     }
@@ -289,17 +295,19 @@ pub(crate) fn return_deviator<const D: usize, E: Effects>(
             (r.s, r.d_eps_p)
         }
         Strength::JohnsonCook(jc) => {
-            let temp = if E::HEAT { sys.temp[k] } else { jc.t_room };
+            let heat = sys.has_heat::<E>();
+            let temp = if heat { sys.temp[k] } else { jc.t_room };
             let r = jc.return_map(trial, g, sys.rho[k], sys.eps_p[k], temp, dt);
-            if E::HEAT && commit {
+            if heat && commit {
                 sys.temp[k] += r.d_temperature;
             }
             (r.s, r.d_eps_p)
         }
         Strength::Jh1(jh) => {
-            let damage = if E::DAMAGE { sys.damage[k] } else { 0.0 };
+            let damaged = sys.has_damage::<E>();
+            let damage = if damaged { sys.damage[k] } else { 0.0 };
             let r = jh.update(trial, g, sys.p[k], damage, strain_rate);
-            if E::DAMAGE && commit {
+            if damaged && commit {
                 sys.damage[k] = r.damage;
             }
             (r.s, r.d_eps_p)
@@ -315,7 +323,8 @@ pub(crate) fn return_deviator<const D: usize, E: Effects>(
 /// True if particle `i` has failed (damage 1; seed 000 Algorithm 1).
 #[inline(always)]
 pub(crate) fn failed<const D: usize, E: Effects>(sys: &System<'_, D>, i: usize) -> bool {
-    E::DAMAGE && sys.damage[i] >= 1.0
+    // one bounds check serves as the flag: no damage stored, no failed particle
+    E::RUNTIME.contains(EffectSet::DAMAGE) && matches!(sys.damage.get(i), Some(&d) if d >= 1.0)
 }
 
 /// Pressure of particle `i` as a pair sees it: a failed particle carries no tension.

@@ -254,14 +254,22 @@ impl SchemeFamily for Pm {
             || ws.aux.len() != n
             || ws.pm_star.len() != params.nbrs.unordered_pairs()
             || ws.geom.len() != params.nbrs.unordered_pairs()
-            || (E::ARTIFICIAL_STRESS
+            || (params.has::<E>(EffectSet::ARTIFICIAL_STRESS)
                 && (ws.art.len() != n || ws.fac.len() != params.nbrs.unordered_pairs()))
         {
             return Err(StepError::Storage { field: "workspace" });
         }
         let dt = params.dt;
         let [start, pair, dynamic] = &EXCHANGES;
-        exchange::<D, E>(halo, start, sys, ws.grad, ws.grad_stress, ws.corr);
+        exchange(
+            params.effects,
+            halo,
+            start,
+            sys,
+            ws.grad,
+            ws.grad_stress,
+            ws.corr,
+        );
         geometry_pass::<D, E, X>(sys.x, sys.h, params, ws.geom, ws.fac, exec);
         refresh_aux::<D, true, X>(sys, ws.aux, params, exec);
         {
@@ -283,7 +291,15 @@ impl SchemeFamily for Pm {
                 );
             }
         }
-        exchange::<D, E>(halo, pair, sys, ws.grad, ws.grad_stress, ws.corr);
+        exchange(
+            params.effects,
+            halo,
+            pair,
+            sys,
+            ws.grad,
+            ws.grad_stress,
+            ws.corr,
+        );
         if E::MUSCL {
             // With MUSCL the Riemann dissipation nearly vanishes in smooth flow, and the
             // explicit Euler of the seed (forces and strain rates from the same old state)
@@ -302,9 +318,17 @@ impl SchemeFamily for Pm {
                     }
                 },
             );
-            exchange::<D, E>(halo, dynamic, sys, ws.grad, ws.grad_stress, ws.corr);
+            exchange(
+                params.effects,
+                halo,
+                dynamic,
+                sys,
+                ws.grad,
+                ws.grad_stress,
+                ws.corr,
+            );
             refresh_aux::<D, true, X>(sys, ws.aux, params, exec);
-            if E::ARTIFICIAL_STRESS {
+            if params.has::<E>(EffectSet::ARTIFICIAL_STRESS) {
                 artificial_stress_tensors::<D, E, X>(sys, ws.art, params, exec);
             }
             pair_pass::<D, E, X, false, true>(sys, ws, params, exec);
@@ -319,7 +343,7 @@ impl SchemeFamily for Pm {
                 },
             );
         } else {
-            if E::ARTIFICIAL_STRESS {
+            if params.has::<E>(EffectSet::ARTIFICIAL_STRESS) {
                 artificial_stress_tensors::<D, E, X>(sys, ws.art, params, exec);
             }
             pair_pass::<D, E, X, true, true>(sys, ws, params, exec);
@@ -367,10 +391,17 @@ fn pair_pass<const D: usize, E: Effects, X: Executor, const KIN: bool, const DYN
         fac,
         stars,
     };
+    // the run-time flag chosen outside the pair loop, so that the loop without it has
+    // none of its code
+    let art_on = params.has::<E>(EffectSet::ARTIFICIAL_STRESS);
     exec.run(&mut *ws.sums, |off, chunk: &mut [PairSums<D>]| {
         for (k, out) in chunk.iter_mut().enumerate() {
             let i = off + k;
-            let new = gather::<D, E, KIN, DYN>(sys, &ctx, params, i);
+            let new = if art_on {
+                gather::<D, E, KIN, DYN, true>(sys, &ctx, params, i)
+            } else {
+                gather::<D, E, KIN, DYN, false>(sys, &ctx, params, i)
+            };
             if KIN {
                 out.div = new.div;
                 out.grad_v = new.grad_v;
@@ -418,7 +449,7 @@ fn dynamic_update<const D: usize, E: Effects>(
     }
     s.v[k] += dv;
     s.x[k] += s.v[k] * dt;
-    if E::PERIODIC {
+    if params.has::<E>(EffectSet::PERIODIC) {
         s.x[k] = params.periodic.wrap(s.x[k]);
     }
 }
@@ -551,7 +582,7 @@ fn pair_star<const D: usize, E: Effects>(
 /// eq 11) `power` is the total energy rate `sum f_ij . V*_ij`; otherwise (`pm`, seed 000
 /// eq 16) the internal energy rate `sum f_ij . (V*_ij - v_i)`.
 #[inline(always)]
-fn gather<const D: usize, E: Effects, const KIN: bool, const DYN: bool>(
+fn gather<const D: usize, E: Effects, const KIN: bool, const DYN: bool, const ART: bool>(
     sys: &System<'_, D>,
     ctx: &GatherCtx<'_, D>,
     params: &StepParams<'_, D>,
@@ -579,7 +610,7 @@ fn gather<const D: usize, E: Effects, const KIN: bool, const DYN: bool>(
             let f = -2.0 * mj * pr.dw * (inv_i * inv_j);
             out.acc += ts * f;
             out.power += f * ts.dot(if E::CORRECTION { &vs } else { &dv });
-            if E::ARTIFICIAL_STRESS {
+            if ART {
                 // a pair force outside the Riemann problem: its work at the pair's mean
                 // velocity (total energy form with correction, internal otherwise)
                 let a = pair_acceleration(mj, fac[e.pair], &art[i], &art[j], &pr.grad);

@@ -10,20 +10,23 @@ use crate::math::{Real, Sym3, Vector};
 use crate::neighbors::{build_naive, NeighborList, Periodic};
 use crate::state::*;
 
+/// Whether a test's effect set stores plastic strains (the run-time effect `plasticity`).
+trait Plasticity {
+    const PLASTIC: bool;
+}
+
 macro_rules! fx {
     ($name:ident, $s:expr, $p:expr, $m:expr, $c:expr) => {
         #[derive(Clone, Copy, Debug)]
         struct $name;
         impl Effects for $name {
             const STRENGTH: bool = $s;
-            const PLASTICITY: bool = $p;
-            const DAMAGE: bool = false;
-            const HEAT: bool = false;
             const CORRECTION: bool = $c;
             const MUSCL: bool = $m;
-            const PERIODIC: bool = false;
-            const ARTIFICIAL_STRESS: bool = false;
             const SET: EffectSet = EffectSet::HYDRO;
+        }
+        impl Plasticity for $name {
+            const PLASTIC: bool = $p;
         }
     };
 }
@@ -117,7 +120,7 @@ fn flyer() -> Flyer {
     f
 }
 
-fn run<F: SchemeFamily, E: Effects>(t_end: Real) -> (Real, Real, Real, Real, Flyer) {
+fn run<F: SchemeFamily, E: Effects + Plasticity>(t_end: Real) -> (Real, Real, Real, Real, Flyer) {
     let mats = [material()];
     let mut f = flyer();
     let mut primed = false;
@@ -171,7 +174,7 @@ fn run<F: SchemeFamily, E: Effects>(t_end: Real) -> (Real, Real, Real, Real, Fly
             cl,
             h,
             s: if E::STRENGTH { &mut s[..] } else { &mut [] },
-            eps_p: if E::PLASTICITY { &mut eps[..] } else { &mut [] },
+            eps_p: if E::PLASTIC { &mut eps[..] } else { &mut [] },
             damage: &mut [],
             temp: &mut [],
         };
@@ -189,6 +192,7 @@ fn run<F: SchemeFamily, E: Effects>(t_end: Real) -> (Real, Real, Real, Real, Fly
             periodic: Periodic::none(),
             nbrs: list.view(),
             options: SchemeOptions::default(),
+            effects: EffectSet::HYDRO,
         };
         let pairs = list.view().unordered_pairs();
         let mut ws = Workspace {
@@ -346,6 +350,7 @@ fn tkc_free_surface_detection_uses_the_eigenvalues_of_l() {
         periodic: Periodic::none(),
         nbrs: list.view(),
         options: SchemeOptions::default(),
+        effects: EffectSet::HYDRO,
     };
     let mut corr = [Correction::<2>::default(); M];
     let mut sums = [PairSums::<2>::default(); M];
@@ -393,12 +398,7 @@ fn tkc_free_surface_detection_uses_the_eigenvalues_of_l() {
 struct PlasticTkc2;
 impl Effects for PlasticTkc2 {
     const STRENGTH: bool = false;
-    const PLASTICITY: bool = false;
-    const DAMAGE: bool = false;
-    const HEAT: bool = false;
     const CORRECTION: bool = true;
     const MUSCL: bool = true;
-    const PERIODIC: bool = false;
-    const ARTIFICIAL_STRESS: bool = false;
     const SET: EffectSet = EffectSet::HYDRO;
 }

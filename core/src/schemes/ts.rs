@@ -325,6 +325,7 @@ fn deviatoric_pass<const D: usize, E: Effects, X: Executor>(
     params: &StepParams<'_, D>,
     exec: &X,
 ) {
+    let art_on = params.has::<E>(EffectSet::ARTIFICIAL_STRESS);
     exec.run(sums, |off, chunk: &mut [PairSums<D>]| {
         for (k, out) in chunk.iter_mut().enumerate() {
             let i = off + k;
@@ -341,7 +342,7 @@ fn deviatoric_pass<const D: usize, E: Effects, X: Executor>(
                 } else {
                     Vector::<D>::zeros()
                 };
-                if E::ARTIFICIAL_STRESS {
+                if art_on {
                     f += pair_acceleration(mj, fac[e.pair], &art[i], &art[j], &pr.grad);
                 }
                 acc += f;
@@ -527,7 +528,7 @@ impl SchemeFamily for Ts {
             || ws.aux.len() != n
             || ws.ts_star.len() != params.nbrs.unordered_pairs()
             || ws.geom.len() != params.nbrs.unordered_pairs()
-            || (E::ARTIFICIAL_STRESS
+            || (params.has::<E>(EffectSet::ARTIFICIAL_STRESS)
                 && (ws.art.len() != n || ws.fac.len() != params.nbrs.unordered_pairs()))
         {
             return Err(StepError::Storage { field: "workspace" });
@@ -541,12 +542,28 @@ impl SchemeFamily for Ts {
         //    |1 + i w dt| > 1 lets waves grow wherever the Riemann dissipation vanishes:
         //    always in the deviatoric step, and in smooth flow with MUSCL.
         let [front, continuity, deviatoric, hydro] = &EXCHANGES;
-        exchange::<D, E>(halo, front, sys, ws.grad, ws.grad_stress, ws.corr);
+        exchange(
+            params.effects,
+            halo,
+            front,
+            sys,
+            ws.grad,
+            ws.grad_stress,
+            ws.corr,
+        );
         geometry_pass::<D, E, X>(sys.x, sys.h, params, ws.geom, ws.fac, exec);
         let (geom, fac): (&[PairGeom<D>], &[Real]) = (ws.geom, ws.fac);
         refresh_aux::<D, false, X>(sys, ws.aux, params, exec);
         front_gradient_pass::<D, E, X>(sys, geom, ws.aux, ws.sums, ws.grad, params, exec);
-        exchange::<D, E>(halo, continuity, sys, ws.grad, ws.grad_stress, ws.corr);
+        exchange(
+            params.effects,
+            halo,
+            continuity,
+            sys,
+            ws.grad,
+            ws.grad_stress,
+            ws.corr,
+        );
         continuity_pass::<D, E, X>(
             sys, ws.grad, geom, ws.aux, ws.ts_star, ws.sums, params, exec,
         );
@@ -563,13 +580,22 @@ impl SchemeFamily for Ts {
                 }
             },
         );
-        exchange::<D, E>(halo, deviatoric, sys, ws.grad, ws.grad_stress, ws.corr);
+        exchange(
+            params.effects,
+            halo,
+            deviatoric,
+            sys,
+            ws.grad,
+            ws.grad_stress,
+            ws.corr,
+        );
         // 2. Deviatoric step (with strength or artificial stress): no dissipation.
         refresh_aux::<D, false, X>(sys, ws.aux, params, exec);
-        if E::ARTIFICIAL_STRESS {
+        let art_on = params.has::<E>(EffectSet::ARTIFICIAL_STRESS);
+        if art_on {
             artificial_stress_tensors::<D, E, X>(sys, ws.art, params, exec);
         }
-        if E::STRENGTH || E::ARTIFICIAL_STRESS {
+        if E::STRENGTH || art_on {
             deviatoric_pass::<D, E, X>(sys, geom, ws.aux, ws.art, fac, ws.sums, params, exec);
             exec.run(
                 (sys.reborrow(), &ws.sums[..]),
@@ -587,7 +613,15 @@ impl SchemeFamily for Ts {
             );
         }
         // 3. Hydrodynamic step with the new pressure (reconstruction slopes from step 1).
-        exchange::<D, E>(halo, hydro, sys, ws.grad, ws.grad_stress, ws.corr);
+        exchange(
+            params.effects,
+            halo,
+            hydro,
+            sys,
+            ws.grad,
+            ws.grad_stress,
+            ws.corr,
+        );
         hydro_pass::<D, E, X>(
             sys, ws.grad, geom, ws.aux, ws.ts_star, ws.sums, params, exec,
         );
@@ -602,7 +636,7 @@ impl SchemeFamily for Ts {
                     s.e[k] += dt * (ps.power - ps.acc.dot(&xdot));
                     s.v[k] += dv;
                     s.x[k] += (ps.v0 + s.v[k]) * (0.5 * dt);
-                    if E::PERIODIC {
+                    if params.has::<E>(EffectSet::PERIODIC) {
                         s.x[k] = params.periodic.wrap(s.x[k]);
                     }
                     refresh_eos(&mut s, k, mat, params);

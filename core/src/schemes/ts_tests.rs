@@ -13,13 +13,8 @@ use crate::state::SchemeOptions;
 struct Failing;
 impl Effects for Failing {
     const STRENGTH: bool = true;
-    const PLASTICITY: bool = true;
-    const DAMAGE: bool = true;
-    const HEAT: bool = false;
     const CORRECTION: bool = false;
     const MUSCL: bool = true;
-    const PERIODIC: bool = false;
-    const ARTIFICIAL_STRESS: bool = false;
     const SET: EffectSet = EffectSet::HYDRO;
 }
 
@@ -99,6 +94,7 @@ fn with_failed_particle(
         periodic: Periodic::none(),
         nbrs: list.view(),
         options: SchemeOptions::default(),
+        effects: EffectSet::HYDRO,
     };
     let mut sums = [PairSums::<1>::default(); N];
     let mut grad = [Gradients::<1>::default(); N];

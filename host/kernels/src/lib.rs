@@ -2,10 +2,9 @@
 //!
 //! The steps are generic over the executor, so they are compiled (monomorphised) in the
 //! crate that names the executor. Naming it here, in non-generic functions, compiles the
-//! up to 504 specialisations once in this crate: the `gsph` host crate calls
+//! up to 42 specialisations once in this crate: the `gsph` host crate calls
 //! [`select_1d`], [`select_2d`] and [`select_3d`] and changes to it do not recompile
-//! them (a release build of the specialisations takes about a quarter of an hour on
-//! two cores; the host crate alone about a minute).
+//! them.
 
 use gsph_core::effects::EffectSet;
 use gsph_core::exec::{Executor, Split};

@@ -341,6 +341,14 @@ impl<const D: usize> Sim<D> {
         Ok(sim)
     }
 
+    /// Replaces the compiled step by `step`, which must be an instantiation of the same
+    /// scheme family and compiled effects (the effects benchmark swaps in steps that
+    /// compile run-time flags out, [`gsph_core::effects::Effects::RUNTIME`]).
+    #[doc(hidden)]
+    pub fn replace_step(&mut self, step: StepFn<D, Rayon>) {
+        self.step_fn = step;
+    }
+
     /// Number of particles.
     pub fn len(&self) -> usize {
         self.x.len()
@@ -478,6 +486,7 @@ impl<const D: usize> Sim<D> {
             periodic: self.periodic,
             nbrs,
             options: self.options,
+            effects: self.effects,
         };
         let mut sys = System {
             x: &mut self.x,

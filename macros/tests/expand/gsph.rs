@@ -4,12 +4,7 @@ gsph_macros::specialise! {
     families: [av => crate::schemes::av::Av, pm => crate::schemes::pm::Pm, ts => crate::schemes::ts::Ts];
     effects: [
         strength: STRENGTH feature "effects-strength",
-        plasticity: PLASTICITY requires strength feature "effects-strength",
-        damage: DAMAGE requires plasticity feature "effects-damage",
-        heat: HEAT requires plasticity feature "effects-heat",
         correction: CORRECTION only [pm] feature "effects-correction",
         muscl: MUSCL only [pm, ts] feature "effects-muscl",
-        periodic: PERIODIC feature "effects-periodic",
-        artificial_stress: ARTIFICIAL_STRESS feature "effects-artificial-stress",
     ];
 }
