@@ -23,7 +23,8 @@ pub struct System<'a, const D: usize> {
     pub x: &'a mut [Vector<D>],
     /// Velocities, m/s.
     pub v: &'a mut [Vector<D>],
-    /// Masses, kg (per unit area in 2D, per unit cross-section in 1D).
+    /// Masses, kg (in 2D per unit length out of the plane, kg/m; in 1D per unit
+    /// cross-section area, kg/m²).
     pub m: &'a [Real],
     /// Material index into [`StepParams::materials`].
     pub mat: &'a [u16],
@@ -199,6 +200,10 @@ pub struct PairSums<const D: usize> {
     pub power: Real,
     /// Velocity divergence, 1/s.
     pub div: Real,
+    /// A particle at or near a free surface, marked by the step's first pass and read by a
+    /// later one: `ts` takes its consistent divergence there, `pm` (`tkc`) its
+    /// uncorrected kernel gradient (`L = I`).
+    pub surface: bool,
     /// Velocity gradient `L_ab = dv_a/dx_b`, 1/s (only with `strength`).
     pub grad_v: Matrix<D>,
     /// Velocity at the start of the step (time-centred position update), m/s.
@@ -211,6 +216,7 @@ impl<const D: usize> Default for PairSums<D> {
             acc: Vector::<D>::zeros(),
             power: 0.0,
             div: 0.0,
+            surface: false,
             grad_v: Matrix::<D>::zeros(),
             v0: Vector::<D>::zeros(),
         }
@@ -310,7 +316,8 @@ impl<const D: usize> Default for AvRates<D> {
 pub struct Aux {
     /// `1 / rho`, m³/kg.
     pub inv_rho: Real,
-    /// Volume `m / rho`, m³ (per unit area in 2D, per unit cross-section in 1D).
+    /// Volume `m / rho`, m³ (in 2D per unit length out of the plane, m²; in 1D per unit
+    /// cross-section area, m).
     pub vol: Real,
     /// Transverse sound speed `sqrt(G / rho)`, m/s (`pm` family; 0 otherwise).
     pub ct: Real,
@@ -639,7 +646,7 @@ pub fn check_finite_one<const D: usize>(sys: &System<'_, D>, i: usize) -> Result
     Ok(())
 }
 
-/// Total energy `sum m (v²/2 + e)`, J (per unit area in 2D).
+/// Total energy `sum m (v²/2 + e)`, J (J/m per unit length in 2D, J/m² per unit area in 1D).
 pub fn total_energy<const D: usize>(sys: &System<'_, D>) -> Real {
     let mut s = 0.0;
     for i in 0..sys.len() {

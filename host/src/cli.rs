@@ -1,7 +1,7 @@
 //! The `gsph` command line (DESIGN §6): [`run`] parses the arguments and calls one
 //! subcommand of [`crate::commands`]; `main` calls only [`run`].
 
-use crate::commands::{self, EXIT_CODE};
+use crate::commands::{self, Failure};
 use clap::{Parser, Subcommand};
 
 /// `gsph --version`: the version, the cargo features and the step specialisations this
@@ -131,22 +131,18 @@ pub fn main_with_args(args: impl IntoIterator<Item = std::ffi::OsString>) -> i32
         }
         return 2;
     }
-    let result = match cli.command {
-        Command::Study(a) => commands::study::command(a),
-        Command::Hugoniot(a) => commands::hugoniot::command(a),
-        Command::Stability(a) => commands::stability::command(a),
-        Command::Plot(a) => commands::plot::command(a),
-        Command::Materials(a) => commands::materials::command(a),
-        Command::Check(a) => commands::check::command(a),
+    let result: Result<(), Failure> = match cli.command {
+        Command::Study(a) => commands::study::command(a).map_err(Failure::from),
+        Command::Hugoniot(a) => commands::hugoniot::command(a).map_err(Failure::from),
+        Command::Stability(a) => commands::stability::command(a).map_err(Failure::from),
+        Command::Plot(a) => commands::plot::command(a).map_err(Failure::from),
+        Command::Materials(a) => commands::materials::command(a).map_err(Failure::from),
+        Command::Check(a) => commands::check::command(a).map_err(Failure::from),
         Command::Run(a) => commands::run::command(a),
     };
     match result {
         Ok(()) => 0,
-        Err(msg) => {
-            let code = match EXIT_CODE.load(std::sync::atomic::Ordering::Relaxed) {
-                0 => 1,
-                c => c,
-            };
+        Err(Failure { message: msg, code }) => {
             let who = match crate::dist_rank() {
                 0 => String::new(),
                 r => format!("rank {r}: "),

@@ -1,8 +1,8 @@
-//! The rayon executor of the core's per-particle loops (in `gsph-kernels`, which compiles
+//! The rayon executor of the core's per-particle loops (in `gsph-steps`, which compiles
 //! the step specialisations for it), and the bound on the worker threads a caller may ask
 //! for (`gsph --threads`, the C ABI's `gsph_set_threads`).
 
-pub use gsph_kernels::Rayon;
+pub use gsph_steps::Rayon;
 
 /// Most worker threads per core a caller may ask for.
 pub const MAX_THREADS_PER_CORE: usize = 8;

@@ -33,7 +33,6 @@ pub mod reference;
 pub mod runlog;
 pub mod scene;
 pub mod sim;
-pub mod sim_error;
 pub mod specs;
 pub mod stability;
 pub mod study;

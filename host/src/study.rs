@@ -49,9 +49,9 @@ pub struct StudyOptions {
 }
 
 /// The default error key of a summary.
-pub fn default_metric(summary: &serde_json::Map<String, serde_json::Value>) -> &'static str {
+pub fn default_metric(summary: &crate::driver::Summary) -> &'static str {
     for k in ["l1_error", "radius_error"] {
-        if summary.get(k).and_then(|v| v.as_f64()).is_some() {
+        if summary.measure(k).is_some() {
             return k;
         }
     }
@@ -90,15 +90,10 @@ fn check_metric(scene_path: &Path, opts: &StudyOptions, key: &str) -> Result<(),
         },
     )
     .map_err(|e| format!("{}: {e}", scheme.name()))?;
-    if r.summary.contains_key(key) {
+    let numbers = r.summary.number_keys();
+    if numbers.iter().any(|k| k == key) {
         return Ok(());
     }
-    let numbers: Vec<&str> = r
-        .summary
-        .iter()
-        .filter(|(_, v)| v.is_number() || v.is_null())
-        .map(|(k, _)| k.as_str())
-        .collect();
     Err(format!(
         "--metric: `{key}` is not in the summary of {} (numbers there: {})",
         scene_path.display(),
@@ -168,21 +163,19 @@ pub fn study(scene_path: &Path, opts: &StudyOptions) -> Result<(Vec<StudyRow>, S
             let key = metric
                 .get_or_insert_with(|| default_metric(s).to_string())
                 .clone();
-            let num = |k: &str| s.get(k).and_then(|v| v.as_f64()).unwrap_or(f64::NAN);
             let error = s
-                .get(key.as_str())
-                .and_then(|v| v.as_f64())
+                .number(&key)
                 .ok_or_else(|| format!("summary has no number `{key}` (choose another --metric)"))?
                 .abs();
             rows.push(StudyRow {
                 scheme: scheme.name().to_string(),
                 resolution: res,
-                particles: num("particles") as u64,
+                particles: s.particles as u64,
                 error,
-                wall_s: num("wall_s"),
-                steps: num("steps") as u64,
-                pair_interactions: num("pair_interactions") as u64,
-                energy_rel_error: num("energy_rel_error"),
+                wall_s: s.wall_s,
+                steps: s.steps,
+                pair_interactions: s.pair_interactions,
+                energy_rel_error: s.energy_rel_error,
                 pareto: false,
             });
         }

@@ -31,10 +31,13 @@ fn run_equals_the_driver_bit_for_bit() {
     };
     let r = run(&scene, "flyer_plate", &opts).unwrap();
     assert_eq!(sim.table(), r.table);
-    assert_eq!(r.summary["steps"].as_u64(), Some(steps));
+    assert_eq!(r.summary.steps, steps);
     let s = sim.summary();
-    assert_eq!(s["l1_error"], r.summary["l1_error"]);
-    assert_eq!(s["energy_rel_error"], r.summary["energy_rel_error"]);
+    assert_eq!(s["l1_error"].as_f64(), r.summary.measure("l1_error"));
+    assert_eq!(
+        s["energy_rel_error"].as_f64(),
+        Some(r.summary.energy_rel_error)
+    );
 }
 
 fn plate(min: f64, max: f64, v: f64) -> BodySpec {

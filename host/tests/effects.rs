@@ -153,7 +153,7 @@ fn final_table(text: &str, overrides: &[String]) -> (String, ParticleTable) {
         progress: false,
     };
     let r = run(&s, "effects", &opts).unwrap_or_else(|e| panic!("{e}"));
-    assert_eq!(r.summary["steps"], 300, "{effects}");
+    assert_eq!(r.summary.steps, 300, "{effects}");
     (effects, r.table)
 }
 

@@ -50,7 +50,7 @@ fn go(set: &[&str]) -> Result<(Map<String, Value>, gsph::output::ParticleTable),
         },
     )
     .map_err(|e| e.to_string())?;
-    Ok((r.summary, r.table))
+    Ok((r.summary.to_map(), r.table))
 }
 
 fn num(s: &Map<String, Value>, k: &str) -> f64 {

@@ -31,7 +31,7 @@ fn the_copper_rod_comes_to_rest_near_the_measured_length_and_face() {
         },
     )
     .unwrap_or_else(|e| panic!("{e}"));
-    let num = |k: &str| r.summary[k].as_f64().unwrap_or_else(|| panic!("{k}"));
+    let num = |k: &str| r.summary.number(k).unwrap_or_else(|| panic!("{k}"));
 
     // the measured outline: length = its highest point, face = twice its radius at z = 0
     let outline = read_outline(&cases().join("data/taylor_wilkins_guinan_1973.csv")).unwrap();

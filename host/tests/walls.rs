@@ -37,7 +37,7 @@ fn go(sc: &Scene) -> RunResult {
 }
 
 fn num(r: &RunResult, k: &str) -> f64 {
-    r.summary[k].as_f64().unwrap_or_else(|| panic!("{k}"))
+    r.summary.number(k).unwrap_or_else(|| panic!("{k}"))
 }
 
 /// The wall scene without its wall and with the bar's mirror image as a second body.
@@ -198,12 +198,8 @@ friction = {friction}
 #[test]
 fn friction_takes_tangential_momentum_and_heats() {
     let (free, rough) = (sliding(0.0), sliding(0.3));
-    let mom = |r: &RunResult, k: usize| {
-        (
-            r.summary["momentum_initial"][k].as_f64().unwrap(),
-            r.summary["momentum_final"][k].as_f64().unwrap(),
-        )
-    };
+    let mom =
+        |r: &RunResult, k: usize| (r.summary.momentum_initial[k], r.summary.momentum_final[k]);
     let (t0, t1) = mom(&free, 0);
     assert!((t1 / t0 - 1.0).abs() < 1e-12, "frictionless: {t0} -> {t1}");
     assert_eq!(num(&free, "wall_friction_work"), 0.0);

@@ -12,7 +12,8 @@ pub fn case(name: &str) -> PathBuf {
         .join(format!("{name}.toml"))
 }
 
-/// Runs a bundled scene with overrides, in memory, and returns its summary.
+/// Runs a bundled scene with overrides, in memory, and returns its summary as
+/// summary.json's object (every key by name).
 pub fn run_case(name: &str, overrides: &[&str]) -> serde_json::Map<String, serde_json::Value> {
     let path = case(name);
     let set: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
@@ -24,6 +25,7 @@ pub fn run_case(name: &str, overrides: &[&str]) -> serde_json::Map<String, serde
     run(&scene, name, &opts)
         .unwrap_or_else(|e| panic!("{name} {overrides:?}: {e}"))
         .summary
+        .to_map()
 }
 
 /// A number from a summary.

@@ -55,7 +55,7 @@ fn summary(set: &[&str]) -> Result<Map<String, Value>, String> {
         },
     )
     .map_err(|e| e.to_string())?;
-    Ok(r.summary)
+    Ok(r.summary.to_map())
 }
 
 fn num(s: &Map<String, Value>, k: &str) -> f64 {

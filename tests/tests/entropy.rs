@@ -93,12 +93,7 @@ fn entropy_error(scheme: &str, extra: &str, spacing: f64) -> (f64, f64, f64, f64
     let net = signed.iter().sum::<f64>() / signed.len() as f64;
     let max = errs.iter().cloned().fold(0.0, f64::max);
     let mean = errs.iter().sum::<f64>() / errs.len() as f64;
-    (
-        max,
-        mean,
-        net,
-        r.summary["energy_rel_error"].as_f64().unwrap(),
-    )
+    (max, mean, net, r.summary.energy_rel_error)
 }
 
 /// The isentrope itself: a particle compressed along it keeps `e - e_s = 0`, and the

@@ -33,7 +33,7 @@ fn run_case(
         },
     )
     .unwrap_or_else(|e| panic!("{file} {scheme}: {e}"));
-    (r.summary, r.table)
+    (r.summary.to_map(), r.table)
 }
 
 fn check(file: &str, scale: f64, schemes: &[&str]) {

@@ -48,7 +48,7 @@ fn piston_drives_a_compaction_front_that_conserves_mass() {
     assert!(piston
         .iter()
         .all(|&i| tab.vx[i] == 100.0 && tab.vy[i] == 0.0));
-    let d = r.summary["front_speed"].as_f64().unwrap();
+    let d = r.summary.measure("front_speed").unwrap();
     let u_p = 100.0;
     let slowest = m * u_p / (m - 1.0);
     let c_l = (3930.0_f64.powi(2) + 4.0 * 43.0e9 / (3.0 * 8960.0)).sqrt();

@@ -72,12 +72,7 @@ fn energies(dim: usize, scheme: &str) -> (f64, f64, f64) {
         },
     )
     .unwrap_or_else(|e| panic!("{scheme} {dim}D: {e}"));
-    let s = &res.summary;
-    (
-        ke0,
-        s["energy_final"].as_f64().unwrap(),
-        s["kinetic_max"].as_f64().unwrap(),
-    )
+    (ke0, res.summary.energy_final, res.summary.kinetic_max)
 }
 
 /// Kinetic energy never exceeds its initial value (the wave exchanges kinetic and elastic

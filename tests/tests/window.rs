@@ -43,7 +43,7 @@ fn uniform_flow_through_the_window_stays_uniform() {
     )
     .unwrap();
     let s = &r.summary;
-    let get = |k: &str| s[k].as_f64().unwrap();
+    let get = |k: &str| s.number(k).unwrap();
     let n0 = gsph::scene::build_particles(&sc).unwrap().len() as f64;
     let mass_in = get("window_mass_in");
     println!(
@@ -169,7 +169,7 @@ fn window_and_piston_agree_on_the_shock_speed() {
         },
     )
     .unwrap();
-    let d = r.summary["front_speed"].as_f64().unwrap();
+    let d = r.summary.measure("front_speed").unwrap();
     println!("window u_s {window:.1} m/s, piston front {d:.1} m/s");
     assert!(
         (window - d).abs() < 0.05 * d,

@@ -25,9 +25,9 @@
 //! sub-step is symplectic Euler. Done the other way round (forces from the old state,
 //! then density and deviator, as a literal reading of the seed suggests) it is forward
 //! Euler, whose amplification factor `|1 + i w dt| > 1` makes waves grow wherever the
-//! Riemann dissipation vanishes: always in the deviatoric step (measured: shear waves grow
-//! without bound) and in smooth flow with MUSCL (an elastic standing wave gained 47 % of
-//! its kinetic energy in 14 periods). `tests/tests/standing_wave.rs` guards this.
+//! Riemann dissipation vanishes: always in the deviatoric step and in smooth flow with
+//! MUSCL (measurements in docs/ts2_reconstruction.md, "History of the ts code").
+//! `tests/tests/standing_wave.rs` guards this.
 //!
 //! **Riemann problem.** It uses the bulk sound speed (it carries pressure only) and is
 //! acoustic or two-shock. `ts2` reconstructs P, rho and the normal velocity at the
@@ -40,13 +40,9 @@
 //! which has units of length; divided by the pair distance it becomes the MUSCL–Hancock
 //! factor `f_i = max(0, 1 - c_i dt / r_ij)` ([`MusclTime::CourantFactor`]); a genuine
 //! half-step predictor is [`MusclTime::Predictor`]; the default is the spatial
-//! reconstruction alone (`f = 1`, [`MusclTime::None`]). Measured with the same choice in
-//! both places (docs/ts2_reconstruction.md): the Courant factor adds a first-order
-//! dissipation (the ring stops 2-3 % early and converges at first order from above; the
-//! flyer plate's L1 is 16 % larger at 100 particles), the predictor is less accurate on
-//! the flyer plate and the Riemann problem, and `f = 1` is the most accurate and, with
-//! the bounded extrapolation, keeps an elastic standing wave bounded (without the bound it
-//! grows). Symplectic-Euler ordering (below) supplies the stability the factor used to.
+//! reconstruction alone (`f = 1`, [`MusclTime::None`]): the most accurate of the three,
+//! and with the bounded extrapolation and the symplectic-Euler ordering it keeps an
+//! elastic standing wave bounded (measurements in docs/ts2_reconstruction.md).
 //!
 //! Failed particles (damage = 1; seed 000 Algorithm 1) are handled in
 //! `riemann_states`: the place where first order is forced and tension is cut.
@@ -125,7 +121,7 @@ pub struct Ts;
 /// `dv_a/dx_b = sum_j V_j (v_j - v_i)_a (grad_i W_ij)_b` (for the deviator) and, with MUSCL,
 /// grad rho and grad P for the reconstruction; also records the start-of-step velocity,
 /// and whether the particle is a free-surface particle of the continuity equation (see
-/// [`continuity_pass`]; staged in `sums.div`, which that pass overwrites).
+/// [`continuity_pass`]; `sums.surface`).
 fn front_gradient_pass<const D: usize, E: Effects, X: Executor>(
     sys: &System<'_, D>,
     geom: &[PairGeom<D>],
@@ -158,11 +154,7 @@ fn front_gradient_pass<const D: usize, E: Effects, X: Executor>(
                         gr.p += gw * (pair_pressure::<D, E>(sys, j) - pi);
                     }
                 });
-                out.div = if surface_divergence(&m, lam, eps) && !failed::<D, E>(sys, i) {
-                    1.0
-                } else {
-                    0.0
-                };
+                out.surface = surface_divergence(&m, lam, eps) && !failed::<D, E>(sys, i);
                 out.grad_v = gr.v;
                 if E::MUSCL {
                     g.0[k] = gr;
@@ -196,15 +188,10 @@ fn surface_divergence<const D: usize>(m: &Matrix<D>, lam: Real, eps: Real) -> bo
 /// (v*_ij - v_i)`, when `det M_i >= det_epsilon` and the particle has not failed. Failed
 /// material (damage 1) has lost cohesion: its surfaces are cracks and debris, not the
 /// surface of a continuous body, and the corrected divergence lets an isolated fragment
-/// expand without bound (its h grows with it): measured on
-/// `cases/hard/steel_sic_2000.toml`, ts1 stopped at 9.3 us of 15 when a failed SiC
-/// particle of the debris, down to 3 % of rho0 with a fivefold h, had 51 neighbours
-/// (the neighbour capacity), and ts2's smallest density
-/// fell to 182 kg/m³; with failed particles on the plain sum both run to t_end (density
-/// minimum 913 and 927 kg/m³; 957 and 695 before the surface rule). Interior particles
-/// keep the plain sum: it is the discrete adjoint of the force sum, and correcting it alone
-/// (measured: the flyer plate's L1 grows 15 %) breaks that pairing. Only the density
-/// update changes; momentum and energy stay conserved to round-off.
+/// expand without bound. Interior particles keep the plain sum: it is the discrete adjoint
+/// of the force sum, and correcting it alone breaks that pairing. Only the density update
+/// changes; momentum and energy stay conserved to round-off. The measurements behind each
+/// rule are in docs/ts2_reconstruction.md, "History of the ts code".
 #[allow(clippy::too_many_arguments)] // the pass's inputs and its two outputs (pair stars, sums)
 fn continuity_pass<const D: usize, E: Effects, X: Executor>(
     sys: &System<'_, D>,
@@ -228,7 +215,7 @@ fn continuity_pass<const D: usize, E: Effects, X: Executor>(
             let vi = sys.v[i];
             // the owner solved along its own axis: seen from i the component flips
             let seen = |u: Real, owner: bool| if owner { u } else { -u };
-            if out.div == 0.0 {
+            if !out.surface {
                 // interior: the plain sum, (v*_ij - v_i) . grad_i W = (u* - v_i . n) |W'|
                 let mut div = 0.0;
                 for_each_pair(params, geom, i, |pr, e| {
@@ -408,7 +395,7 @@ fn predicted<const D: usize>(
 
 /// Left/right states of the hydrodynamic Riemann problem of pair (i, j) along `n`:
 /// `(u, p, rho)` of each side. This is the single place where the failed-particle rules
-/// of seed 000 Algorithm 1 (first order, no tension) will act.
+/// of seed 000 Algorithm 1 (first order, no tension) act.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn riemann_states<const D: usize, E: Effects>(

@@ -22,9 +22,29 @@ pub mod run;
 pub mod stability;
 pub mod study;
 
-/// The exit code of a failed command when not 1: 128 + the signal's number after
-/// SIGINT/SIGTERM stopped a run.
-pub(crate) static EXIT_CODE: std::sync::atomic::AtomicI32 = std::sync::atomic::AtomicI32::new(0);
+/// A failed command: its one-line message and its exit code (1, or 128 + the signal's
+/// number when SIGINT/SIGTERM stopped a run).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Failure {
+    /// The message, printed after `error: `.
+    pub message: String,
+    /// The process's exit code.
+    pub code: i32,
+}
+
+impl From<String> for Failure {
+    /// A failure with exit code 1.
+    fn from(message: String) -> Self {
+        Failure { message, code: 1 }
+    }
+}
+
+impl From<&str> for Failure {
+    /// A failure with exit code 1.
+    fn from(message: &str) -> Self {
+        message.to_string().into()
+    }
+}
 
 /// The worker threads of a command: `--threads` (at least 1, at most
 /// [`crate::exec::MAX_THREADS_PER_CORE`] per core: [`crate::exec::check_threads`]) or all

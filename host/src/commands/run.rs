@@ -40,7 +40,7 @@ pub struct RunArgs {
 }
 
 /// Runs `gsph run`.
-pub fn command(args: RunArgs) -> Result<(), String> {
+pub fn command(args: RunArgs) -> Result<(), super::Failure> {
     let RunArgs {
         scene,
         out,
@@ -64,14 +64,9 @@ pub fn command(args: RunArgs) -> Result<(), String> {
         (None, Some(path)) => {
             // nothing touches the output folder until the run is validated and
             // holds its lock (the driver; under MPI rank 0 alone)
+            // (a scene the ranks cannot run, such as a moving window, is refused by the
+            // driver's set-up, before the folder is touched)
             let (sc, source) = load(&path, &set)?;
-            let ranks = crate::dist_size();
-            if ranks > 1 && sc.window.is_some() {
-                return Err(format!(
-                    "{}: the moving window (`window`) runs on one rank; this run has {ranks} MPI ranks",
-                    path.display()
-                ));
-            }
             let out = match out {
                 Some(o) => o,
                 None => crate::outdir::default_dir(&source.name, "")?,
@@ -100,13 +95,13 @@ pub fn command(args: RunArgs) -> Result<(), String> {
     let outcome = pool
         .install(|| run_checkpointed(&sc, &name, &opts, &ckpt))
         .map_err(|e| match e {
-            RunError::Output(e) => format!("{}: cannot write output: {e}", out.display()),
-            e @ RunError::Interrupted { signal, .. } => {
-                super::EXIT_CODE.store(128 + signal, std::sync::atomic::Ordering::Relaxed);
-                format!("{origin}: {e}")
-            }
-            e @ RunError::Checkpoint(_) => e.to_string(),
-            e => format!("{origin}: {e}"),
+            RunError::Output(e) => format!("{}: cannot write output: {e}", out.display()).into(),
+            e @ RunError::Interrupted { signal, .. } => super::Failure {
+                message: format!("{origin}: {e}"),
+                code: 128 + signal,
+            },
+            e @ RunError::Checkpoint(_) => e.to_string().into(),
+            e => format!("{origin}: {e}").into(),
         })?;
     let res = match outcome {
         Outcome::Finished(res) => res,
@@ -119,25 +114,23 @@ pub fn command(args: RunArgs) -> Result<(), String> {
         }
     };
     let s = &res.summary;
-    let g = |k: &str| s.get(k).cloned().unwrap_or_default();
     out!(
         "{name}: {} {}D, {} particles, {} steps, wall {:.3} s, energy error {:.3e}{}",
-        g("scheme").as_str().unwrap_or(""),
-        g("dim"),
-        g("particles"),
-        g("steps"),
-        g("wall_s").as_f64().unwrap_or(0.0),
-        g("energy_rel_error").as_f64().unwrap_or(0.0),
-        s.get("l1_error")
-            .and_then(|v| v.as_f64())
+        s.scheme,
+        s.dim,
+        s.particles,
+        s.steps,
+        s.wall_s,
+        s.energy_rel_error,
+        s.measure("l1_error")
             .map(|v| format!(", L1 error {v:.4e}"))
             .unwrap_or_default()
     );
-    if g("ended").as_str() == Some("max_steps") {
+    if s.ended == "max_steps" {
         out!(
             "{name}: stopped by max_steps = {} at t = {:e} s, before t_end",
-            g("steps"),
-            g("t_end").as_f64().unwrap_or(0.0)
+            s.steps,
+            s.t_end
         );
     }
     out!("wrote {}", out.display());

@@ -113,7 +113,7 @@ impl Files {
         mut self,
         table: &crate::output::ParticleTable,
         rec: &Recorder,
-        summary: &Map<String, Value>,
+        summary: &super::Summary,
         (step, t, wall): (u64, f64, f64),
         log: &Option<RunLog>,
     ) -> Result<(), RunError> {
@@ -128,14 +128,13 @@ impl Files {
         if let Some(w) = self.writer.take() {
             w.finish()?;
         }
-        let summary = Value::Object(summary.clone());
-        let text = serde_json::to_string_pretty(&summary).expect("json");
+        let text = serde_json::to_string_pretty(summary).expect("json");
         write_atomic(dir.join("summary.json"), text.as_bytes())?;
         if let Some(log) = log {
             log.append(&format!(
                 "finished {}: {step} steps, t = {t:e} s, wall {wall:.3} s\nsummary: {}",
                 crate::runlog::utc_now(),
-                serde_json::to_string(&summary).expect("json")
+                serde_json::to_string(summary).expect("json")
             ));
         }
         Ok(())

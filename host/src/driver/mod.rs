@@ -21,6 +21,7 @@ pub mod record;
 mod run_loop;
 mod summary;
 use run_loop::run_dim;
+pub use summary::Summary;
 
 /// Why a run failed. `Display` is one line.
 #[derive(Debug)]
@@ -119,7 +120,7 @@ pub struct RunOptions {
 #[derive(Debug, Clone)]
 pub struct RunResult {
     /// The summary (also written as summary.json).
-    pub summary: Map<String, Value>,
+    pub summary: Summary,
     /// Final particle state.
     pub table: crate::output::ParticleTable,
 }

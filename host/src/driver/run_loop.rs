@@ -85,14 +85,15 @@ fn set_up<const D: usize>(
     opts: &RunOptions,
     ckpt: Option<&CheckpointOptions>,
 ) -> Result<Setup<D>, RunError> {
-    let reference = Reference::from_scene(scene, &parts.x, &parts.spacing)?;
-    let mut sim = Sim::<D>::new(scene, parts)?;
+    // the one place a scene is refused for its rank count (the CLI, the library, restarts)
     let ranks = crate::dist_size();
     if ranks > 1 && scene.window.is_some() {
         return Err(RunError::Refused(format!(
             "the moving window (`window`) runs on one rank; this run has {ranks} MPI ranks"
         )));
     }
+    let reference = Reference::from_scene(scene, &parts.x, &parts.spacing)?;
+    let mut sim = Sim::<D>::new(scene, parts)?;
     let mut monitor = Monitor::new(scene, parts, &sim.materials)?;
     let window = match &scene.window {
         Some(w) => Some(Window::new(scene, w.geometry(scene)?, parts, &mut sim)),

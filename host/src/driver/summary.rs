@@ -22,83 +22,180 @@ pub(super) struct Summed<'a, const D: usize> {
     pub ended: &'static str,
 }
 
+/// summary.json of a finished run: one field per key, in file order, each with its unit.
+/// Energies and momenta are per unit length in 2D and per unit area in 1D (the masses'
+/// convention). Non-finite numbers are written as `null`.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct Summary {
+    /// The scene's name.
+    pub scene: String,
+    /// The version of gsph that ran it.
+    pub gsph_version: String,
+    /// The run's identifier (a checkpoint resumes only the run that wrote it).
+    pub run_id: String,
+    /// SHA-256 of the scene file's text (runs from a file).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub scene_sha256: Option<String>,
+    /// The `--set`/`--unset` overrides, in order (runs from a file).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub overrides: Option<Vec<String>>,
+    /// Dimension, 1–3.
+    pub dim: usize,
+    /// Scheme name.
+    pub scheme: String,
+    /// The effects the run simulated.
+    pub effects: Vec<String>,
+    /// Particles at the end (all ranks).
+    pub particles: usize,
+    /// Steps taken.
+    pub steps: u64,
+    /// Time reached, s.
+    pub t_end: f64,
+    /// What ended the run: `t_end`, or `max_steps` when that bound stopped it first.
+    pub ended: &'static str,
+    /// Wall time of the stepping, s.
+    pub wall_s: f64,
+    /// Wall time of the whole run (set-up and output included), s.
+    pub wall_total_s: f64,
+    /// Worker threads per rank.
+    pub threads: usize,
+    /// MPI ranks.
+    pub ranks: usize,
+    /// What the decomposition cost (several ranks): `crate::dist::report::summary`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mpi: Option<Value>,
+    /// Pair interactions evaluated (directed pairs in the lists, summed over the steps).
+    pub pair_interactions: u64,
+    /// Particles pushed back across a wall (runs with walls).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub wall_crossings: Option<u64>,
+    /// Kinetic energy turned into heat by wall friction, J (runs with walls).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub wall_friction_work: Option<f64>,
+    /// Neighbour-list rebuilds.
+    pub neighbor_rebuilds: u64,
+    /// Memory of the particle state and workspace per particle, bytes.
+    pub bytes_per_particle: usize,
+    /// Total energy at the start, J.
+    pub energy_initial: f64,
+    /// Total energy at the end, J.
+    pub energy_final: f64,
+    /// `(energy_final - energy_initial) / scale`, the scale the initial energy, or the
+    /// final kinetic plus |internal| energy when that is zero (a body at rest with e = 0).
+    pub energy_rel_error: f64,
+    /// Kinetic energy at the end, J.
+    pub kinetic_final: f64,
+    /// Largest kinetic energy sampled (series rows and the end), J.
+    pub kinetic_max: f64,
+    /// Internal energy at the end, J.
+    pub internal_final: f64,
+    /// Momentum at the start, kg m/s per component.
+    pub momentum_initial: Vec<f64>,
+    /// Momentum at the end, kg m/s per component.
+    pub momentum_final: Vec<f64>,
+    /// The reference's measures (e.g. `l1_error`, `radius_error`), the monitor's
+    /// (`density_min`, the scene's probes) and the moving window's series, by name; the
+    /// units are in docs/output.md.
+    #[serde(flatten)]
+    pub measures: Map<String, Value>,
+}
+
+impl Summary {
+    /// A measure by name (`l1_error`, `density_min` …), if the run has it as a number.
+    pub fn measure(&self, key: &str) -> Option<f64> {
+        self.measures.get(key).and_then(Value::as_f64)
+    }
+
+    /// Any number of the summary by its key in summary.json (a field or a measure).
+    pub fn number(&self, key: &str) -> Option<f64> {
+        self.to_map().get(key).and_then(Value::as_f64)
+    }
+
+    /// The keys of summary.json whose value is a number or `null` (a non-finite number).
+    pub fn number_keys(&self) -> Vec<String> {
+        self.to_map()
+            .into_iter()
+            .filter(|(_, v)| v.is_number() || v.is_null())
+            .map(|(k, _)| k)
+            .collect()
+    }
+
+    /// The summary as summary.json's object.
+    pub fn to_map(&self) -> Map<String, Value> {
+        match serde_json::to_value(self).expect("a summary serialises") {
+            Value::Object(m) => m,
+            _ => unreachable!("a struct serialises to an object"),
+        }
+    }
+}
+
 /// The summary of a finished run (summary.json).
-pub(super) fn summary<const D: usize>(x: Summed<'_, D>) -> Map<String, Value> {
+pub(super) fn summary<const D: usize>(x: Summed<'_, D>) -> Summary {
     let sim = x.sim;
     let (k1, i1) = sim.energy();
     let energy1 = k1 + i1;
     let mom1 = sim.momentum();
-    let mut s = Map::new();
-    s.insert("scene".into(), json!(x.scene_name));
-    s.insert("gsph_version".into(), json!(env!("CARGO_PKG_VERSION")));
-    s.insert("run_id".into(), json!(x.run_id));
-    if let Some(src) = x.source {
-        s.insert(
-            "scene_sha256".into(),
-            json!(crate::runlog::sha256_hex(&src.text)),
-        );
-        s.insert("overrides".into(), json!(src.overrides));
-    }
-    s.insert("dim".into(), json!(D));
-    s.insert("scheme".into(), json!(sim.scheme.name()));
-    s.insert(
-        "effects".into(),
-        json!(sim.effects.names().collect::<Vec<_>>()),
-    );
-    s.insert("particles".into(), json!(sim.global_len()));
-    s.insert("steps".into(), json!(sim.step));
-    s.insert("t_end".into(), json!(sim.t));
-    s.insert("ended".into(), json!(x.ended));
-    s.insert("wall_s".into(), json!(x.wall));
-    s.insert("wall_total_s".into(), json!(x.wall_total));
-    s.insert("threads".into(), json!(rayon::current_num_threads()));
-    s.insert("ranks".into(), json!(x.ranks));
     #[cfg(feature = "mpi")]
-    let pairs = match &sim.dist {
-        Some(d) => {
-            s.insert("mpi".into(), crate::dist::report::summary(d, sim.step));
-            crate::dist::all_sum_u64(sim.pair_interactions)
-        }
-        None => sim.pair_interactions,
+    let (mpi, pairs) = match &sim.dist {
+        Some(d) => (
+            Some(crate::dist::report::summary(d, sim.step)),
+            crate::dist::all_sum_u64(sim.pair_interactions),
+        ),
+        None => (None, sim.pair_interactions),
     };
     #[cfg(not(feature = "mpi"))]
-    let pairs = sim.pair_interactions;
-    s.insert("pair_interactions".into(), json!(pairs));
-    if !sim.mirrors.is_empty() {
-        let (crossings, friction_work) = sim.wall_totals();
-        s.insert("wall_crossings".into(), json!(crossings));
-        s.insert("wall_friction_work".into(), json!(friction_work));
-    }
-    s.insert("neighbor_rebuilds".into(), json!(sim.rebuilds));
-    s.insert("bytes_per_particle".into(), json!(sim.bytes_per_particle()));
-    s.insert("energy_initial".into(), json!(x.energy0));
-    s.insert("energy_final".into(), json!(energy1));
+    let (mpi, pairs) = (None, sim.pair_interactions);
+    let walls = (!sim.mirrors.is_empty()).then(|| sim.wall_totals());
     // relative to the initial energy, or to the final kinetic plus |internal| energy when
     // the initial energy is zero (a case that starts at rest with e = 0)
     let scale = x.energy0.abs().max(k1 + i1.abs()).max(f64::MIN_POSITIVE);
-    s.insert(
-        "energy_rel_error".into(),
-        json!((energy1 - x.energy0) / scale),
-    );
-    s.insert("kinetic_final".into(), json!(k1));
-    s.insert("kinetic_max".into(), json!(x.kinetic_max.max(k1)));
-    s.insert("internal_final".into(), json!(i1));
-    s.insert("momentum_initial".into(), json!(x.mom0[..D].to_vec()));
-    s.insert("momentum_final".into(), json!(mom1[..D].to_vec()));
+    let mut measures = Map::new();
     if let Some(r) = x.reference {
         for (k, v) in r.measures(x.table, sim.t) {
-            s.insert(k.into(), json!(v));
+            measures.insert(k.into(), json!(v));
         }
     }
     for (k, v) in x.monitor.measures(x.table) {
-        s.insert(k, json!(v));
+        measures.insert(k, json!(v));
     }
     if let Some(w) = x.window {
         for (k, v) in Window::<D>::series_names().iter().zip(w.series_values(sim)) {
-            s.insert((*k).into(), json!(v));
+            measures.insert((*k).into(), json!(v));
         }
-        s.insert("window_u_in".into(), json!(w.u_in));
-        s.insert("window_u_out".into(), json!(w.u_out()));
+        measures.insert("window_u_in".into(), json!(w.u_in));
+        measures.insert("window_u_out".into(), json!(w.u_out()));
     }
-    s
+    Summary {
+        scene: x.scene_name.into(),
+        gsph_version: env!("CARGO_PKG_VERSION").into(),
+        run_id: x.run_id.into(),
+        scene_sha256: x.source.map(|src| crate::runlog::sha256_hex(&src.text)),
+        overrides: x.source.map(|src| src.overrides.clone()),
+        dim: D,
+        scheme: sim.scheme.name().into(),
+        effects: sim.effects.names().map(String::from).collect(),
+        particles: sim.global_len(),
+        steps: sim.step,
+        t_end: sim.t,
+        ended: x.ended,
+        wall_s: x.wall,
+        wall_total_s: x.wall_total,
+        threads: rayon::current_num_threads(),
+        ranks: x.ranks,
+        mpi,
+        pair_interactions: pairs,
+        wall_crossings: walls.map(|w| w.0),
+        wall_friction_work: walls.map(|w| w.1),
+        neighbor_rebuilds: sim.rebuilds,
+        bytes_per_particle: sim.bytes_per_particle(),
+        energy_initial: x.energy0,
+        energy_final: energy1,
+        energy_rel_error: (energy1 - x.energy0) / scale,
+        kinetic_final: k1,
+        kinetic_max: x.kinetic_max.max(k1),
+        internal_final: i1,
+        momentum_initial: x.mom0[..D].to_vec(),
+        momentum_final: mom1[..D].to_vec(),
+        measures,
+    }
 }

@@ -16,12 +16,13 @@ use gsph_core::state::*;
 use rayon::prelude::*;
 use std::any::Any;
 
-pub use crate::sim_error::SimError;
+pub use error::SimError;
 
 mod by_id;
 #[cfg(feature = "mpi")]
 mod dist;
 mod edit;
+mod error;
 mod lists;
 mod measure;
 mod state_io;
@@ -30,9 +31,9 @@ use by_id::{cause_by_id, overflow_by_id};
 pub use edit::HeldState;
 
 /// The step function for dimension `D` (looked up once per run; the specialisations are
-/// compiled in `gsph-kernels`).
+/// compiled in `gsph-steps`).
 fn select<const D: usize>(scheme: Scheme, effects: EffectSet) -> Option<StepFn<D, Rayon>> {
-    use gsph_kernels::{select_1d, select_2d, select_3d};
+    use gsph_steps::{select_1d, select_2d, select_3d};
     let family = scheme.family();
     let effects = effects.kernel_part();
     let cast = |f: &dyn Any| f.downcast_ref::<StepFn<D, Rayon>>().copied();

@@ -292,29 +292,22 @@ pub fn run_case(path: &Path, scheme: Scheme, quick: bool) -> Row {
         }
     };
     let s = &res.summary;
-    let num = |k: &str| s.get(k).and_then(|v| v.as_f64()).unwrap_or(f64::NAN);
-    let vec = |k: &str| -> Vec<f64> {
-        s.get(k)
-            .and_then(|v| v.as_array())
-            .map(|a| a.iter().map(|x| x.as_f64().unwrap_or(f64::NAN)).collect())
-            .unwrap_or_default()
-    };
     let tab = &res.table;
-    row.steps = s.get("steps").and_then(|v| v.as_u64()).unwrap_or(0);
-    row.t = num("t_end");
+    row.steps = s.steps;
+    row.t = s.t_end;
     row.reached = row.t >= sc.t_end * (1.0 - 1e-12);
     row.nan = tab
         .float_columns()
         .iter()
         .any(|c| c.iter().any(|v| !v.is_finite()));
-    row.rho_min = num("density_min");
-    row.energy_error = num("energy_rel_error");
+    row.rho_min = s.measure("density_min").unwrap_or(f64::NAN);
+    row.energy_error = s.energy_rel_error;
     let s1 = sum_mv(
         &tab.m,
         &mut (0..tab.len()).map(|i| [tab.vx[i], tab.vy[i], tab.vz[i]]),
     );
-    row.momentum_error = momentum_error(&vec("momentum_initial"), &vec("momentum_final"), s0, s1);
-    row.wall_s = num("wall_s");
+    row.momentum_error = momentum_error(&s.momentum_initial, &s.momentum_final, s0, s1);
+    row.wall_s = s.wall_s;
     judge(&mut row, scheme);
     row
 }
