@@ -166,7 +166,6 @@ mod runner {
                     acc: Vector::<1>::new(0.0),
                     power: 0.0,
                     div: 0.0,
-                    surface: false,
                     grad_v: gsph_core::math::Matrix::<1>::new(0.0),
                     v0: Vector::<1>::new(0.0),
                 }; N],

@@ -190,18 +190,16 @@ impl<const R: usize, const C: usize> Codec for SMatrix<f64, R, C> {
     }
 }
 
-/// Structs of codec fields, encoded field by field in the order listed; the fields after
-/// `recomputed:` are not stored (each step sets them before it reads them) and decode to
-/// the value given.
+/// Structs of codec fields, encoded field by field in the order listed.
 macro_rules! struct_codec {
-    ($t:ident $(<$d:ident>)?, $($f:ident: $ft:ty),* $(,)? $(; recomputed: $($g:ident = $gv:expr),*)?) => {
+    ($t:ident $(<$d:ident>)?, $($f:ident: $ft:ty),* $(,)?) => {
         impl$(<const $d: usize>)? Codec for $t$(<$d>)? {
             const MIN_SIZE: usize = 0 $(+ <$ft as Codec>::MIN_SIZE)*;
             fn put(&self, e: &mut Enc) {
                 $(Codec::put(&self.$f, e);)*
             }
             fn get(d: &mut Dec<'_>) -> Result<Self, DecodeError> {
-                Ok($t { $($f: <$ft as Codec>::get(d)?,)* $($($g: $gv,)*)? })
+                Ok($t { $($f: <$ft as Codec>::get(d)?,)* })
             }
         }
     };
@@ -210,7 +208,7 @@ macro_rules! struct_codec {
 struct_codec!(Sym3, xx: f64, yy: f64, zz: f64, xy: f64, xz: f64, yz: f64);
 struct_codec!(PairSums<D>,
     acc: SMatrix<f64, D, 1>, power: f64, div: f64, grad_v: SMatrix<f64, D, D>,
-    v0: SMatrix<f64, D, 1>; recomputed: surface = false);
+    v0: SMatrix<f64, D, 1>);
 struct_codec!(Gradients<D>,
     rho: SMatrix<f64, D, 1>, p: SMatrix<f64, D, 1>, v: SMatrix<f64, D, D>,
     cl: SMatrix<f64, D, 1>, ct: SMatrix<f64, D, 1>);

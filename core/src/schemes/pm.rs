@@ -149,7 +149,7 @@ pub(crate) fn correction_pass<const D: usize, X: Executor>(
         }
     });
     // Particles with a boundary particle within their smoothing length use L = I
-    // (marked in `sums.surface`).
+    // (marked with `PairSums::set_surface`).
     let within = 1.0 + NEAR_SURFACE_TOLERANCE;
     let c: &[Correction<D>] = corr;
     exec.run(&mut *sums, |off, chunk: &mut [PairSums<D>]| {
@@ -162,13 +162,13 @@ pub(crate) fn correction_pass<const D: usize, X: Executor>(
                     near = true;
                 }
             });
-            out.surface = near;
+            out.set_surface(near);
         }
     });
     let s: &[PairSums<D>] = sums;
     exec.run(corr, |off, chunk: &mut [Correction<D>]| {
         for (k, out) in chunk.iter_mut().enumerate() {
-            if s[off + k].surface {
+            if s[off + k].surface() {
                 if out.boundary == 0 {
                     out.boundary = 1;
                 }

@@ -121,7 +121,7 @@ pub struct Ts;
 /// `dv_a/dx_b = sum_j V_j (v_j - v_i)_a (grad_i W_ij)_b` (for the deviator) and, with MUSCL,
 /// grad rho and grad P for the reconstruction; also records the start-of-step velocity,
 /// and whether the particle is a free-surface particle of the continuity equation (see
-/// [`continuity_pass`]; `sums.surface`).
+/// [`continuity_pass`]; [`PairSums::set_surface`]).
 fn front_gradient_pass<const D: usize, E: Effects, X: Executor>(
     sys: &System<'_, D>,
     geom: &[PairGeom<D>],
@@ -154,7 +154,7 @@ fn front_gradient_pass<const D: usize, E: Effects, X: Executor>(
                         gr.p += gw * (pair_pressure::<D, E>(sys, j) - pi);
                     }
                 });
-                out.surface = surface_divergence(&m, lam, eps) && !failed::<D, E>(sys, i);
+                out.set_surface(surface_divergence(&m, lam, eps) && !failed::<D, E>(sys, i));
                 out.grad_v = gr.v;
                 if E::MUSCL {
                     g.0[k] = gr;
@@ -215,7 +215,7 @@ fn continuity_pass<const D: usize, E: Effects, X: Executor>(
             let vi = sys.v[i];
             // the owner solved along its own axis: seen from i the component flips
             let seen = |u: Real, owner: bool| if owner { u } else { -u };
-            if !out.surface {
+            if !out.surface() {
                 // interior: the plain sum, (v*_ij - v_i) . grad_i W = (u* - v_i . n) |W'|
                 let mut div = 0.0;
                 for_each_pair(params, geom, i, |pr, e| {
