@@ -19,8 +19,8 @@
 
 use super::artificial_stress::pair_acceleration;
 use super::common::{
-    artificial_stress_tensors, cauchy, deviator_rate, equivalent_strain_rate, exchange,
-    for_each_pair, geometry_pass, outer, refresh_aux, refresh_eos, return_deviator,
+    artificial_stress_tensors, cauchy, deviator_rate, equivalent_strain_rate, for_each_pair,
+    geometry_pass, halo_exchange, outer, refresh_aux, refresh_eos, return_deviator,
 };
 use super::SchemeFamily;
 use crate::effects::{EffectSet, Effects};
@@ -151,15 +151,7 @@ impl SchemeFamily for Av {
             return Err(StepError::Storage { field: "av" });
         }
         if !ws.primed {
-            exchange(
-                params.effects,
-                halo,
-                &EXCHANGES[0],
-                sys,
-                ws.grad,
-                ws.grad_stress,
-                ws.corr,
-            );
+            halo_exchange!(params, halo, &EXCHANGES[0], sys, ws);
             rates::<D, E, X>(sys, ws, params, exec);
             ws.primed = true;
         }
@@ -189,15 +181,7 @@ impl SchemeFamily for Av {
                 }
             },
         );
-        exchange(
-            params.effects,
-            halo,
-            &EXCHANGES[0],
-            sys,
-            ws.grad,
-            ws.grad_stress,
-            ws.corr,
-        );
+        halo_exchange!(params, halo, &EXCHANGES[0], sys, ws);
         rates::<D, E, X>(sys, ws, params, exec);
         // Second kick with the rates of the predicted state.
         exec.run(

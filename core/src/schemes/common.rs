@@ -32,6 +32,24 @@ pub(crate) fn exchange<const D: usize>(
     }
 }
 
+/// [`exchange`] with the step's effects and the three workspace arrays neighbours read:
+/// `halo_exchange!(params, halo, x, sys, ws)`. A macro, not a method of the workspace,
+/// so that the step can keep other workspace fields borrowed across the call.
+macro_rules! halo_exchange {
+    ($params:expr, $halo:expr, $x:expr, $sys:expr, $ws:expr) => {
+        $crate::schemes::common::exchange(
+            $params.effects,
+            $halo,
+            $x,
+            $sys,
+            $ws.grad,
+            $ws.grad_stress,
+            $ws.corr,
+        )
+    };
+}
+pub(crate) use halo_exchange;
+
 /// One interacting pair (i, j) as seen from particle i.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Pair<const D: usize> {

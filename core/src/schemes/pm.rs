@@ -26,8 +26,8 @@
 
 use super::artificial_stress::pair_acceleration;
 use super::common::{
-    advance_deviator, artificial_stress_tensors, cauchy, exchange, failed, for_each_pair,
-    geometry_pass, min_sym_eigenvalue, outer, refresh_aux, refresh_eos, refresh_pressure,
+    advance_deviator, artificial_stress_tensors, cauchy, failed, for_each_pair, geometry_pass,
+    halo_exchange, min_sym_eigenvalue, outer, refresh_aux, refresh_eos, refresh_pressure,
     solve_pairs, Pair,
 };
 use super::SchemeFamily;
@@ -261,15 +261,7 @@ impl SchemeFamily for Pm {
         }
         let dt = params.dt;
         let [start, pair, dynamic] = &EXCHANGES;
-        exchange(
-            params.effects,
-            halo,
-            start,
-            sys,
-            ws.grad,
-            ws.grad_stress,
-            ws.corr,
-        );
+        halo_exchange!(params, halo, start, sys, ws);
         geometry_pass::<D, E, X>(sys.x, sys.h, params, ws.geom, ws.fac, exec);
         refresh_aux::<D, true, X>(sys, ws.aux, params, exec);
         {
@@ -291,15 +283,7 @@ impl SchemeFamily for Pm {
                 );
             }
         }
-        exchange(
-            params.effects,
-            halo,
-            pair,
-            sys,
-            ws.grad,
-            ws.grad_stress,
-            ws.corr,
-        );
+        halo_exchange!(params, halo, pair, sys, ws);
         if E::MUSCL {
             // With MUSCL the Riemann dissipation nearly vanishes in smooth flow, and the
             // explicit Euler of the seed (forces and strain rates from the same old state)
@@ -318,15 +302,7 @@ impl SchemeFamily for Pm {
                     }
                 },
             );
-            exchange(
-                params.effects,
-                halo,
-                dynamic,
-                sys,
-                ws.grad,
-                ws.grad_stress,
-                ws.corr,
-            );
+            halo_exchange!(params, halo, dynamic, sys, ws);
             refresh_aux::<D, true, X>(sys, ws.aux, params, exec);
             if params.has::<E>(EffectSet::ARTIFICIAL_STRESS) {
                 artificial_stress_tensors::<D, E, X>(sys, ws.art, params, exec);

@@ -49,9 +49,9 @@
 
 use super::artificial_stress::pair_acceleration;
 use super::common::{
-    advance_deviator, artificial_stress_tensors, exchange, failed, for_each_pair, geometry_pass,
-    min_sym_eigenvalue, outer, pair_pressure, refresh_aux, refresh_eos, refresh_pressure,
-    solve_pairs,
+    advance_deviator, artificial_stress_tensors, failed, for_each_pair, geometry_pass,
+    halo_exchange, min_sym_eigenvalue, outer, pair_pressure, refresh_aux, refresh_eos,
+    refresh_pressure, solve_pairs,
 };
 use super::SchemeFamily;
 use crate::effects::{EffectSet, Effects};
@@ -529,28 +529,12 @@ impl SchemeFamily for Ts {
         //    |1 + i w dt| > 1 lets waves grow wherever the Riemann dissipation vanishes:
         //    always in the deviatoric step, and in smooth flow with MUSCL.
         let [front, continuity, deviatoric, hydro] = &EXCHANGES;
-        exchange(
-            params.effects,
-            halo,
-            front,
-            sys,
-            ws.grad,
-            ws.grad_stress,
-            ws.corr,
-        );
+        halo_exchange!(params, halo, front, sys, ws);
         geometry_pass::<D, E, X>(sys.x, sys.h, params, ws.geom, ws.fac, exec);
         let (geom, fac): (&[PairGeom<D>], &[Real]) = (ws.geom, ws.fac);
         refresh_aux::<D, false, X>(sys, ws.aux, params, exec);
         front_gradient_pass::<D, E, X>(sys, geom, ws.aux, ws.sums, ws.grad, params, exec);
-        exchange(
-            params.effects,
-            halo,
-            continuity,
-            sys,
-            ws.grad,
-            ws.grad_stress,
-            ws.corr,
-        );
+        halo_exchange!(params, halo, continuity, sys, ws);
         continuity_pass::<D, E, X>(
             sys, ws.grad, geom, ws.aux, ws.ts_star, ws.sums, params, exec,
         );
@@ -567,15 +551,7 @@ impl SchemeFamily for Ts {
                 }
             },
         );
-        exchange(
-            params.effects,
-            halo,
-            deviatoric,
-            sys,
-            ws.grad,
-            ws.grad_stress,
-            ws.corr,
-        );
+        halo_exchange!(params, halo, deviatoric, sys, ws);
         // 2. Deviatoric step (with strength or artificial stress): no dissipation.
         refresh_aux::<D, false, X>(sys, ws.aux, params, exec);
         let art_on = params.has::<E>(EffectSet::ARTIFICIAL_STRESS);
@@ -600,15 +576,7 @@ impl SchemeFamily for Ts {
             );
         }
         // 3. Hydrodynamic step with the new pressure (reconstruction slopes from step 1).
-        exchange(
-            params.effects,
-            halo,
-            hydro,
-            sys,
-            ws.grad,
-            ws.grad_stress,
-            ws.corr,
-        );
+        halo_exchange!(params, halo, hydro, sys, ws);
         hydro_pass::<D, E, X>(
             sys, ws.grad, geom, ws.aux, ws.ts_star, ws.sums, params, exec,
         );
