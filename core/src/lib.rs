@@ -26,6 +26,7 @@ pub mod limiter;
 pub mod material;
 pub mod math;
 pub mod neighbors;
+pub mod particles;
 pub mod riemann;
 pub mod schemes;
 pub mod state;

@@ -15,40 +15,101 @@ use crate::math::{real, Matrix, Real, Sym3, Vector};
 use crate::neighbors::{Neighbors, Periodic};
 use crate::schemes::artificial_stress::ArtificialStress;
 
-/// The particles of a run (structure of arrays). All slices have the same length `n`,
-/// except optional fields, which are empty when their effect is absent.
-#[derive(Debug)]
-pub struct System<'a, const D: usize> {
-    /// Positions, m.
-    pub x: &'a mut [Vector<D>],
-    /// Velocities, m/s.
-    pub v: &'a mut [Vector<D>],
-    /// Masses, kg (in 2D per unit length out of the plane, kg/m; in 1D per unit
-    /// cross-section area, kg/m²).
-    pub m: &'a [Real],
-    /// Material index into [`StepParams::materials`].
-    pub mat: &'a [u16],
-    /// Density, kg/m³.
-    pub rho: &'a mut [Real],
-    /// Specific internal energy, J/kg.
-    pub e: &'a mut [Real],
-    /// Pressure, Pa (kept consistent with rho, e by the EOS).
-    pub p: &'a mut [Real],
-    /// Bulk sound speed, m/s (from the EOS).
-    pub c: &'a mut [Real],
-    /// Longitudinal sound speed `sqrt(c² + 4G/(3 rho))`, m/s.
-    pub cl: &'a mut [Real],
-    /// Smoothing length, m: `h = h_factor (m/rho)^(1/D)`.
-    pub h: &'a mut [Real],
-    /// Stress deviator S (full 3x3), Pa. Empty without `strength`.
-    pub s: &'a mut [Sym3],
-    /// Equivalent plastic strain. Empty without `plasticity`.
-    pub eps_p: &'a mut [Real],
-    /// Damage in [0, 1]. Empty without `damage`.
-    pub damage: &'a mut [Real],
-    /// Temperature, K. Empty without `heat`.
-    pub temp: &'a mut [Real],
+/// The slice type of a field of [`System`]: `&'a mut [T]` or `&'a [T]`.
+macro_rules! slice_of {
+    (mut, $a:lifetime, $t:ty) => { &$a mut [$t] };
+    (ref, $a:lifetime, $t:ty) => { &$a [$t] };
 }
+
+/// Whether a field stored when `$when` is stored in a run with `$effects`.
+macro_rules! stored_in {
+    (all, $effects:expr) => {
+        true
+    };
+    ($when:ident, $effects:expr) => {
+        $effects.contains(EffectSet::$when)
+    };
+}
+
+/// The doc of a field's unit.
+macro_rules! unit_doc {
+    ("") => {
+        "."
+    };
+    ($unit:literal) => {
+        concat!(", ", $unit, ".")
+    };
+}
+
+/// The doc of a field's storage.
+macro_rules! storage_doc {
+    (all) => {
+        ""
+    };
+    ($when:ident) => {
+        concat!(" Empty without the effect `", stringify!($when), "`.")
+    };
+}
+
+/// Splits a field's slice at `mid` (an empty optional field into two empty halves).
+macro_rules! split_field {
+    (mut, all, $v:expr, $mid:expr) => {
+        $v.split_at_mut($mid)
+    };
+    (ref, all, $v:expr, $mid:expr) => {
+        $v.split_at($mid)
+    };
+    (mut, $when:ident, $v:expr, $mid:expr) => {
+        split_opt($v, $mid)
+    };
+}
+
+/// [`System`], its reborrow, storage check and split, from the table of
+/// [`crate::particle_fields!`].
+macro_rules! system_from_fields {
+    (() $($name:ident: $ty:ty, $when:ident, $acc:ident, $unit:literal, $doc:literal;)*) => {
+        /// The particles of a run (structure of arrays), one slice per field of
+        /// [`crate::particle_fields!`]. All slices have the same length `n`, except
+        /// optional fields, which are empty when their effect is absent.
+        #[derive(Debug)]
+        pub struct System<'a, const D: usize> {
+            $(
+                #[doc = concat!($doc, unit_doc!($unit), storage_doc!($when))]
+                pub $name: slice_of!($acc, 'a, $ty),
+            )*
+        }
+
+        impl<'a, const D: usize> System<'a, D> {
+            /// Reborrows with a shorter lifetime (to split or hand to an executor).
+            pub fn reborrow(&mut self) -> System<'_, D> {
+                System { $($name: self.$name,)* }
+            }
+            /// Checks that every slice has the length its effect set requires.
+            pub fn check_storage(&self, effects: EffectSet) -> Result<(), StepError> {
+                let n = self.len();
+                $(
+                    let want = if stored_in!($when, effects) { n } else { 0 };
+                    if self.$name.len() != want {
+                        return Err(StepError::Storage { field: stringify!($name) });
+                    }
+                )*
+                Ok(())
+            }
+        }
+
+        impl<const D: usize> Split for System<'_, D> {
+            fn len(&self) -> usize {
+                self.x.len()
+            }
+            fn split_at(self, mid: usize) -> (Self, Self) {
+                $(let $name = split_field!($acc, $when, self.$name, mid);)*
+                (System { $($name: $name.0,)* }, System { $($name: $name.1,)* })
+            }
+        }
+    };
+}
+
+crate::particle_fields!(system_from_fields {});
 
 impl<'a, const D: usize> System<'a, D> {
     /// Number of particles.
@@ -79,114 +140,6 @@ impl<'a, const D: usize> System<'a, D> {
     #[inline(always)]
     pub fn has_heat<E: Effects>(&self) -> bool {
         E::RUNTIME.contains(EffectSet::HEAT) && !self.temp.is_empty()
-    }
-    /// Reborrows with a shorter lifetime (to split or hand to an executor).
-    pub fn reborrow(&mut self) -> System<'_, D> {
-        System {
-            x: self.x,
-            v: self.v,
-            m: self.m,
-            mat: self.mat,
-            rho: self.rho,
-            e: self.e,
-            p: self.p,
-            c: self.c,
-            cl: self.cl,
-            h: self.h,
-            s: self.s,
-            eps_p: self.eps_p,
-            damage: self.damage,
-            temp: self.temp,
-        }
-    }
-    /// Checks that every slice has the length its effect set requires.
-    pub fn check_storage(&self, effects: EffectSet) -> Result<(), StepError> {
-        let n = self.len();
-        let need = |len: usize, on: bool, field: &'static str| {
-            if len == if on { n } else { 0 } {
-                Ok(())
-            } else {
-                Err(StepError::Storage { field })
-            }
-        };
-        need(self.v.len(), true, "v")?;
-        need(self.m.len(), true, "m")?;
-        need(self.mat.len(), true, "mat")?;
-        need(self.rho.len(), true, "rho")?;
-        need(self.e.len(), true, "e")?;
-        need(self.p.len(), true, "p")?;
-        need(self.c.len(), true, "c")?;
-        need(self.cl.len(), true, "cl")?;
-        need(self.h.len(), true, "h")?;
-        need(self.s.len(), effects.contains(EffectSet::STRENGTH), "s")?;
-        need(
-            self.eps_p.len(),
-            effects.contains(EffectSet::PLASTICITY),
-            "eps_p",
-        )?;
-        need(
-            self.damage.len(),
-            effects.contains(EffectSet::DAMAGE),
-            "damage",
-        )?;
-        need(self.temp.len(), effects.contains(EffectSet::HEAT), "temp")?;
-        Ok(())
-    }
-}
-
-impl<const D: usize> Split for System<'_, D> {
-    fn len(&self) -> usize {
-        self.x.len()
-    }
-    fn split_at(self, mid: usize) -> (Self, Self) {
-        let (x0, x1) = self.x.split_at_mut(mid);
-        let (v0, v1) = self.v.split_at_mut(mid);
-        let (m0, m1) = self.m.split_at(mid);
-        let (k0, k1) = self.mat.split_at(mid);
-        let (r0, r1) = self.rho.split_at_mut(mid);
-        let (e0, e1) = self.e.split_at_mut(mid);
-        let (p0, p1) = self.p.split_at_mut(mid);
-        let (c0, c1) = self.c.split_at_mut(mid);
-        let (l0, l1) = self.cl.split_at_mut(mid);
-        let (h0, h1) = self.h.split_at_mut(mid);
-        let (s0, s1) = split_opt(self.s, mid);
-        let (q0, q1) = split_opt(self.eps_p, mid);
-        let (d0, d1) = split_opt(self.damage, mid);
-        let (t0, t1) = split_opt(self.temp, mid);
-        (
-            System {
-                x: x0,
-                v: v0,
-                m: m0,
-                mat: k0,
-                rho: r0,
-                e: e0,
-                p: p0,
-                c: c0,
-                cl: l0,
-                h: h0,
-                s: s0,
-                eps_p: q0,
-                damage: d0,
-                temp: t0,
-            },
-            System {
-                x: x1,
-                v: v1,
-                m: m1,
-                mat: k1,
-                rho: r1,
-                e: e1,
-                p: p1,
-                c: c1,
-                cl: l1,
-                h: h1,
-                s: s1,
-                eps_p: q1,
-                damage: d1,
-                temp: t1,
-            },
-        )
     }
 }
 

@@ -45,20 +45,7 @@ impl<const D: usize> Sim<D> {
             .map(|&(i, v)| (new_index[i], v))
             .collect();
         filter(&mut self.ids, keep);
-        filter(&mut self.x, keep);
-        filter(&mut self.v, keep);
-        filter(&mut self.m, keep);
-        filter(&mut self.mat, keep);
-        filter(&mut self.rho, keep);
-        filter(&mut self.e, keep);
-        filter(&mut self.p, keep);
-        filter(&mut self.c, keep);
-        filter(&mut self.cl, keep);
-        filter(&mut self.h, keep);
-        filter(&mut self.s, keep);
-        filter(&mut self.eps_p, keep);
-        filter(&mut self.damage, keep);
-        filter(&mut self.temp, keep);
+        gsph_core::particle_fields!(each_state_field { self, filter, keep });
         filter(&mut self.sums, keep);
         filter(&mut self.grad, keep);
         filter(&mut self.grad_stress, keep);

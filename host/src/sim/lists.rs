@@ -73,20 +73,7 @@ impl<const D: usize> Sim<D> {
             d.0 = place[d.0];
         }
         apply(&mut self.ids, order);
-        apply(&mut self.x, order);
-        apply(&mut self.v, order);
-        apply(&mut self.m, order);
-        apply(&mut self.mat, order);
-        apply(&mut self.rho, order);
-        apply(&mut self.e, order);
-        apply(&mut self.p, order);
-        apply(&mut self.c, order);
-        apply(&mut self.cl, order);
-        apply(&mut self.h, order);
-        apply(&mut self.s, order);
-        apply(&mut self.eps_p, order);
-        apply(&mut self.damage, order);
-        apply(&mut self.temp, order);
+        gsph_core::particle_fields!(each_state_field { self, apply, order });
         apply(&mut self.sums, order);
         apply(&mut self.grad, order);
         apply(&mut self.grad_stress, order);

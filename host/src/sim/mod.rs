@@ -18,6 +18,24 @@ use std::any::Any;
 
 pub use error::SimError;
 
+/// `$f(&mut $sim.FIELD, $arg);` for each per-particle state field of the core's table
+/// ([`gsph_core::particle_fields!`]), in table order: use as
+/// `gsph_core::particle_fields!(each_state_field { self, f, arg })` (in this module and
+/// the modules declared below).
+macro_rules! each_state_field {
+    (($s:expr, $f:expr, $arg:expr) $($name:ident: $ty:ty, $when:ident, $acc:ident, $unit:literal, $doc:literal;)*) => {
+        $( $f(&mut $s.$name, $arg); )*
+    };
+    // read only: `$f(&$sim.FIELD, $arg)`
+    ((ref $s:expr, $f:expr, $arg:expr) $($name:ident: $ty:ty, $when:ident, $acc:ident, $unit:literal, $doc:literal;)*) => {
+        $( $f(&$s.$name, $arg); )*
+    };
+    // with the field's name and `?`: `$f(stringify!(FIELD), &mut $sim.FIELD, $arg)?`
+    ((named $s:expr, $f:expr, $arg:expr) $($name:ident: $ty:ty, $when:ident, $acc:ident, $unit:literal, $doc:literal;)*) => {
+        $( $f(stringify!($name), &mut $s.$name, $arg)?; )*
+    };
+}
+
 mod by_id;
 #[cfg(feature = "mpi")]
 mod dist;

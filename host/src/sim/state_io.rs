@@ -36,20 +36,11 @@ impl<const D: usize> Sim<D> {
         e.put(&self.primed);
         e.put(&(self.capacity as u64));
         e.put(&self.ids);
-        e.put(&self.x);
-        e.put(&self.v);
-        e.put(&self.m);
-        e.put(&self.mat);
-        e.put(&self.rho);
-        e.put(&self.e);
-        e.put(&self.p);
-        e.put(&self.c);
-        e.put(&self.cl);
-        e.put(&self.h);
-        e.put(&self.s);
-        e.put(&self.eps_p);
-        e.put(&self.damage);
-        e.put(&self.temp);
+        // the particle state in the order of the core's table (gsph_core::particle_fields!)
+        fn put<T: Codec>(v: &Vec<T>, e: &mut Enc) {
+            e.put(v);
+        }
+        gsph_core::particle_fields!(each_state_field { ref self, put, e });
         e.put(&self.sums);
         e.put(&self.grad);
         e.put(&self.grad_stress);
@@ -104,20 +95,15 @@ impl<const D: usize> Sim<D> {
             Ok(())
         }
         field(d, "ids", &mut self.ids, n, true)?;
-        field(d, "x", &mut self.x, n, true)?;
-        field(d, "v", &mut self.v, n, true)?;
-        field(d, "m", &mut self.m, n, true)?;
-        field(d, "mat", &mut self.mat, n, true)?;
-        field(d, "rho", &mut self.rho, n, true)?;
-        field(d, "e", &mut self.e, n, true)?;
-        field(d, "p", &mut self.p, n, true)?;
-        field(d, "c", &mut self.c, n, true)?;
-        field(d, "cl", &mut self.cl, n, true)?;
-        field(d, "h", &mut self.h, n, true)?;
-        field(d, "s", &mut self.s, n, true)?;
-        field(d, "eps_p", &mut self.eps_p, n, true)?;
-        field(d, "damage", &mut self.damage, n, true)?;
-        field(d, "temp", &mut self.temp, n, true)?;
+        // the particle state: stored exactly as the scene sizes it
+        fn state<T: Codec>(
+            name: &str,
+            have: &mut Vec<T>,
+            (d, n): (&mut Dec<'_>, usize),
+        ) -> Result<(), DecodeError> {
+            field(d, name, have, n, true)
+        }
+        gsph_core::particle_fields!(each_state_field { named self, state, (&mut *d, n) });
         field(d, "sums", &mut self.sums, n, false)?;
         field(d, "grad", &mut self.grad, n, false)?;
         field(d, "grad_stress", &mut self.grad_stress, n, false)?;

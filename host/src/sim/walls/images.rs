@@ -88,20 +88,7 @@ impl<const D: usize> Sim<D> {
         }
         let n = self.mirrors.first;
         cut(&mut self.ids, n);
-        cut(&mut self.x, n);
-        cut(&mut self.v, n);
-        cut(&mut self.m, n);
-        cut(&mut self.mat, n);
-        cut(&mut self.rho, n);
-        cut(&mut self.e, n);
-        cut(&mut self.p, n);
-        cut(&mut self.c, n);
-        cut(&mut self.cl, n);
-        cut(&mut self.h, n);
-        cut(&mut self.s, n);
-        cut(&mut self.eps_p, n);
-        cut(&mut self.damage, n);
-        cut(&mut self.temp, n);
+        gsph_core::particle_fields!(each_state_field { self, cut, n });
         cut(&mut self.sums, n);
         cut(&mut self.grad, n);
         cut(&mut self.grad_stress, n);
