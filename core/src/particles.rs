@@ -19,9 +19,11 @@
 /// Calls `$cb! { ($($args)*) ROWS }` with the table of per-particle fields, one row each:
 ///
 /// ```text
-/// name: Type, storage, access, "unit", "description";
+/// name: Type, kind, storage, access, "unit", "description";
 /// ```
 ///
+/// - `kind`: how the field transforms under a reflection (a wall's mirror image):
+///   `point` (a position), `vector`, `tensor` (a symmetric 3x3 tensor) or `scalar`;
 /// - `storage`: `all` (every particle) or the name of an [`EffectSet`](crate::effects::EffectSet)
 ///   constant: the field is stored only when the run has that effect, and is an empty
 ///   array otherwise;
@@ -38,20 +40,20 @@ macro_rules! particle_fields {
     ($cb:ident { $($args:tt)* }) => {
         $cb! {
             ($($args)*)
-            x: Vector<D>, all, mut, "m", "Position";
-            v: Vector<D>, all, mut, "m/s", "Velocity";
-            m: Real, all, ref, "kg", "Mass (in 2D per unit length out of the plane, kg/m; in 1D per unit cross-section area, kg/m²)";
-            mat: u16, all, ref, "", "Material index into `StepParams::materials`";
-            rho: Real, all, mut, "kg/m³", "Density";
-            e: Real, all, mut, "J/kg", "Specific internal energy";
-            p: Real, all, mut, "Pa", "Pressure (kept consistent with rho, e by the EOS)";
-            c: Real, all, mut, "m/s", "Bulk sound speed (from the EOS)";
-            cl: Real, all, mut, "m/s", "Longitudinal sound speed `sqrt(c² + 4G/(3 rho))`";
-            h: Real, all, mut, "m", "Smoothing length `h = h_factor (m/rho)^(1/D)`";
-            s: Sym3, STRENGTH, mut, "Pa", "Stress deviator S (full 3x3)";
-            eps_p: Real, PLASTICITY, mut, "", "Equivalent plastic strain";
-            damage: Real, DAMAGE, mut, "", "Damage in [0, 1]";
-            temp: Real, HEAT, mut, "K", "Temperature";
+            x: Vector<D>, point, all, mut, "m", "Position";
+            v: Vector<D>, vector, all, mut, "m/s", "Velocity";
+            m: Real, scalar, all, ref, "kg", "Mass (in 2D per unit length out of the plane, kg/m; in 1D per unit cross-section area, kg/m²)";
+            mat: u16, scalar, all, ref, "", "Material index into `StepParams::materials`";
+            rho: Real, scalar, all, mut, "kg/m³", "Density";
+            e: Real, scalar, all, mut, "J/kg", "Specific internal energy";
+            p: Real, scalar, all, mut, "Pa", "Pressure (kept consistent with rho, e by the EOS)";
+            c: Real, scalar, all, mut, "m/s", "Bulk sound speed (from the EOS)";
+            cl: Real, scalar, all, mut, "m/s", "Longitudinal sound speed `sqrt(c² + 4G/(3 rho))`";
+            h: Real, scalar, all, mut, "m", "Smoothing length `h = h_factor (m/rho)^(1/D)`";
+            s: Sym3, tensor, STRENGTH, mut, "Pa", "Stress deviator S (full 3x3)";
+            eps_p: Real, scalar, PLASTICITY, mut, "", "Equivalent plastic strain";
+            damage: Real, scalar, DAMAGE, mut, "", "Damage in [0, 1]";
+            temp: Real, scalar, HEAT, mut, "K", "Temperature";
         }
     };
 }
@@ -59,7 +61,7 @@ macro_rules! particle_fields {
 /// The names of the per-particle fields, in table order.
 pub const FIELD_NAMES: &[&str] = {
     macro_rules! names {
-        (() $($name:ident: $ty:ty, $when:ident, $acc:ident, $unit:literal, $doc:literal;)*) => {
+        (() $($name:ident: $ty:ty, $kind:ident, $when:ident, $acc:ident, $unit:literal, $doc:literal;)*) => {
             &[$(stringify!($name)),*]
         };
     }

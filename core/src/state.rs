@@ -67,7 +67,7 @@ macro_rules! split_field {
 /// [`System`], its reborrow, storage check and split, from the table of
 /// [`crate::particle_fields!`].
 macro_rules! system_from_fields {
-    (() $($name:ident: $ty:ty, $when:ident, $acc:ident, $unit:literal, $doc:literal;)*) => {
+    (() $($name:ident: $ty:ty, $kind:ident, $when:ident, $acc:ident, $unit:literal, $doc:literal;)*) => {
         /// The particles of a run (structure of arrays), one slice per field of
         /// [`crate::particle_fields!`]. All slices have the same length `n`, except
         /// optional fields, which are empty when their effect is absent.

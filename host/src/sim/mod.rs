@@ -23,16 +23,20 @@ pub use error::SimError;
 /// `gsph_core::particle_fields!(each_state_field { self, f, arg })` (in this module and
 /// the modules declared below).
 macro_rules! each_state_field {
-    (($s:expr, $f:expr, $arg:expr) $($name:ident: $ty:ty, $when:ident, $acc:ident, $unit:literal, $doc:literal;)*) => {
+    (($s:expr, $f:expr, $arg:expr) $($name:ident: $ty:ty, $kind:ident, $when:ident, $acc:ident, $unit:literal, $doc:literal;)*) => {
         $( $f(&mut $s.$name, $arg); )*
     };
     // read only: `$f(&$sim.FIELD, $arg)`
-    ((ref $s:expr, $f:expr, $arg:expr) $($name:ident: $ty:ty, $when:ident, $acc:ident, $unit:literal, $doc:literal;)*) => {
+    ((ref $s:expr, $f:expr, $arg:expr) $($name:ident: $ty:ty, $kind:ident, $when:ident, $acc:ident, $unit:literal, $doc:literal;)*) => {
         $( $f(&$s.$name, $arg); )*
     };
     // with the field's name and `?`: `$f(stringify!(FIELD), &mut $sim.FIELD, $arg)?`
-    ((named $s:expr, $f:expr, $arg:expr) $($name:ident: $ty:ty, $when:ident, $acc:ident, $unit:literal, $doc:literal;)*) => {
+    ((named $s:expr, $f:expr, $arg:expr) $($name:ident: $ty:ty, $kind:ident, $when:ident, $acc:ident, $unit:literal, $doc:literal;)*) => {
         $( $f(stringify!($name), &mut $s.$name, $arg)?; )*
+    };
+    // by the field's kind: `$module::KIND(&mut $sim.FIELD, $arg)` (`point`, `vector` …)
+    ((kind $s:expr, $module:ident, $arg:expr) $($name:ident: $ty:ty, $kind:ident, $when:ident, $acc:ident, $unit:literal, $doc:literal;)*) => {
+        $( $module::$kind(&mut $s.$name, $arg); )*
     };
 }
 

@@ -47,6 +47,36 @@ fn dup<T: Copy>(v: &mut Vec<T>, i: usize, n: usize) {
     }
 }
 
+/// The mirror image of particle `i` appended to a state field, by the field's kind in the
+/// core's table (`gsph_core::particle_fields!`); a field not stored (empty) stays empty.
+mod mirror {
+    use super::super::Plane;
+    use gsph_core::math::{Sym3, Vector};
+
+    /// The mirror of particle `i` through `pl`, appended to `v` as `f` maps it.
+    fn push<T: Copy>(v: &mut Vec<T>, i: usize, f: impl Fn(&T) -> T) {
+        if let Some(y) = v.get(i).map(f) {
+            v.push(y);
+        }
+    }
+    /// A position: reflected through the plane.
+    pub(super) fn point<const D: usize>(v: &mut Vec<Vector<D>>, (i, pl): (usize, &Plane<D>)) {
+        push(v, i, |x| pl.reflect_point(x));
+    }
+    /// A vector: its normal component flipped.
+    pub(super) fn vector<const D: usize>(v: &mut Vec<Vector<D>>, (i, pl): (usize, &Plane<D>)) {
+        push(v, i, |x| pl.reflect(x));
+    }
+    /// A symmetric tensor: `R S R`.
+    pub(super) fn tensor<const D: usize>(v: &mut Vec<Sym3>, (i, pl): (usize, &Plane<D>)) {
+        push(v, i, |s| pl.reflect_sym(s));
+    }
+    /// A scalar (or an index): copied.
+    pub(super) fn scalar<T: Copy, const D: usize>(v: &mut Vec<T>, (i, _): (usize, &Plane<D>)) {
+        push(v, i, |&y| y);
+    }
+}
+
 /// Cuts `v` to `n` elements when it holds more.
 fn cut<T>(v: &mut Vec<T>, n: usize) {
     v.truncate(n);
@@ -148,26 +178,10 @@ impl<const D: usize> Sim<D> {
                     break 'planes;
                 }
                 let (bx, bh) = (pl.reflect_point(&self.build_x[i]), self.build_h[i]);
-                let (x, v) = (pl.reflect_point(&self.x[i]), pl.reflect(&self.v[i]));
-                let s = self.s.get(i).map(|s| pl.reflect_sym(s));
                 let n = self.len();
                 self.ids.push(0); // numbered below
-                self.x.push(x);
-                self.v.push(v);
-                dup(&mut self.m, i, n);
-                dup(&mut self.mat, i, n);
-                dup(&mut self.rho, i, n);
-                dup(&mut self.e, i, n);
-                dup(&mut self.p, i, n);
-                dup(&mut self.c, i, n);
-                dup(&mut self.cl, i, n);
-                dup(&mut self.h, i, n);
-                if let Some(s) = s {
-                    self.s.push(s);
-                }
-                dup(&mut self.eps_p, i, n);
-                dup(&mut self.damage, i, n);
-                dup(&mut self.temp, i, n);
+                let pl = self.mirrors.planes[w].clone();
+                gsph_core::particle_fields!(each_state_field { kind self, mirror, (i, &pl) });
                 dup(&mut self.sums, i, n);
                 dup(&mut self.grad, i, n);
                 dup(&mut self.grad_stress, i, n);
