@@ -27,6 +27,18 @@ impl Words for f64 {
     }
 }
 
+impl Words for u16 {
+    fn words() -> usize {
+        1
+    }
+    fn put_words(&self, out: &mut Vec<f64>) {
+        out.push(f64::from(*self));
+    }
+    fn from_words(src: &[f64]) -> Self {
+        src[0] as u16
+    }
+}
+
 impl<const R: usize, const C: usize> Words for SMatrix<f64, R, C> {
     fn words() -> usize {
         R * C

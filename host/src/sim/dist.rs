@@ -5,7 +5,7 @@
 use super::Sim;
 use crate::dist::{self, rcb::Rcb, words::Words, Dist, Plan, REBALANCE_THRESHOLD};
 use crate::sim::SimError;
-use gsph_core::math::{Sym3, Vector};
+use gsph_core::math::Vector;
 use gsph_core::state::{AvRates, Layout};
 use std::time::Instant;
 
@@ -38,64 +38,38 @@ impl<const D: usize> Sim<D> {
         self.rebuild()
     }
 
-    /// Words of one particle record (state, effect storage, `av` rates, driven velocity).
+    /// Words of one particle record (id, the state fields the run stores in the order of
+    /// the core's table, `av` rates, driven velocity), whether or not this rank holds
+    /// particles.
     fn record_width(&self) -> usize {
-        let opt = |on: bool, w: usize| if on { w } else { 0 };
-        let [s, eps_p, damage, temp, av] = self.stored();
-        1 + 2 * D
-            + 8
-            + opt(s, 6)
-            + opt(eps_p, 1)
-            + opt(damage, 1)
-            + opt(temp, 1)
-            + opt(av, AvRates::<D>::words())
-            + 1
-            + D
+        fn width<T: Words>(_: &[T], stored: bool, w: &mut usize) {
+            if stored {
+                *w += T::words();
+            }
+        }
+        let mut w = 1;
+        gsph_core::particle_fields!(each_state_field { stored self, width, &mut w });
+        if self.stores_av() {
+            w += AvRates::<D>::words();
+        }
+        w + 1 + D
     }
 
-    /// Which of the optional per-particle arrays the effects store (deviator, plastic
-    /// strain, damage, temperature, `av` rates), whether or not this rank holds particles.
-    fn stored(&self) -> [bool; 5] {
-        use gsph_core::effects::EffectSet as E;
-        let has = |e| self.effects.contains(e);
-        [
-            has(E::STRENGTH),
-            has(E::PLASTICITY),
-            has(E::DAMAGE),
-            has(E::HEAT),
-            Layout::of(self.scheme.family(), self.effects).av,
-        ]
+    /// Whether the run keeps `av`'s rates (they carry over from step to step).
+    fn stores_av(&self) -> bool {
+        Layout::of(self.scheme.family(), self.effects).av
     }
 
     /// Appends the record of local particle `i` (`driven`: its prescribed velocity).
     fn put_record(&self, i: usize, driven: Option<Vector<D>>, out: &mut Vec<f64>) {
-        out.push(self.ids[i] as f64);
-        self.x[i].put_words(out);
-        self.v[i].put_words(out);
-        out.extend_from_slice(&[
-            self.m[i],
-            self.mat[i] as f64,
-            self.rho[i],
-            self.e[i],
-            self.p[i],
-            self.c[i],
-            self.cl[i],
-            self.h[i],
-        ]);
-        let [s, eps_p, damage, temp, av] = self.stored();
-        if s {
-            self.s[i].put_words(out);
-        }
-        for (on, v) in [
-            (eps_p, &self.eps_p),
-            (damage, &self.damage),
-            (temp, &self.temp),
-        ] {
-            if on {
-                out.push(v[i]);
+        fn put<T: Words>(v: &[T], stored: bool, (i, out): (usize, &mut Vec<f64>)) {
+            if stored {
+                v[i].put_words(out);
             }
         }
-        if av {
+        out.push(self.ids[i] as f64);
+        gsph_core::particle_fields!(each_state_field { stored self, put, (i, &mut *out) });
+        if self.stores_av() {
             self.av[i].put_words(out);
         }
         out.push(driven.is_some() as u8 as f64);
@@ -111,33 +85,19 @@ impl<const D: usize> Sim<D> {
             at += w;
             s
         };
+        fn get<'r, T: Words>(
+            v: &mut Vec<T>,
+            stored: bool,
+            next: &mut impl FnMut(usize) -> &'r [f64],
+        ) {
+            if stored {
+                v.push(T::from_words(next(T::words())));
+            }
+        }
         self.ids.push(next(1)[0] as u32);
-        self.x.push(Vector::<D>::from_words(next(D)));
-        self.v.push(Vector::<D>::from_words(next(D)));
-        let f = next(8);
-        self.m.push(f[0]);
-        self.mat.push(f[1] as u16);
-        self.rho.push(f[2]);
-        self.e.push(f[3]);
-        self.p.push(f[4]);
-        self.c.push(f[5]);
-        self.cl.push(f[6]);
-        self.h.push(f[7]);
-        let [s, pl, dm, ht, av] = self.stored();
-        if s {
-            self.s.push(Sym3::from_words(next(6)));
-        }
-        if pl {
-            self.eps_p.push(next(1)[0]);
-        }
-        if dm {
-            self.damage.push(next(1)[0]);
-        }
-        if ht {
-            self.temp.push(next(1)[0]);
-        }
+        gsph_core::particle_fields!(each_state_field { stored_mut self, get, &mut next });
         let layout = Layout::of(self.scheme.family(), self.effects);
-        if av {
+        if layout.av {
             self.av
                 .push(AvRates::<D>::from_words(next(AvRates::<D>::words())));
         }

@@ -22,6 +22,16 @@ pub use error::SimError;
 /// ([`gsph_core::particle_fields!`]), in table order: use as
 /// `gsph_core::particle_fields!(each_state_field { self, f, arg })` (in this module and
 /// the modules declared below).
+/// Whether a run with `$effects` stores a field whose table storage is `$when`.
+macro_rules! stored_in {
+    (all, $effects:expr) => {
+        true
+    };
+    ($when:ident, $effects:expr) => {
+        $effects.contains(gsph_core::effects::EffectSet::$when)
+    };
+}
+
 macro_rules! each_state_field {
     (($s:expr, $f:expr, $arg:expr) $($name:ident: $ty:ty, $kind:ident, $when:ident, $acc:ident, $unit:literal, $doc:literal;)*) => {
         $( $f(&mut $s.$name, $arg); )*
@@ -33,6 +43,14 @@ macro_rules! each_state_field {
     // with the field's name and `?`: `$f(stringify!(FIELD), &mut $sim.FIELD, $arg)?`
     ((named $s:expr, $f:expr, $arg:expr) $($name:ident: $ty:ty, $kind:ident, $when:ident, $acc:ident, $unit:literal, $doc:literal;)*) => {
         $( $f(stringify!($name), &mut $s.$name, $arg)?; )*
+    };
+    // with whether the run stores the field: `$f(&$sim.FIELD, stored, $arg)`
+    ((stored $s:expr, $f:expr, $arg:expr) $($name:ident: $ty:ty, $kind:ident, $when:ident, $acc:ident, $unit:literal, $doc:literal;)*) => {
+        $( $f(&$s.$name, stored_in!($when, $s.effects), $arg); )*
+    };
+    // the same, mutable: `$f(&mut $sim.FIELD, stored, $arg)`
+    ((stored_mut $s:expr, $f:expr, $arg:expr) $($name:ident: $ty:ty, $kind:ident, $when:ident, $acc:ident, $unit:literal, $doc:literal;)*) => {
+        $( $f(&mut $s.$name, stored_in!($when, $s.effects), $arg); )*
     };
     // by the field's kind: `$module::KIND(&mut $sim.FIELD, $arg)` (`point`, `vector` …)
     ((kind $s:expr, $module:ident, $arg:expr) $($name:ident: $ty:ty, $kind:ident, $when:ident, $acc:ident, $unit:literal, $doc:literal;)*) => {
