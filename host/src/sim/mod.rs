@@ -22,7 +22,9 @@ pub use error::SimError;
 /// ([`gsph_core::particle_fields!`]), in table order: use as
 /// `gsph_core::particle_fields!(each_state_field { self, f, arg })` (in this module and
 /// the modules declared below).
-/// Whether a run with `$effects` stores a field whose table storage is `$when`.
+/// Whether a run with `$effects` stores a field whose table storage is `$when` (the MPI
+/// record uses it).
+#[cfg_attr(not(feature = "mpi"), allow(unused_macros))]
 macro_rules! stored_in {
     (all, $effects:expr) => {
         true
