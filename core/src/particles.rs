@@ -24,9 +24,9 @@
 ///
 /// - `kind`: how the field transforms under a reflection (a wall's mirror image):
 ///   `point` (a position), `vector`, `tensor` (a symmetric 3x3 tensor) or `scalar`;
-/// - `storage`: `all` (every particle) or the name of an [`EffectSet`](crate::effects::EffectSet)
-///   constant: the field is stored only when the run has that effect, and is an empty
-///   array otherwise;
+/// - `storage`: the name of the [`EffectSet`](crate::effects::EffectSet) constant whose
+///   effect stores the field (`HYDRO`: every run; `effects.contains(EffectSet::HYDRO)` is
+///   always true); a run without it stores an empty array;
 /// - `access`: `mut` (a step writes it) or `ref` (a step only reads it);
 /// - `unit`: the SI unit (`""`: dimensionless or an index); masses and volumes follow
 ///   the dimension (in 2D per unit length out of the plane, in 1D per unit
@@ -40,16 +40,16 @@ macro_rules! particle_fields {
     ($cb:ident { $($args:tt)* }) => {
         $cb! {
             ($($args)*)
-            x: Vector<D>, point, all, mut, "m", "Position";
-            v: Vector<D>, vector, all, mut, "m/s", "Velocity";
-            m: Real, scalar, all, ref, "kg", "Mass (in 2D per unit length out of the plane, kg/m; in 1D per unit cross-section area, kg/m²)";
-            mat: u16, scalar, all, ref, "", "Material index into `StepParams::materials`";
-            rho: Real, scalar, all, mut, "kg/m³", "Density";
-            e: Real, scalar, all, mut, "J/kg", "Specific internal energy";
-            p: Real, scalar, all, mut, "Pa", "Pressure (kept consistent with rho, e by the EOS)";
-            c: Real, scalar, all, mut, "m/s", "Bulk sound speed (from the EOS)";
-            cl: Real, scalar, all, mut, "m/s", "Longitudinal sound speed `sqrt(c² + 4G/(3 rho))`";
-            h: Real, scalar, all, mut, "m", "Smoothing length `h = h_factor (m/rho)^(1/D)`";
+            x: Vector<D>, point, HYDRO, mut, "m", "Position";
+            v: Vector<D>, vector, HYDRO, mut, "m/s", "Velocity";
+            m: Real, scalar, HYDRO, ref, "kg", "Mass (in 2D per unit length out of the plane, kg/m; in 1D per unit cross-section area, kg/m²)";
+            mat: u16, scalar, HYDRO, ref, "", "Material index into `StepParams::materials`";
+            rho: Real, scalar, HYDRO, mut, "kg/m³", "Density";
+            e: Real, scalar, HYDRO, mut, "J/kg", "Specific internal energy";
+            p: Real, scalar, HYDRO, mut, "Pa", "Pressure (kept consistent with rho, e by the EOS)";
+            c: Real, scalar, HYDRO, mut, "m/s", "Bulk sound speed (from the EOS)";
+            cl: Real, scalar, HYDRO, mut, "m/s", "Longitudinal sound speed `sqrt(c² + 4G/(3 rho))`";
+            h: Real, scalar, HYDRO, mut, "m", "Smoothing length `h = h_factor (m/rho)^(1/D)`";
             s: Sym3, tensor, STRENGTH, mut, "Pa", "Stress deviator S (full 3x3)";
             eps_p: Real, scalar, PLASTICITY, mut, "", "Equivalent plastic strain";
             damage: Real, scalar, DAMAGE, mut, "", "Damage in [0, 1]";

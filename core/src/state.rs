@@ -21,16 +21,6 @@ macro_rules! slice_of {
     (ref, $a:lifetime, $t:ty) => { &$a [$t] };
 }
 
-/// Whether a field stored when `$when` is stored in a run with `$effects`.
-macro_rules! stored_in {
-    (all, $effects:expr) => {
-        true
-    };
-    ($when:ident, $effects:expr) => {
-        $effects.contains(EffectSet::$when)
-    };
-}
-
 /// The doc of a field's unit.
 macro_rules! unit_doc {
     ("") => {
@@ -43,7 +33,7 @@ macro_rules! unit_doc {
 
 /// The doc of a field's storage.
 macro_rules! storage_doc {
-    (all) => {
+    (HYDRO) => {
         ""
     };
     ($when:ident) => {
@@ -53,10 +43,10 @@ macro_rules! storage_doc {
 
 /// Splits a field's slice at `mid` (an empty optional field into two empty halves).
 macro_rules! split_field {
-    (mut, all, $v:expr, $mid:expr) => {
+    (mut, HYDRO, $v:expr, $mid:expr) => {
         $v.split_at_mut($mid)
     };
-    (ref, all, $v:expr, $mid:expr) => {
+    (ref, HYDRO, $v:expr, $mid:expr) => {
         $v.split_at($mid)
     };
     (mut, $when:ident, $v:expr, $mid:expr) => {
@@ -88,7 +78,7 @@ macro_rules! system_from_fields {
             pub fn check_storage(&self, effects: EffectSet) -> Result<(), StepError> {
                 let n = self.len();
                 $(
-                    let want = if stored_in!($when, effects) { n } else { 0 };
+                    let want = if effects.contains(EffectSet::$when) { n } else { 0 };
                     if self.$name.len() != want {
                         return Err(StepError::Storage { field: stringify!($name) });
                     }

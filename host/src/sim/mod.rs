@@ -22,18 +22,6 @@ pub use error::SimError;
 /// ([`gsph_core::particle_fields!`]), in table order: use as
 /// `gsph_core::particle_fields!(each_state_field { self, f, arg })` (in this module and
 /// the modules declared below).
-/// Whether a run with `$effects` stores a field whose table storage is `$when` (the MPI
-/// record uses it).
-#[cfg_attr(not(feature = "mpi"), allow(unused_macros))]
-macro_rules! stored_in {
-    (all, $effects:expr) => {
-        true
-    };
-    ($when:ident, $effects:expr) => {
-        $effects.contains(gsph_core::effects::EffectSet::$when)
-    };
-}
-
 macro_rules! each_state_field {
     (($s:expr, $f:expr, $arg:expr) $($name:ident: $ty:ty, $kind:ident, $when:ident, $acc:ident, $unit:literal, $doc:literal;)*) => {
         $( $f(&mut $s.$name, $arg); )*
@@ -48,11 +36,11 @@ macro_rules! each_state_field {
     };
     // with whether the run stores the field: `$f(&$sim.FIELD, stored, $arg)`
     ((stored $s:expr, $f:expr, $arg:expr) $($name:ident: $ty:ty, $kind:ident, $when:ident, $acc:ident, $unit:literal, $doc:literal;)*) => {
-        $( $f(&$s.$name, stored_in!($when, $s.effects), $arg); )*
+        $( $f(&$s.$name, $s.effects.contains(gsph_core::effects::EffectSet::$when), $arg); )*
     };
     // the same, mutable: `$f(&mut $sim.FIELD, stored, $arg)`
     ((stored_mut $s:expr, $f:expr, $arg:expr) $($name:ident: $ty:ty, $kind:ident, $when:ident, $acc:ident, $unit:literal, $doc:literal;)*) => {
-        $( $f(&mut $s.$name, stored_in!($when, $s.effects), $arg); )*
+        $( $f(&mut $s.$name, $s.effects.contains(gsph_core::effects::EffectSet::$when), $arg); )*
     };
     // by the field's kind: `$module::KIND(&mut $sim.FIELD, $arg)` (`point`, `vector` …)
     ((kind $s:expr, $module:ident, $arg:expr) $($name:ident: $ty:ty, $kind:ident, $when:ident, $acc:ident, $unit:literal, $doc:literal;)*) => {

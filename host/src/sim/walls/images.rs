@@ -160,8 +160,9 @@ impl<const D: usize> Sim<D> {
         let mut refused: Option<(usize, usize, u32)> = None;
         'planes: for w in 0..self.mirrors.planes.len() {
             // the particles so far: this plane's own mirrors are not mirrored again
+            // a copy: the particle arrays grow while it is read
+            let pl = self.mirrors.planes[w].clone();
             for i in 0..self.len() {
-                let pl = &self.mirrors.planes[w];
                 if pl.distance(&self.build_x[i]) >= reach {
                     continue;
                 }
@@ -180,7 +181,6 @@ impl<const D: usize> Sim<D> {
                 let (bx, bh) = (pl.reflect_point(&self.build_x[i]), self.build_h[i]);
                 let n = self.len();
                 self.ids.push(0); // numbered below
-                let pl = self.mirrors.planes[w].clone();
                 gsph_core::particle_fields!(each_state_field { kind self, mirror, (i, &pl) });
                 dup(&mut self.sums, i, n);
                 dup(&mut self.grad, i, n);
