@@ -19,7 +19,10 @@
 /// Calls `$cb! { ($($args)*) ROWS }` with the table of per-particle fields, one row each:
 ///
 /// ```text
-/// name: Type, kind, storage, access, "unit", "description";
+/// name: Type, kind, storage, access, "unit", "description", {
+///     api("api name" [more aliases], write|read, range)
+///     out[column "description", ...]
+/// };
 /// ```
 ///
 /// - `kind`: how the field transforms under a reflection (a wall's mirror image):
@@ -27,33 +30,133 @@
 /// - `storage`: the name of the [`EffectSet`](crate::effects::EffectSet) constant whose
 ///   effect stores the field (`HYDRO`: every run; `effects.contains(EffectSet::HYDRO)` is
 ///   always true); a run without it stores an empty array;
-/// - `access`: `mut` (a step writes it) or `ref` (a step only reads it);
-/// - `unit`: the SI unit (`""`: dimensionless or an index); masses and volumes follow
-///   the dimension (in 2D per unit length out of the plane, in 1D per unit
-///   cross-section area);
+/// - `access`: `mut` (a step writes it), `ref` (a step only reads it) or `keep` (the
+///   host carries it with the particle, permutes, mirrors, checkpoints and outputs it,
+///   but no step sees it: it is not a field of [`System`](crate::state::System));
+/// - `unit`: the SI unit (`"1"`: dimensionless, `""`: a label such as an index); masses
+///   and volumes follow the dimension (in 2D per unit length out of the plane, in 1D per
+///   unit cross-section area);
+/// - `api`: the field's name in the library API (`gsph::api`, the C ABI, Python), further
+///   aliases besides the field's own name, whether a caller may write it, and the range a
+///   written value must lie in (`any` finite value, `positive`, `nonnegative`, `fraction`:
+///   in [0, 1]);
+/// - `out`: the columns of `final.csv` and of the snapshots' particle tables, with their
+///   meaning: one per component (a point or vector has three, padded with 0 below 3D; a
+///   tensor six, `xx yy zz xy xz yz`; a scalar one), or none.
 /// - `Type` may name `D` (the dimension), `Vector`, `Real` and `Sym3` of [`crate::math`],
 ///   which the callback's expansion site must have in scope.
 ///
 /// The callback receives the parenthesised arguments first, then the rows.
+/// `particle_fields!(step cb { args })` passes only the rows a step sees (all but `keep`).
 #[macro_export]
 macro_rules! particle_fields {
+    (step $cb:ident { $($args:tt)* }) => {
+        $crate::particle_fields! { @rows ($crate::__step_rows) ($cb ($($args)*) []) }
+    };
+    ($cb:ident { $($args:tt)* }) => {
+        $crate::particle_fields! { @rows ($cb) (($($args)*)) }
+    };
+    (@rows ($($mac:tt)*) ($($pre:tt)*)) => {
+        $($mac)*! {
+            $($pre)*
+            x: Vector<D>, point, HYDRO, mut, "m", "Position", {
+                api("position" [], write, any)
+                out[x "position x", y "position y (0 in 1D)", z "position z (0 in 1D and 2D)"]
+            };
+            v: Vector<D>, vector, HYDRO, mut, "m/s", "Velocity", {
+                api("velocity" [], write, any)
+                out[vx "velocity x", vy "velocity y (0 in 1D)", vz "velocity z (0 in 1D and 2D)"]
+            };
+            m: Real, scalar, HYDRO, ref, "kg", "Mass (in 2D per unit length out of the plane, kg/m; in 1D per unit cross-section area, kg/m^2)", {
+                api("mass" [], write, positive)
+                out[m "particle mass (kg/m^2 in 1D: per unit area; kg/m in 2D: per unit length)"]
+            };
+            mat: u16, scalar, HYDRO, ref, "", "Material index into `StepParams::materials`", {
+                api("material" [], read, any)
+                out[]
+            };
+            rho: Real, scalar, HYDRO, mut, "kg/m^3", "Density", {
+                api("density" [], write, positive)
+                out[rho "density"]
+            };
+            p: Real, scalar, HYDRO, mut, "Pa", "Pressure, positive in compression (kept consistent with rho, e by the EOS)", {
+                api("pressure" [], read, any)
+                out[p "pressure, positive in compression (sigma = -p I + S)"]
+            };
+            e: Real, scalar, HYDRO, mut, "J/kg", "Specific internal energy", {
+                api("energy" [], write, any)
+                out[e "specific internal energy"]
+            };
+            c: Real, scalar, HYDRO, mut, "m/s", "Bulk sound speed (from the EOS)", {
+                api("sound_speed" [], read, any)
+                out[]
+            };
+            cl: Real, scalar, HYDRO, mut, "m/s", "Longitudinal sound speed `sqrt(c^2 + 4G/(3 rho))`", {
+                api("longitudinal_sound_speed" [], read, any)
+                out[]
+            };
+            s: Sym3, tensor, STRENGTH, mut, "Pa", "Stress deviator S (full 3x3)", {
+                api("deviator" [], write, any)
+                out[
+                    sxx "stress deviator S_xx (not the stress: sigma_xx = sxx - p)",
+                    syy "stress deviator S_yy (sigma_yy = syy - p)",
+                    szz "stress deviator S_zz (sigma_zz = szz - p)",
+                    sxy "stress deviator S_xy (= sigma_xy)",
+                    sxz "stress deviator S_xz (= sigma_xz)",
+                    syz "stress deviator S_yz (= sigma_yz)"
+                ]
+            };
+            eps_p: Real, scalar, PLASTICITY, mut, "1", "Equivalent plastic strain", {
+                api("plastic_strain" [], write, nonnegative)
+                out[eps_p "equivalent plastic strain"]
+            };
+            damage: Real, scalar, DAMAGE, mut, "1", "Damage in [0, 1]", {
+                api("damage" [], write, fraction)
+                out[damage "damage in [0, 1]"]
+            };
+            temp: Real, scalar, HEAT, mut, "K", "Temperature", {
+                api("temperature" [], write, positive)
+                out[temperature "temperature"]
+            };
+            h: Real, scalar, HYDRO, mut, "m", "Smoothing length `h = h_factor (m/rho)^(1/D)`", {
+                api("h" [smoothing_length], write, positive)
+                out[h "smoothing length"]
+            };
+        }
+    };
+}
+
+/// Filters the rows of [`particle_fields!`](crate::particle_fields) to those a step sees
+/// (access `mut` or `ref`), then calls the callback with them.
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __step_rows {
+    ($cb:ident $args:tt [$($kept:tt)*]) => {
+        $cb! { $args $($kept)* }
+    };
+    ($cb:ident $args:tt [$($kept:tt)*] $name:ident: $ty:ty, $kind:ident, $when:ident, keep, $unit:literal, $doc:literal, $io:tt; $($rest:tt)*) => {
+        $crate::__step_rows! { $cb $args [$($kept)*] $($rest)* }
+    };
+    ($cb:ident $args:tt [$($kept:tt)*] $name:ident: $ty:ty, $kind:ident, $when:ident, $acc:ident, $unit:literal, $doc:literal, $io:tt; $($rest:tt)*) => {
+        $crate::__step_rows! { $cb $args [$($kept)* $name: $ty, $kind, $when, $acc, $unit, $doc, $io;] $($rest)* }
+    };
+}
+
+/// Calls `$cb! { ($($args)*) ROWS }` with the table of per-particle quantities derived
+/// from the state for output, one row each:
+///
+/// ```text
+/// name: "unit", "description", { api(...) out[...] };
+/// ```
+///
+/// with `api` and `out` as in [`particle_fields!`](crate::particle_fields) (`api` always
+/// `read`). They are not state: the host computes each from the particles when it writes
+/// or hands them out, by the function of the same name in `gsph::sim::derived`.
+#[macro_export]
+macro_rules! derived_fields {
     ($cb:ident { $($args:tt)* }) => {
         $cb! {
             ($($args)*)
-            x: Vector<D>, point, HYDRO, mut, "m", "Position";
-            v: Vector<D>, vector, HYDRO, mut, "m/s", "Velocity";
-            m: Real, scalar, HYDRO, ref, "kg", "Mass (in 2D per unit length out of the plane, kg/m; in 1D per unit cross-section area, kg/m²)";
-            mat: u16, scalar, HYDRO, ref, "", "Material index into `StepParams::materials`";
-            rho: Real, scalar, HYDRO, mut, "kg/m³", "Density";
-            e: Real, scalar, HYDRO, mut, "J/kg", "Specific internal energy";
-            p: Real, scalar, HYDRO, mut, "Pa", "Pressure (kept consistent with rho, e by the EOS)";
-            c: Real, scalar, HYDRO, mut, "m/s", "Bulk sound speed (from the EOS)";
-            cl: Real, scalar, HYDRO, mut, "m/s", "Longitudinal sound speed `sqrt(c² + 4G/(3 rho))`";
-            h: Real, scalar, HYDRO, mut, "m", "Smoothing length `h = h_factor (m/rho)^(1/D)`";
-            s: Sym3, tensor, STRENGTH, mut, "Pa", "Stress deviator S (full 3x3)";
-            eps_p: Real, scalar, PLASTICITY, mut, "", "Equivalent plastic strain";
-            damage: Real, scalar, DAMAGE, mut, "", "Damage in [0, 1]";
-            temp: Real, scalar, HEAT, mut, "K", "Temperature";
         }
     };
 }
@@ -61,7 +164,7 @@ macro_rules! particle_fields {
 /// The names of the per-particle fields, in table order.
 pub const FIELD_NAMES: &[&str] = {
     macro_rules! names {
-        (() $($name:ident: $ty:ty, $kind:ident, $when:ident, $acc:ident, $unit:literal, $doc:literal;)*) => {
+        (() $($name:ident: $ty:ty, $kind:ident, $when:ident, $acc:ident, $unit:literal, $doc:literal, $io:tt;)*) => {
             &[$(stringify!($name)),*]
         };
     }

@@ -26,6 +26,9 @@ macro_rules! unit_doc {
     ("") => {
         "."
     };
+    ("1") => {
+        " (dimensionless)."
+    };
     ($unit:literal) => {
         concat!(", ", $unit, ".")
     };
@@ -57,7 +60,7 @@ macro_rules! split_field {
 /// [`System`], its reborrow, storage check and split, from the table of
 /// [`crate::particle_fields!`].
 macro_rules! system_from_fields {
-    (() $($name:ident: $ty:ty, $kind:ident, $when:ident, $acc:ident, $unit:literal, $doc:literal;)*) => {
+    (() $($name:ident: $ty:ty, $kind:ident, $when:ident, $acc:ident, $unit:literal, $doc:literal, $io:tt;)*) => {
         /// The particles of a run (structure of arrays), one slice per field of
         /// [`crate::particle_fields!`]. All slices have the same length `n`, except
         /// optional fields, which are empty when their effect is absent.
@@ -99,7 +102,7 @@ macro_rules! system_from_fields {
     };
 }
 
-crate::particle_fields!(system_from_fields {});
+crate::particle_fields!(step system_from_fields {});
 
 impl<'a, const D: usize> System<'a, D> {
     /// Number of particles.

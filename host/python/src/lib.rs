@@ -3,7 +3,7 @@
 //! the GIL and look for signals between steps (Ctrl-C raises `KeyboardInterrupt` after
 //! the step in progress); fields cross as numpy arrays.
 
-use gsph::api::{ApiError, ApiResult, Field, Particles, Simulation as Sim};
+use gsph::api::{ApiError, ApiResult, Particles, Simulation as Sim};
 use numpy::{IntoPyArray, PyArrayMethods, PyReadonlyArray1};
 use pyo3::create_exception;
 use pyo3::exceptions::PyException;
@@ -204,7 +204,7 @@ impl PySim {
         let f = self.inner.field(name).map_err(err)?;
         let (n, c) = (self.inner.len(), f.components(self.inner.dim()));
         let v = self.inner.get(name).map_err(err)?.into_pyarray(py);
-        if matches!(f, Field::Position | Field::Velocity | Field::Deviator) {
+        if f.is_array() {
             Ok(v.reshape([n, c])?.into_any())
         } else {
             Ok(v.into_any())

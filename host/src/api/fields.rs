@@ -7,241 +7,295 @@ use gsph_core::effects::EffectSet;
 use gsph_core::math::{Sym3, Vector};
 use gsph_core::state::smoothing_length;
 
-/// A per-particle field.
+/// How a written value is checked ([`Field::writable`] fields).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Field {
-    /// Position, m (`dim` components).
-    Position,
-    /// Velocity, m/s (`dim` components).
-    Velocity,
-    /// Mass, kg.
-    Mass,
-    /// Density, kg/m³ (writing it updates pressure and sound speeds through the EOS).
-    Density,
-    /// Pressure, Pa (read-only: it follows from density and energy).
-    Pressure,
-    /// Specific internal energy, J/kg (writing it updates pressure and sound speeds).
-    Energy,
-    /// Bulk sound speed, m/s (read-only).
-    SoundSpeed,
-    /// Stress deviator, Pa: 6 components `xx, yy, zz, xy, xz, yz` (materials with strength).
-    Deviator,
-    /// Equivalent plastic strain (materials with a yield model).
-    PlasticStrain,
-    /// Damage in [0, 1] (materials with a damage model).
-    Damage,
-    /// Temperature, K (materials with a thermal model).
-    Temperature,
-    /// Smoothing length, m.
-    SmoothingLength,
-    /// Material index (read-only; the order of `[[materials]]`).
-    Material,
+pub enum Range {
+    /// Any finite value.
+    Any,
+    /// Finite and > 0.
+    Positive,
+    /// Finite and >= 0.
+    Nonnegative,
+    /// Finite and in [0, 1].
+    Fraction,
 }
 
-/// Every field, in the order listings show them.
-pub const FIELDS: [Field; 13] = [
-    Field::Position,
-    Field::Velocity,
-    Field::Mass,
-    Field::Density,
-    Field::Pressure,
-    Field::Energy,
-    Field::SoundSpeed,
-    Field::Deviator,
-    Field::PlasticStrain,
-    Field::Damage,
-    Field::Temperature,
-    Field::SmoothingLength,
-    Field::Material,
-];
+/// What the library knows of a per-particle field: a row of the core's particle table
+/// ([`gsph_core::particle_fields!`] or [`gsph_core::derived_fields!`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Info {
+    /// The API name.
+    pub name: &'static str,
+    /// Other names accepted (the table's field name, those of `final.csv` and the scene).
+    pub aliases: &'static [&'static str],
+    /// The table's field name.
+    pub field: &'static str,
+    /// The table's kind (`point`, `vector`, `tensor`, `scalar`).
+    pub kind: &'static str,
+    /// Whether a caller may write it.
+    pub writable: bool,
+    /// The range a written value must lie in.
+    pub range: Range,
+    /// The effect that stores it (`HYDRO`: every run).
+    pub effect: EffectSet,
+    /// SI unit (`1`: dimensionless; empty: a label).
+    pub unit: &'static str,
+}
+
+/// The [`Info`] of the state fields, then of the derived quantities.
+macro_rules! field_infos {
+    (() $($name:ident: $ty:ty, $kind:ident, $when:ident, $acc:ident, $unit:literal, $doc:literal, {
+        api($api:literal [$($alias:ident),*], $w:ident, $range:ident)
+        out[$($col:ident $cdoc:literal),*]
+    };)*) => {
+        gsph_core::derived_fields!(derived_infos { $(Info {
+            name: $api,
+            aliases: &[stringify!($name), $(stringify!($alias)),*],
+            field: stringify!($name),
+            kind: stringify!($kind),
+            writable: writable!($w),
+            range: range!($range),
+            effect: EffectSet::$when,
+            unit: $unit,
+        },)* });
+    };
+}
+
+/// See [`field_infos`]: derived quantities are read-only scalars every run has.
+macro_rules! derived_infos {
+    (($($state:tt)*) $($name:ident: $unit:literal, $doc:literal, {
+        api($api:literal [$($alias:ident),*], $w:ident, $range:ident)
+        out[$($col:ident $cdoc:literal),*]
+    };)*) => {
+        /// Every field: the state fields in the order of the core's table, then the
+        /// derived quantities.
+        pub const FIELDS: &[Info] = &[$($state)* $(Info {
+            name: $api,
+            aliases: &[stringify!($name), $(stringify!($alias)),*],
+            field: stringify!($name),
+            kind: "scalar",
+            writable: false,
+            range: Range::Any,
+            effect: EffectSet::HYDRO,
+            unit: $unit,
+        },)*];
+    };
+}
+
+macro_rules! writable {
+    (write) => {
+        true
+    };
+    (read) => {
+        false
+    };
+}
+
+macro_rules! range {
+    (any) => {
+        Range::Any
+    };
+    (positive) => {
+        Range::Positive
+    };
+    (nonnegative) => {
+        Range::Nonnegative
+    };
+    (fraction) => {
+        Range::Fraction
+    };
+}
+
+gsph_core::particle_fields!(field_infos {});
+
+/// A per-particle field (an entry of [`FIELDS`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Field(&'static Info);
 
 impl Field {
     /// The field's name.
     pub const fn name(self) -> &'static str {
-        match self {
-            Field::Position => "position",
-            Field::Velocity => "velocity",
-            Field::Mass => "mass",
-            Field::Density => "density",
-            Field::Pressure => "pressure",
-            Field::Energy => "energy",
-            Field::SoundSpeed => "sound_speed",
-            Field::Deviator => "deviator",
-            Field::PlasticStrain => "plastic_strain",
-            Field::Damage => "damage",
-            Field::Temperature => "temperature",
-            Field::SmoothingLength => "h",
-            Field::Material => "material",
-        }
+        self.0.name
     }
 
-    /// The short names also accepted (those of `final.csv` and the scene keys).
-    pub const fn aliases(self) -> &'static [&'static str] {
-        match self {
-            Field::Position => &["x"],
-            Field::Velocity => &["v"],
-            Field::Mass => &["m"],
-            Field::Density => &["rho"],
-            Field::Pressure => &["p"],
-            Field::Energy => &["e"],
-            Field::SoundSpeed => &["c"],
-            Field::Deviator => &["s"],
-            Field::PlasticStrain => &["eps_p"],
-            Field::Damage => &[],
-            Field::Temperature => &["temp"],
-            Field::SmoothingLength => &["smoothing_length"],
-            Field::Material => &["mat"],
-        }
+    /// The other names also accepted (the table's, `final.csv`'s and the scene's).
+    pub fn aliases(self) -> impl Iterator<Item = &'static str> {
+        let name = self.0.name;
+        self.0.aliases.iter().copied().filter(move |a| *a != name)
+    }
+
+    /// What the library knows of the field.
+    pub const fn info(self) -> &'static Info {
+        self.0
     }
 
     /// The field of a name or alias.
     pub fn from_name(name: &str) -> Option<Field> {
         FIELDS
-            .into_iter()
-            .find(|f| f.name() == name || f.aliases().contains(&name))
+            .iter()
+            .find(|f| f.name == name || f.aliases.contains(&name))
+            .map(Field)
     }
 
     /// Values per particle in dimension `dim`.
-    pub const fn components(self, dim: usize) -> usize {
-        match self {
-            Field::Position | Field::Velocity => dim,
-            Field::Deviator => 6,
+    pub fn components(self, dim: usize) -> usize {
+        match self.0.kind {
+            "point" | "vector" => dim,
+            "tensor" => 6,
             _ => 1,
         }
     }
 
-    /// False for the fields that follow from others (pressure, sound speed) or identify a
-    /// particle (material).
+    /// True for a field of several components per particle (a point, vector or tensor).
+    pub fn is_array(self) -> bool {
+        self.0.kind != "scalar"
+    }
+
+    /// False for the fields that follow from others (pressure, sound speeds, derived
+    /// quantities) or identify a particle (material).
     pub const fn writable(self) -> bool {
-        !matches!(self, Field::Pressure | Field::SoundSpeed | Field::Material)
+        self.0.writable
     }
 
     /// The effect the field needs and what in a scene turns that effect on.
-    const fn needs(self) -> Option<(EffectSet, &'static str)> {
-        match self {
-            Field::Deviator => Some((EffectSet::STRENGTH, "no material has strength")),
-            Field::PlasticStrain => Some((EffectSet::PLASTICITY, "no material has a yield model")),
-            Field::Damage => Some((EffectSet::DAMAGE, "no material has a damage model")),
-            Field::Temperature => Some((EffectSet::HEAT, "no material has a thermal model")),
-            _ => None,
-        }
+    fn needs(self) -> Option<(EffectSet, &'static str)> {
+        let e = self.0.effect;
+        let why = if e == EffectSet::STRENGTH {
+            "no material has strength"
+        } else if e == EffectSet::PLASTICITY {
+            "no material has a yield model"
+        } else if e == EffectSet::DAMAGE {
+            "no material has a damage model"
+        } else if e == EffectSet::HEAT {
+            "no material has a thermal model"
+        } else {
+            return None;
+        };
+        Some((e, why))
     }
 }
 
 fn names() -> String {
-    FIELDS.map(|f| f.name()).join(", ")
+    FIELDS.iter().map(|f| f.name).collect::<Vec<_>>().join(", ")
 }
 
-fn sym_get(s: &Sym3, k: usize) -> f64 {
-    [s.xx, s.yy, s.zz, s.xy, s.xz, s.yz][k]
+/// A field's element as API values (`components` per particle).
+trait Values {
+    fn get(&self, out: &mut [f64]);
+    fn set(&mut self, x: &[f64]);
 }
 
-fn sym_set(s: &mut Sym3, k: usize, v: f64) {
-    *[
-        &mut s.xx, &mut s.yy, &mut s.zz, &mut s.xy, &mut s.xz, &mut s.yz,
-    ][k] = v;
+impl Values for f64 {
+    fn get(&self, out: &mut [f64]) {
+        out[0] = *self;
+    }
+    fn set(&mut self, x: &[f64]) {
+        *self = x[0];
+    }
 }
 
-/// Copies field `f` of the particles `order` (memory indices in id order) into `out`.
-fn get<const D: usize>(s: &Sim<D>, f: Field, order: &[usize], out: &mut [f64]) {
-    let scalar = |v: &[f64], out: &mut [f64]| {
-        for (o, &i) in out.iter_mut().zip(order) {
-            *o = v[i];
-        }
-    };
-    let vector = |v: &[Vector<D>], out: &mut [f64]| {
-        for (o, &i) in out.chunks_exact_mut(D).zip(order) {
-            o.copy_from_slice(v[i].as_slice());
-        }
-    };
-    match f {
-        Field::Position => vector(&s.x, out),
-        Field::Velocity => vector(&s.v, out),
-        Field::Mass => scalar(&s.m, out),
-        Field::Density => scalar(&s.rho, out),
-        Field::Pressure => scalar(&s.p, out),
-        Field::Energy => scalar(&s.e, out),
-        Field::SoundSpeed => scalar(&s.c, out),
-        Field::PlasticStrain => scalar(&s.eps_p, out),
-        Field::Damage => scalar(&s.damage, out),
-        Field::Temperature => scalar(&s.temp, out),
-        Field::SmoothingLength => scalar(&s.h, out),
-        Field::Material => {
-            for (o, &i) in out.iter_mut().zip(order) {
-                *o = s.mat[i] as f64;
-            }
-        }
-        Field::Deviator => {
-            for (o, &i) in out.chunks_exact_mut(6).zip(order) {
-                for (k, ok) in o.iter_mut().enumerate() {
-                    *ok = sym_get(&s.s[i], k);
+impl Values for u16 {
+    fn get(&self, out: &mut [f64]) {
+        out[0] = f64::from(*self);
+    }
+    fn set(&mut self, _: &[f64]) {
+        unreachable!("read-only")
+    }
+}
+
+impl Values for Sym3 {
+    fn get(&self, out: &mut [f64]) {
+        out.copy_from_slice(&[self.xx, self.yy, self.zz, self.xy, self.xz, self.yz]);
+    }
+    fn set(&mut self, x: &[f64]) {
+        (self.xx, self.yy, self.zz) = (x[0], x[1], x[2]);
+        (self.xy, self.xz, self.yz) = (x[3], x[4], x[5]);
+    }
+}
+
+impl<const D: usize> Values for Vector<D> {
+    fn get(&self, out: &mut [f64]) {
+        out.copy_from_slice(self.as_slice());
+    }
+    fn set(&mut self, x: &[f64]) {
+        *self = Vector::<D>::from_column_slice(x);
+    }
+}
+
+/// Copies `v` of the particles `order` into `out`, `per` values each.
+fn read_into<T: Values>(v: &[T], order: &[usize], per: usize, out: &mut [f64]) {
+    for (o, &i) in out.chunks_exact_mut(per).zip(order) {
+        v[i].get(o);
+    }
+}
+
+/// Writes `data` (`per` values each) into `v` of the particles `order`.
+fn write_from<T: Values>(v: &mut [T], order: &[usize], per: usize, data: &[f64]) {
+    for (x, &i) in data.chunks_exact(per).zip(order) {
+        v[i].set(x);
+    }
+}
+
+/// `get` and `set` over the fields of the core's table, by the table's name.
+macro_rules! field_access {
+    (() $($name:ident: $ty:ty, $kind:ident, $when:ident, $acc:ident, $unit:literal, $doc:literal, $io:tt;)*) => {
+        /// Copies field `f` of the particles `order` (memory indices in id order) into `out`.
+        fn get<const D: usize>(s: &Sim<D>, f: Field, order: &[usize], out: &mut [f64]) {
+            let per = f.components(D);
+            match f.0.field {
+                $(stringify!($name) => read_into(&s.$name, order, per, out),)*
+                derived => {
+                    let v = s.derived(derived).unwrap_or_default();
+                    read_into(&v, order, per, out)
                 }
             }
         }
-    }
+
+        /// Writes `data` into field `f` of the particles `order` (a writable state field).
+        fn write_field<const D: usize>(s: &mut Sim<D>, f: Field, order: &[usize], data: &[f64]) {
+            let per = f.components(D);
+            match f.0.field {
+                $(stringify!($name) => write_from(&mut s.$name, order, per, data),)*
+                _ => unreachable!("read-only"),
+            }
+        }
+    };
 }
+
+gsph_core::particle_fields!(field_access {});
 
 /// The range a written value must lie in, as a message, or `None` when it does.
 fn out_of_range(f: Field, v: f64) -> Option<&'static str> {
     if !v.is_finite() {
         return Some("is not finite");
     }
-    let bad = match f {
-        Field::Mass | Field::Density | Field::SmoothingLength | Field::Temperature => v <= 0.0,
-        Field::PlasticStrain => v < 0.0,
-        Field::Damage => !(0.0..=1.0).contains(&v),
-        _ => false,
-    };
-    bad.then_some(match f {
-        Field::PlasticStrain => "must not be negative",
-        Field::Damage => "must lie in [0, 1]",
-        _ => "must be positive",
-    })
+    match f.0.range {
+        Range::Any => None,
+        Range::Positive => (v <= 0.0).then_some("must be positive"),
+        Range::Nonnegative => (v < 0.0).then_some("must not be negative"),
+        Range::Fraction => (!(0.0..=1.0).contains(&v)).then_some("must lie in [0, 1]"),
+    }
 }
 
-/// Writes `data` (id order) into field `f` of the particles `order`; density and energy
-/// bring pressure and sound speeds along through the EOS.
+/// Writes `data` (id order) into field `f` of the particles `order`; positions are wrapped
+/// into a periodic box, density and energy bring pressure and sound speeds along through
+/// the EOS, density and mass the smoothing length.
 fn set<const D: usize>(s: &mut Sim<D>, f: Field, order: &[usize], data: &[f64]) {
-    let scalar = |v: &mut [f64]| {
-        for (&x, &i) in data.iter().zip(order) {
-            v[i] = x;
+    write_field(s, f, order, data);
+    let name = f.0.field;
+    if name == "x" {
+        for &i in order {
+            s.x[i] = s.periodic.wrap(s.x[i]);
         }
-    };
-    match f {
-        Field::Position => {
-            for (x, &i) in data.chunks_exact(D).zip(order) {
-                s.x[i] = s.periodic.wrap(Vector::<D>::from_column_slice(x));
-            }
-        }
-        Field::Velocity => {
-            for (x, &i) in data.chunks_exact(D).zip(order) {
-                s.v[i] = Vector::<D>::from_column_slice(x);
-            }
-        }
-        Field::Mass => scalar(&mut s.m),
-        Field::Density => scalar(&mut s.rho),
-        Field::Energy => scalar(&mut s.e),
-        Field::PlasticStrain => scalar(&mut s.eps_p),
-        Field::Damage => scalar(&mut s.damage),
-        Field::Temperature => scalar(&mut s.temp),
-        Field::SmoothingLength => scalar(&mut s.h),
-        Field::Deviator => {
-            for (x, &i) in data.chunks_exact(6).zip(order) {
-                for (k, &xk) in x.iter().enumerate() {
-                    sym_set(&mut s.s[i], k, xk);
-                }
-            }
-        }
-        Field::Pressure | Field::SoundSpeed | Field::Material => unreachable!("read-only"),
     }
-    if matches!(f, Field::Density | Field::Mass) && !s.options.constant_h {
+    if matches!(name, "rho" | "m") && !s.options.constant_h {
         // h follows m and rho, as the step's EOS refresh sets it
         for &i in order {
             s.h[i] = smoothing_length::<D>(s.h_factor, s.m[i], s.rho[i]);
         }
     }
     s.state_changed();
-    if matches!(f, Field::Density | Field::Energy) {
+    if matches!(name, "rho" | "e") {
         for &i in order {
             let mat = s.materials[s.mat[i] as usize];
             let st = mat.eos(s.rho[i], s.e[i]);

@@ -38,7 +38,7 @@ use gsph_core::schemes::Scheme;
 use std::path::Path;
 
 pub use builder::{Effect, Riemann, SceneBuilder};
-pub use fields::{Field, FIELDS};
+pub use fields::{Field, Info, Range, FIELDS};
 pub use output::Series;
 pub use particles::Particles;
 

@@ -16,7 +16,9 @@
 //! strings and arrays prefixed by their length as u64): the gsph version; the run id
 //! (also in summary.json: a checkpoint resumes only the run that wrote it); the scene
 //! origin, text, overrides and name; the checkpoint policy (steps, 0 for none; seconds,
-//! 0 for none); the [`DriverState`]; the simulation state (`Sim::save_checkpoint`).
+//! 0 for none); the [`DriverState`]; the simulation state (`Sim::save_checkpoint`: counters,
+//! ids, the particle table's field names, then each field in table order, then the workspace).
+//! Version 4 added the field names and follows the order of the core's table.
 //!
 //! The snapshots written so far are kept in `DIR/checkpoint.h5`, a copy of the snapshot
 //! file taken at the checkpoint (only when a snapshot was added since the last one).
@@ -40,7 +42,7 @@ pub const CHECKPOINT_H5: &str = "checkpoint.h5";
 /// Magic bytes at the start of a checkpoint.
 pub const MAGIC: &[u8; 8] = b"GSPHCKPT";
 /// The format version this build writes and reads.
-pub const FORMAT_VERSION: u32 = 3;
+pub const FORMAT_VERSION: u32 = 4;
 const HEADER: usize = 32;
 
 /// A checkpoint problem; `Display` is one line.

@@ -5,7 +5,7 @@
 //! integers; floats are printed in shortest round-trip scientific notation (`{:e}`), so reading
 //! the file back gives the same bits. The file has exactly one header line and no unit row (CSV
 //! readers would take one for data): the unit and meaning of every column are in
-//! [`QUANTITIES`](super::meta::QUANTITIES) and docs/output.md. New columns are only ever appended,
+//! [`quantities`](super::meta::quantities) and docs/output.md. New columns are only ever appended,
 //! so readers that look columns up by name (or by position from the left) keep working.
 
 use core::fmt::Write as _;
@@ -15,7 +15,7 @@ use std::path::Path;
 use super::atomic::AtomicFile;
 use super::meta::{derived_row, DERIVED_COLUMNS};
 use super::safe::excerpt;
-use super::table::{ParticleRow, ParticleTable, COLUMNS, NUM_FLOAT_COLUMNS};
+use super::table::{ParticleRow, ParticleTable, BASE_COLUMNS, COLUMNS, NUM_FLOAT_COLUMNS};
 
 /// The CSV header line (without newline): [`COLUMNS`], then [`DERIVED_COLUMNS`].
 pub fn csv_header() -> String {
@@ -23,9 +23,22 @@ pub fn csv_header() -> String {
     all.join(",")
 }
 
-/// The header of `final.csv` files written before the derived columns were added.
-fn legacy_header() -> String {
-    COLUMNS.join(",")
+/// The float columns a `final.csv` holds (its first `k` of [`COLUMNS`], at least
+/// [`BASE_COLUMNS`]: columns are only ever appended, so a file of an earlier gsph has a
+/// prefix of them) and whether the derived columns follow (files written before they were
+/// added have none); `None` for any other header.
+fn header_layout(header: &str) -> Option<(usize, bool)> {
+    (BASE_COLUMNS..=COLUMNS.len()).rev().find_map(|k| {
+        let base = COLUMNS[..k].join(",");
+        let with = format!("{base},{}", DERIVED_COLUMNS.join(","));
+        if header == with {
+            Some((k, true))
+        } else if header == base {
+            Some((k, false))
+        } else {
+            None
+        }
+    })
 }
 
 /// Writes `table` as CSV to `path`, atomically (temp file, fsync, rename).
@@ -75,13 +88,10 @@ fn parse_lines(
         None => String::new(),
     };
     let header = header.trim_end();
-    let derived = if header == csv_header() {
-        DERIVED_COLUMNS.len()
-    } else if header == legacy_header() {
-        0
-    } else {
+    let Some((columns, derived)) = header_layout(header) else {
         return Err(format!("line 1: header is not `{}`", csv_header()));
     };
+    let derived = if derived { DERIVED_COLUMNS.len() } else { 0 };
     let mut table = ParticleTable::default();
     for (i, line) in lines {
         let line = line?;
@@ -103,8 +113,9 @@ fn parse_lines(
         };
         let id = parse_u32("id", next("id")?)?;
         let material = parse_u32("material", next("material")?)?;
-        let mut floats = [0.0; NUM_FLOAT_COLUMNS];
-        for (v, name) in floats.iter_mut().zip(&COLUMNS[2..]) {
+        // a column the file predates reads as NaN
+        let mut floats = [f64::NAN; NUM_FLOAT_COLUMNS];
+        for (v, name) in floats.iter_mut().zip(&COLUMNS[2..columns]) {
             let s = next(name)?;
             *v = s
                 .parse::<f64>()
@@ -118,7 +129,7 @@ fn parse_lines(
         if fields.next().is_some() {
             return Err(format!(
                 "line {lineno}: more than {} columns",
-                COLUMNS.len() + derived
+                columns + derived
             ));
         }
         table.push(&ParticleRow::from_parts(id, material, floats));
@@ -199,6 +210,47 @@ mod tests {
     }
 
     #[test]
+    fn files_of_an_earlier_column_set_read_with_nan_in_the_later_columns() {
+        let t = sample_table(2, 0.7);
+        let k = BASE_COLUMNS;
+        let mut text = format!("{},{}\n", COLUMNS[..k].join(","), DERIVED_COLUMNS.join(","));
+        for (i, r) in t.rows().enumerate() {
+            let f: Vec<String> = r.floats()[..k - 2]
+                .iter()
+                .map(|v| format!("{v:e}"))
+                .collect();
+            let d: Vec<String> = derived_row(&t, i)
+                .iter()
+                .map(|v| format!("{v:e}"))
+                .collect();
+            text.push_str(&format!(
+                "{},{},{},{}\n",
+                r.id,
+                r.material,
+                f.join(","),
+                d.join(",")
+            ));
+        }
+        let back = parse_csv(&text).unwrap();
+        for (c, (a, b)) in back
+            .float_columns()
+            .iter()
+            .zip(t.float_columns())
+            .enumerate()
+        {
+            if c + 2 < k {
+                assert_eq!(*a, b);
+            } else {
+                assert!(a.iter().all(|v| v.is_nan()), "column {}", COLUMNS[c + 2]);
+            }
+        }
+        let short = COLUMNS[..k - 1].join(",");
+        assert!(parse_csv(&format!("{short}\n"))
+            .unwrap_err()
+            .contains("header"));
+    }
+
+    #[test]
     fn empty_table_round_trip() {
         let dir = tempfile::tempdir().unwrap();
         let p = dir.path().join("final.csv");
@@ -212,16 +264,18 @@ mod tests {
         let h = csv_header();
         let e = parse_csv(&format!("{h}\n1,0,1.0\n")).unwrap_err();
         assert!(e.contains("line 2") && e.contains("missing"), "{e}");
-        let row: Vec<String> = (0..29).map(|k| k.to_string()).collect();
+        let width = COLUMNS.len() + DERIVED_COLUMNS.len();
+        let row: Vec<String> = (0..width).map(|k| k.to_string()).collect();
         let e = parse_csv(&format!("{h}\n{},9\n", row.join(","))).unwrap_err();
-        assert!(e.contains("more than 29"), "{e}");
+        assert!(e.contains(&format!("more than {width}")), "{e}");
         let e = parse_csv(&format!("{h}\n-1,{}\n", row[1..].join(","))).unwrap_err();
         assert!(e.contains("`id`"), "{e}");
-        let e = parse_csv(&format!("{h}\n{}\n", row[..28].join(","))).unwrap_err();
+        let e = parse_csv(&format!("{h}\n{}\n", row[..width - 1].join(","))).unwrap_err();
         assert!(e.contains("`von_mises`"), "{e}");
         let legacy = COLUMNS.join(",");
-        let e = parse_csv(&format!("{legacy}\n{},9\n", row[..22].join(","))).unwrap_err();
-        assert!(e.contains("more than 22"), "{e}");
+        let n = COLUMNS.len();
+        let e = parse_csv(&format!("{legacy}\n{},9\n", row[..n].join(","))).unwrap_err();
+        assert!(e.contains(&format!("more than {n}")), "{e}");
         assert!(read_csv("/nonexistent/final.csv").is_err());
     }
 }

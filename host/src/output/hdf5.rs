@@ -6,7 +6,7 @@
 //! `conventions` (strings, the lists 1-D string arrays; [`RunInfo`]). One group per snapshot,
 //! `/step_000123`, with attributes `time` (f64, s) and `step` (u64); datasets `position` and
 //! `velocity` (N x 3 f64), `stress` (the Cauchy stress `-p I + S`, N x 3 x 3 f64), one 1-D
-//! dataset per other column of `final.csv` ([`SCALAR_DATASETS`]: `id` and `material` as u32, the
+//! dataset per other column of `final.csv` ([`scalar_datasets`]: `id` and `material` as u32, the
 //! rest f64) and `von_mises`. Every dataset has string attributes `units` (SI) and
 //! `description`, and is chunked (about [`CHUNK_BYTES`] per chunk) and compressed with shuffle +
 //! deflate ([`DEFLATE_LEVEL`]). N may differ between snapshots.
@@ -32,7 +32,7 @@ use super::atomic::{sync_parent_dir, tmp_path, write_atomic};
 use super::meta::{cauchy_stress, quantity, unit, von_mises, RunInfo, GSPH_VERSION};
 use super::table::{Frame, ParticleTable};
 use super::xdmf::{
-    group_name, xdmf_document, XdmfGrid, XdmfHeader, SCALAR_DATASETS, STATUS_COMPLETE,
+    group_name, scalar_datasets, xdmf_document, XdmfGrid, XdmfHeader, STATUS_COMPLETE,
 };
 
 pub use super::{SNAPSHOTS_H5, SNAPSHOTS_PARTIAL_H5, SNAPSHOTS_PARTIAL_XDMF, SNAPSHOTS_XDMF};
@@ -352,7 +352,7 @@ fn write_group(file: &hdf5::File, frame: &Frame, dim: usize) -> Result<(), Outpu
     }
     let stress: Vec<f64> = (0..n).flat_map(|i| cauchy_stress(t, i)).collect();
     write_dataset(&group, "stress", &[n, 3, 3], &stress, dim)?;
-    for name in SCALAR_DATASETS {
+    for name in scalar_datasets() {
         match name {
             "id" => write_dataset(&group, name, &[n], &t.id, dim)?,
             "material" => write_dataset(&group, name, &[n], &t.material, dim)?,

@@ -18,7 +18,7 @@ use std::path::Path;
 
 use super::error::OutputError;
 use super::meta::RunInfo;
-use super::table::{Frame, ParticleTable, FLOAT_COLUMNS};
+use super::table::{Frame, ParticleTable, BASE_COLUMNS, FLOAT_COLUMNS};
 use super::xdmf::group_name;
 use hdf5::filters::Filter;
 use hdf5::LinkType;
@@ -263,7 +263,17 @@ pub fn read_frame(path: impl AsRef<Path>, step: u64, limit: usize) -> Result<Fra
         id,
         ..ParticleTable::default()
     };
-    for (col, cname) in table.float_columns_mut().into_iter().zip(FLOAT_COLUMNS) {
+    for (k, (col, &cname)) in table
+        .float_columns_mut()
+        .into_iter()
+        .zip(FLOAT_COLUMNS)
+        .enumerate()
+    {
+        // a column appended after the file was written reads as NaN
+        if k + 2 >= BASE_COLUMNS && !g.link_exists(cname) {
+            *col = vec![f64::NAN; n];
+            continue;
+        }
         *col = match cname {
             "x" | "y" | "z" => position
                 .iter()

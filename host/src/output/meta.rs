@@ -1,5 +1,5 @@
 //! What the output files say about themselves: the run they come from ([`RunInfo`]), the unit
-//! and meaning of every column and dataset ([`QUANTITIES`], [`unit()`]), and the quantities
+//! and meaning of every column and dataset ([`quantities`], [`unit()`]), and the quantities
 //! derived from the particle table (the Cauchy stress, the von Mises stress).
 //!
 //! Sign convention (the code's): the pressure `p` is positive in compression and `sxx` .. `syz`
@@ -7,7 +7,7 @@
 //! `sigma = -p I + S` (tension positive) and `sigma_xx = sxx - p`; the von Mises stress is
 //! `sqrt(3/2 S:S)`. All units are SI; docs/output.md has the same table for readers.
 
-use super::table::ParticleTable;
+use super::table::{ParticleTable, FLOAT_QUANTITIES};
 
 /// The gsph version written into every snapshot file (`gsph_version`).
 pub const GSPH_VERSION: &str = env!("CARGO_PKG_VERSION");
@@ -48,48 +48,16 @@ const fn q(name: &'static str, unit: &'static str, description: &'static str) ->
     }
 }
 
-/// Every column of `final.csv` and every dataset of a snapshot group, with unit and meaning:
-/// the particle-table columns ([`super::COLUMNS`]), the derived columns ([`DERIVED_COLUMNS`]) and
-/// the snapshot-only datasets `position`, `velocity`, `stress`.
-pub const QUANTITIES: [Quantity; 32] = [
+/// Unit and meaning of the columns and datasets that are not particle-table float columns
+/// ([`FLOAT_QUANTITIES`]): `id`, `material`, the stress columns ([`DERIVED_COLUMNS`]) and the
+/// snapshot-only datasets `position`, `velocity`, `stress`.
+pub const OTHER_QUANTITIES: [Quantity; 12] = [
     q("id", "", "particle id, stable over the run"),
     q(
         "material",
         "",
         "material index into material_names (the scene's [[materials]] order)",
     ),
-    q("x", "m", "position x"),
-    q("y", "m", "position y (0 in 1D)"),
-    q("z", "m", "position z (0 in 1D and 2D)"),
-    q("vx", "m/s", "velocity x"),
-    q("vy", "m/s", "velocity y (0 in 1D)"),
-    q("vz", "m/s", "velocity z (0 in 1D and 2D)"),
-    q(
-        "m",
-        "kg",
-        "particle mass (kg/m^2 in 1D: per unit area; kg/m in 2D: per unit length)",
-    ),
-    q("rho", "kg/m^3", "density"),
-    q(
-        "p",
-        "Pa",
-        "pressure, positive in compression (sigma = -p I + S)",
-    ),
-    q("e", "J/kg", "specific internal energy"),
-    q(
-        "sxx",
-        "Pa",
-        "stress deviator S_xx (not the stress: sigma_xx = sxx - p)",
-    ),
-    q("syy", "Pa", "stress deviator S_yy (sigma_yy = syy - p)"),
-    q("szz", "Pa", "stress deviator S_zz (sigma_zz = szz - p)"),
-    q("sxy", "Pa", "stress deviator S_xy (= sigma_xy)"),
-    q("sxz", "Pa", "stress deviator S_xz (= sigma_xz)"),
-    q("syz", "Pa", "stress deviator S_yz (= sigma_yz)"),
-    q("eps_p", "1", "equivalent plastic strain"),
-    q("damage", "1", "damage in [0, 1]"),
-    q("temperature", "K", "temperature"),
-    q("h", "m", "smoothing length"),
     q(
         "sigma_xx",
         "Pa",
@@ -119,6 +87,13 @@ pub const QUANTITIES: [Quantity; 32] = [
     ),
 ];
 
+/// Every column of `final.csv` and every dataset of a snapshot group, with unit and meaning:
+/// the particle-table columns ([`FLOAT_QUANTITIES`], from the core's particle table) and
+/// [`OTHER_QUANTITIES`].
+pub fn quantities() -> impl Iterator<Item = &'static Quantity> {
+    FLOAT_QUANTITIES.iter().chain(&OTHER_QUANTITIES)
+}
+
 /// The columns `final.csv` has after [`super::COLUMNS`]: the Cauchy stress and the von Mises
 /// stress, computed from `p` and the deviator.
 pub const DERIVED_COLUMNS: [&str; 7] = [
@@ -133,7 +108,7 @@ pub const DERIVED_COLUMNS: [&str; 7] = [
 
 /// The [`Quantity`] named `name`, if any.
 pub fn quantity(name: &str) -> Option<&'static Quantity> {
-    QUANTITIES.iter().find(|q| q.name == name)
+    quantities().find(|q| q.name == name)
 }
 
 /// SI unit of `name` in a run of dimension `dim` (the mass is per unit area in 1D and per
@@ -188,10 +163,11 @@ mod tests {
             let q = quantity(name).unwrap_or_else(|| panic!("{name}"));
             assert!(!q.description.is_empty());
         }
-        let mut names: Vec<_> = QUANTITIES.iter().map(|q| q.name).collect();
+        let mut names: Vec<_> = quantities().map(|q| q.name).collect();
+        let all = names.len();
         names.sort_unstable();
         names.dedup();
-        assert_eq!(names.len(), QUANTITIES.len(), "a name twice");
+        assert_eq!(names.len(), all, "a name twice");
         assert_eq!(unit("m", 1), "kg/m^2");
         assert_eq!(unit("m", 2), "kg/m");
         assert_eq!(unit("m", 3), "kg");

@@ -5,7 +5,7 @@
 //!   and the case's own measures (written with [`write_atomic`]).
 //! - `final.csv`: one row per particle; header [`COLUMNS`] then the Cauchy stress and von Mises
 //!   stress ([`DERIVED_COLUMNS`]) ([`write_csv`], read back by [`read_csv`]); units and meanings
-//!   in [`QUANTITIES`].
+//!   in [`quantities`].
 //! - `snapshots.h5`: one group `/step_XXXXXX` per output time with the particle columns, the
 //!   Cauchy stress tensor `stress` and `von_mises`, every dataset compressed and carrying its
 //!   `units`; root attributes name the gsph version, the scene text, the effects and the
@@ -62,7 +62,7 @@ pub use self::error::OutputError;
 pub use self::hdf5::SnapshotWriter;
 #[cfg(feature = "hdf5")]
 pub use self::hdf5_read::{read_frame, read_run_info, read_snapshot_times};
-pub use self::meta::{RunInfo, DERIVED_COLUMNS, QUANTITIES};
+pub use self::meta::{quantities, RunInfo, DERIVED_COLUMNS};
 #[cfg(not(feature = "hdf5"))]
 pub use self::no_hdf5::{read_frame, read_run_info, read_snapshot_times, SnapshotWriter};
 pub use self::table::{Frame, ParticleRow, ParticleTable, COLUMNS};

@@ -1,14 +1,38 @@
 //! The particle table: the state of all particles at one time, stored as columns.
 //!
-//! The column order is fixed ([`COLUMNS`]); it is the start of the header of `final.csv` (the
-//! derived columns [`DERIVED_COLUMNS`](super::meta::DERIVED_COLUMNS) follow) and the set of
-//! datasets in each snapshot group of `snapshots.h5`. Components that a dimension lacks are stored
-//! as 0. Units and meanings: [`QUANTITIES`](super::meta::QUANTITIES).
+//! The columns are the `out[…]` columns of the core's particle table
+//! ([`gsph_core::particle_fields!`], then [`gsph_core::derived_fields!`]), in table order
+//! ([`COLUMNS`]); they are the start of the header of `final.csv` (the stress columns
+//! [`DERIVED_COLUMNS`](super::meta::DERIVED_COLUMNS) follow) and the set of datasets in each
+//! snapshot group of `snapshots.h5`. Components that a dimension lacks are stored as 0. Units
+//! and meanings: [`FLOAT_QUANTITIES`], [`quantities`](super::meta::quantities).
 
-/// Defines [`ParticleRow`], [`ParticleTable`] and the float-column list from one list of fields, so
-/// the three can never disagree.
+/// The output columns of the state fields (`out[…]` of the core's
+/// [`gsph_core::particle_fields!`]), each with its field's unit; passes them on to
+/// [`derived_columns`], which adds those of [`gsph_core::derived_fields!`].
+macro_rules! state_columns {
+    (() $($name:ident: $ty:ty, $kind:ident, $when:ident, $acc:ident, $unit:literal, $doc:literal, {
+        api($api:literal [$($alias:ident),*], $w:ident, $range:ident)
+        out[$($col:ident $cdoc:literal),*]
+    };)*) => {
+        gsph_core::derived_fields!(derived_columns { $($( $col $unit $cdoc, )*)* });
+    };
+}
+
+/// See [`state_columns`].
+macro_rules! derived_columns {
+    (($($col:ident $unit:literal $cdoc:literal,)*) $($name:ident: $dunit:literal, $doc:literal, {
+        api($api:literal [$($alias:ident),*], $w:ident, $range:ident)
+        out[$($dcol:ident $dcdoc:literal),*]
+    };)*) => {
+        particle_types! { $($col $unit $cdoc,)* $($($dcol $dunit $dcdoc,)*)* }
+    };
+}
+
+/// Defines [`ParticleRow`], [`ParticleTable`], the column lists and their units and meanings
+/// from the list of float columns, so they can never disagree.
 macro_rules! particle_types {
-    ($($(#[doc = $doc:literal])+ $f:ident),+ $(,)?) => {
+    ($($f:ident $unit:literal $doc:literal,)+) => {
         /// One particle's state: one row of [`ParticleTable`] (and of `final.csv`).
         #[derive(Debug, Clone, Copy, PartialEq, Default)]
         pub struct ParticleRow {
@@ -16,7 +40,7 @@ macro_rules! particle_types {
             pub id: u32,
             /// Material index (position in the scene's material list).
             pub material: u32,
-            $($(#[doc = $doc])+ pub $f: f64,)+
+            $(#[doc = concat!($doc, " (", $unit, ")")] pub $f: f64,)+
         }
 
         /// The state of all particles at one time, as columns (structure of arrays).
@@ -28,11 +52,21 @@ macro_rules! particle_types {
             pub id: Vec<u32>,
             /// Material indices.
             pub material: Vec<u32>,
-            $($(#[doc = $doc])+ pub $f: Vec<f64>,)+
+            $(#[doc = concat!($doc, " (", $unit, ")")] pub $f: Vec<f64>,)+
         }
 
         /// Names of the float columns, in [`COLUMNS`] order (everything after `id` and `material`).
-        pub const FLOAT_COLUMNS: [&str; NUM_FLOAT_COLUMNS] = [$(stringify!($f)),+];
+        pub const FLOAT_COLUMNS: &[&str] = &[$(stringify!($f)),+];
+
+        /// All column names in order; `final.csv`'s header is these, then the derived columns.
+        pub const COLUMNS: &[&str] = &["id", "material", $(stringify!($f)),+];
+
+        /// Unit and meaning of each float column, in [`FLOAT_COLUMNS`] order.
+        pub const FLOAT_QUANTITIES: &[Quantity] = &[$(Quantity {
+            name: stringify!($f),
+            unit: $unit,
+            description: $doc,
+        }),+];
 
         impl ParticleRow {
             /// The float fields in [`FLOAT_COLUMNS`] order.
@@ -61,77 +95,16 @@ macro_rules! particle_types {
     };
 }
 
+use super::meta::Quantity;
+
+/// Columns every `final.csv` and snapshot has held (`id` .. `h`): later ones were appended,
+/// and a file written before them reads them as NaN.
+pub const BASE_COLUMNS: usize = 22;
+
 /// Number of float columns (all columns but `id` and `material`).
-pub const NUM_FLOAT_COLUMNS: usize = 20;
+pub const NUM_FLOAT_COLUMNS: usize = FLOAT_COLUMNS.len();
 
-/// All column names in order; `final.csv`'s header is these, then the derived columns.
-pub const COLUMNS: [&str; 22] = [
-    "id",
-    "material",
-    "x",
-    "y",
-    "z",
-    "vx",
-    "vy",
-    "vz",
-    "m",
-    "rho",
-    "p",
-    "e",
-    "sxx",
-    "syy",
-    "szz",
-    "sxy",
-    "sxz",
-    "syz",
-    "eps_p",
-    "damage",
-    "temperature",
-    "h",
-];
-
-particle_types! {
-    /// Position x (m).
-    x,
-    /// Position y (m); 0 in 1D.
-    y,
-    /// Position z (m); 0 in 1D and 2D.
-    z,
-    /// Velocity x (m/s).
-    vx,
-    /// Velocity y (m/s); 0 in 1D.
-    vy,
-    /// Velocity z (m/s); 0 in 1D and 2D.
-    vz,
-    /// Mass (kg; per unit area in 1D, per unit length in 2D).
-    m,
-    /// Density (kg/m3).
-    rho,
-    /// Pressure (Pa), positive in compression.
-    p,
-    /// Specific internal energy (J/kg).
-    e,
-    /// Deviatoric stress S_xx (Pa).
-    sxx,
-    /// Deviatoric stress S_yy (Pa).
-    syy,
-    /// Deviatoric stress S_zz (Pa).
-    szz,
-    /// Deviatoric stress S_xy (Pa).
-    sxy,
-    /// Deviatoric stress S_xz (Pa).
-    sxz,
-    /// Deviatoric stress S_yz (Pa).
-    syz,
-    /// Equivalent plastic strain.
-    eps_p,
-    /// Damage in [0, 1].
-    damage,
-    /// Temperature (K).
-    temperature,
-    /// Smoothing length (m).
-    h,
-}
+gsph_core::particle_fields!(state_columns {});
 
 impl ParticleTable {
     /// An empty table with room for `n` particles in every column.
@@ -235,11 +208,13 @@ pub(crate) mod tests {
     fn column_order_matches_header() {
         assert_eq!(COLUMNS[0], "id");
         assert_eq!(COLUMNS[1], "material");
-        assert_eq!(&COLUMNS[2..], &FLOAT_COLUMNS[..]);
-        assert_eq!(
-            COLUMNS.join(","),
+        assert_eq!(&COLUMNS[2..], FLOAT_COLUMNS);
+        // the snapshots store the first six as the datasets `position` and `velocity`
+        assert_eq!(&FLOAT_COLUMNS[..6], ["x", "y", "z", "vx", "vy", "vz"]);
+        // new columns are only ever appended (readers of older files rely on it)
+        assert!(COLUMNS.join(",").starts_with(
             "id,material,x,y,z,vx,vy,vz,m,rho,p,e,sxx,syy,szz,sxy,sxz,syz,eps_p,damage,temperature,h"
-        );
+        ));
     }
 
     #[test]

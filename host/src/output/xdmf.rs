@@ -4,7 +4,7 @@
 //! XDMF 3: one Temporal Collection of Uniform grids, one grid per snapshot group, each with its own
 //! particle count N: Topology Polyvertex, Geometry XYZ from `/step_XXXXXX/position` (N x 3),
 //! Attribute Vector `velocity`, Attribute Tensor `stress` (the Cauchy stress, N x 3 x 3: nine
-//! components), one Attribute Scalar per 1-D dataset ([`SCALAR_DATASETS`]: `von_mises`, `p`,
+//! components), one Attribute Scalar per 1-D dataset ([`scalar_datasets`]: `von_mises`, `p`,
 //! `eps_p`, ...), and the Time Value of the snapshot. Every attribute carries an
 //! `<Information Name="units">` (SI). The Domain starts with `<Information>` elements `status`
 //! (`complete` in `snapshots.xdmf`, `partial: ...` with the reason, still running, interrupted or
@@ -14,28 +14,17 @@
 use core::fmt::Write as _;
 
 use super::meta::{unit, GSPH_VERSION};
+use super::table::FLOAT_COLUMNS;
 
-/// The 1-D datasets of each snapshot group: the `final.csv` columns in their order (position and
-/// velocity are stored as N x 3 datasets `position` and `velocity`), then `von_mises`.
-pub const SCALAR_DATASETS: [&str; 17] = [
-    "id",
-    "material",
-    "m",
-    "rho",
-    "p",
-    "e",
-    "sxx",
-    "syy",
-    "szz",
-    "sxy",
-    "sxz",
-    "syz",
-    "eps_p",
-    "damage",
-    "temperature",
-    "h",
-    "von_mises",
-];
+/// The 1-D datasets of each snapshot group: `id`, `material`, the `final.csv` float columns in
+/// their order but the first six (position and velocity, stored as N x 3 datasets `position`
+/// and `velocity`), then `von_mises`.
+pub fn scalar_datasets() -> impl Iterator<Item = &'static str> + Clone {
+    ["id", "material"]
+        .into_iter()
+        .chain(FLOAT_COLUMNS[6..].iter().copied())
+        .chain(["von_mises"])
+}
 
 /// The `status` of a complete `snapshots.xdmf`.
 pub const STATUS_COMPLETE: &str = "complete";
@@ -182,7 +171,7 @@ pub fn xdmf_document(head: &XdmfHeader, grids: &[XdmfGrid]) -> String {
         let (vec3, tensor) = (format!("{n} 3"), format!("{n} 3 3"));
         attribute(&mut out, h5_file, &group, "velocity", "Vector", &vec3, dim);
         attribute(&mut out, h5_file, &group, "stress", "Tensor", &tensor, dim);
-        for name in SCALAR_DATASETS {
+        for name in scalar_datasets() {
             attribute(
                 &mut out,
                 h5_file,
@@ -274,7 +263,7 @@ mod tests {
         assert!(x.contains("Dimensions=\"3\" NumberType=\"UInt\" Precision=\"4\" Format=\"HDF\">snapshots.h5:/step_001234/id<"));
         assert_eq!(
             x.matches("AttributeType=\"Scalar\"").count(),
-            2 * SCALAR_DATASETS.len()
+            2 * scalar_datasets().count()
         );
         assert_eq!(x.matches("AttributeType=\"Vector\"").count(), 2);
         assert_eq!(x.matches("AttributeType=\"Tensor\"").count(), 2);

@@ -71,18 +71,19 @@ pub fn field_values(table: &ParticleTable, name: &str) -> Result<Vec<f64>, PlotE
     Ok(v)
 }
 
-/// The SI unit of field `name` ("" for dimensionless or unknown fields).
+/// The SI unit of field `name` ("" for dimensionless or unknown fields): a particle-table
+/// column's from the core's table (in 3D: the plots label masses per particle), else that of a
+/// field derived here.
 pub fn field_unit(name: &str) -> &'static str {
     match name {
-        "x" | "y" | "z" | "h" | "r" => "m",
-        "vx" | "vy" | "vz" | "speed" | "vr" => "m/s",
-        "m" => "kg",
-        "rho" => "kg/m³",
-        "e" => "J/kg",
-        "temperature" => "K",
-        "p" | "sxx" | "syy" | "szz" | "sxy" | "sxz" | "syz" | "sigma_xx" | "sigma_yy"
-        | "tau_xy" | "von_mises" => "Pa",
-        _ => "",
+        "r" => "m",
+        "speed" | "vr" => "m/s",
+        "tau_xy" => "Pa",
+        _ => match crate::output::meta::unit(name, 3) {
+            "1" => "",
+            "kg/m^3" => "kg/m³",
+            u => u,
+        },
     }
 }
 

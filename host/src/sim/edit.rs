@@ -3,10 +3,9 @@
 //! per-particle array (state, effect storage, workspace) in step and force a neighbour-list
 //! rebuild before the next step.
 
-use super::{vec_of, Sim};
+use super::{vec_of, Particle, Sim};
 use crate::scene::InitialParticles;
-use gsph_core::effects::EffectSet;
-use gsph_core::math::Vector;
+use gsph_core::math::{Sym3, Vector};
 use gsph_core::state::{smoothing_length, AvRates, Correction, Gradients, Layout, PairSums};
 
 /// Keeps the elements of `v` whose mask entry is true (an empty `v`, storage of an absent
@@ -63,49 +62,35 @@ impl<const D: usize> Sim<D> {
     pub fn append(&mut self, parts: &InitialParticles) -> u32 {
         self.drop_mirrors();
         let first = self.ids.iter().max().map_or(0, |&m| m + 1);
-        let has = |e: EffectSet| self.effects.contains(e);
-        let (strength, plasticity, damage, heat) = (
-            has(EffectSet::STRENGTH),
-            has(EffectSet::PLASTICITY),
-            has(EffectSet::DAMAGE),
-            has(EffectSet::HEAT),
-        );
         let layout = Layout::of(self.scheme.family(), self.effects);
         for i in 0..parts.len() {
             let mat = self.materials[parts.mat[i] as usize];
             let st = mat.eos(parts.rho[i], parts.e[i]);
+            let x = self.periodic.wrap(vec_of::<D>(&parts.x[i]));
             self.ids.push(first + i as u32);
-            self.x.push(self.periodic.wrap(vec_of::<D>(&parts.x[i])));
-            self.v.push(vec_of::<D>(&parts.v[i]));
-            self.m.push(parts.m[i]);
-            self.mat.push(parts.mat[i]);
-            self.rho.push(parts.rho[i]);
-            self.e.push(parts.e[i]);
-            self.p.push(st.p);
-            self.c.push(st.c2.max(0.0).sqrt());
-            self.cl.push(mat.c_long(parts.rho[i], st.c2.max(0.0)));
-            self.h.push(smoothing_length::<D>(
-                self.h_factor,
-                parts.m[i],
-                parts.rho[i],
-            ));
-            if strength {
-                self.s.push(parts.s[i]);
-            }
-            // from the scene's particles where given (a body read from a file), else the
-            // initial state
-            if plasticity {
-                self.eps_p.push(parts.eps_p.get(i).copied().unwrap_or(0.0));
-            }
-            if damage {
-                self.damage
-                    .push(parts.damage.get(i).copied().unwrap_or(0.0));
-            }
-            if heat {
-                let t = parts.temperature.get(i).copied();
-                self.temp
-                    .push(t.unwrap_or_else(|| mat.initial_temperature()));
-            }
+            // every field's initial value (a field the run does not store is dropped);
+            // plastic strain, damage and temperature from the scene's particles where
+            // given (a body read from a file), else the initial state
+            self.push_particle(&Particle {
+                x,
+                v: vec_of::<D>(&parts.v[i]),
+                m: parts.m[i],
+                mat: parts.mat[i],
+                rho: parts.rho[i],
+                p: st.p,
+                e: parts.e[i],
+                c: st.c2.max(0.0).sqrt(),
+                cl: mat.c_long(parts.rho[i], st.c2.max(0.0)),
+                s: parts.s.get(i).copied().unwrap_or(Sym3::ZERO),
+                eps_p: parts.eps_p.get(i).copied().unwrap_or(0.0),
+                damage: parts.damage.get(i).copied().unwrap_or(0.0),
+                temp: parts
+                    .temperature
+                    .get(i)
+                    .copied()
+                    .unwrap_or_else(|| mat.initial_temperature()),
+                h: smoothing_length::<D>(self.h_factor, parts.m[i], parts.rho[i]),
+            });
             if layout.av {
                 self.av.push(AvRates::default());
             }
@@ -150,55 +135,26 @@ impl<const D: usize> Sim<D> {
 /// A particle's material state: everything but position, velocity and mass (exit region 2
 /// of a moving window holds it fixed).
 #[derive(Debug, Clone, Copy)]
-pub struct HeldState {
-    rho: f64,
-    e: f64,
-    p: f64,
-    c: f64,
-    cl: f64,
-    h: f64,
-    s: Option<gsph_core::math::Sym3>,
-    eps_p: Option<f64>,
-    damage: Option<f64>,
-    temp: Option<f64>,
-}
+pub struct HeldState<const D: usize>(Particle<D>);
 
 impl<const D: usize> Sim<D> {
     /// The material state of particle `i`.
-    pub fn held_state(&self, i: usize) -> HeldState {
-        let opt = |v: &Vec<f64>| v.get(i).copied();
-        HeldState {
-            rho: self.rho[i],
-            e: self.e[i],
-            p: self.p[i],
-            c: self.c[i],
-            cl: self.cl[i],
-            h: self.h[i],
-            s: self.s.get(i).copied(),
-            eps_p: opt(&self.eps_p),
-            damage: opt(&self.damage),
-            temp: opt(&self.temp),
-        }
+    pub fn held_state(&self, i: usize) -> HeldState<D> {
+        HeldState(self.particle(i))
     }
 
-    /// Puts back a state taken by [`Sim::held_state`].
-    pub fn restore_state(&mut self, i: usize, st: &HeldState) {
-        self.rho[i] = st.rho;
-        self.e[i] = st.e;
-        self.p[i] = st.p;
-        self.c[i] = st.c;
-        self.cl[i] = st.cl;
-        self.h[i] = st.h;
-        let put = |v: &mut Vec<f64>, x: Option<f64>| {
-            if let Some(x) = x {
-                v[i] = x;
-            }
-        };
-        if let Some(s) = st.s {
-            self.s[i] = s;
-        }
-        put(&mut self.eps_p, st.eps_p);
-        put(&mut self.damage, st.damage);
-        put(&mut self.temp, st.temp);
+    /// Puts back a state taken by [`Sim::held_state`], keeping the particle's position,
+    /// velocity and mass.
+    pub fn restore_state(&mut self, i: usize, st: &HeldState<D>) {
+        let now = self.particle(i);
+        self.set_particle(
+            i,
+            &Particle {
+                x: now.x,
+                v: now.v,
+                m: now.m,
+                ..st.0
+            },
+        );
     }
 }

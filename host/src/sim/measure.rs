@@ -2,6 +2,7 @@
 //! flags, and the particle table of the output files.
 
 use super::*;
+use crate::output::table::NUM_FLOAT_COLUMNS;
 
 impl<const D: usize> Sim<D> {
     /// The free-surface flags of the last step's kernel-correction pass, one per particle:
@@ -76,38 +77,18 @@ impl<const D: usize> Sim<D> {
             return all.table();
         }
         let mut t = ParticleTable::with_capacity(self.owned);
+        let derived = self.derived_columns();
         for i in self.by_id() {
-            let g = |v: &Vector<D>, a: usize| if a < D { v[a] } else { 0.0 };
-            let s = if self.s.is_empty() {
-                Sym3::ZERO
-            } else {
-                self.s[i]
-            };
-            let opt = |v: &Vec<f64>| if v.is_empty() { 0.0 } else { v[i] };
-            t.push(&ParticleRow {
-                id: self.ids[i],
-                material: self.mat[i] as u32,
-                x: g(&self.x[i], 0),
-                y: g(&self.x[i], 1),
-                z: g(&self.x[i], 2),
-                vx: g(&self.v[i], 0),
-                vy: g(&self.v[i], 1),
-                vz: g(&self.v[i], 2),
-                m: self.m[i],
-                rho: self.rho[i],
-                p: self.p[i],
-                e: self.e[i],
-                sxx: s.xx,
-                syy: s.yy,
-                szz: s.zz,
-                sxy: s.xy,
-                sxz: s.xz,
-                syz: s.yz,
-                eps_p: opt(&self.eps_p),
-                damage: opt(&self.damage),
-                temperature: opt(&self.temp),
-                h: self.h[i],
-            });
+            let mut floats = [0.0; NUM_FLOAT_COLUMNS];
+            let mut k = 0;
+            self.state_columns(i, &mut floats, &mut k);
+            for d in &derived {
+                floats[k] = d[i];
+                k += 1;
+            }
+            debug_assert_eq!(k, NUM_FLOAT_COLUMNS);
+            let row = ParticleRow::from_parts(self.ids[i], self.mat[i] as u32, floats);
+            t.push(&row);
         }
         t
     }

@@ -18,37 +18,10 @@ use std::any::Any;
 
 pub use error::SimError;
 
-/// `$f(&mut $sim.FIELD, $arg);` for each per-particle state field of the core's table
-/// ([`gsph_core::particle_fields!`]), in table order: use as
-/// `gsph_core::particle_fields!(each_state_field { self, f, arg })` (in this module and
-/// the modules declared below).
-macro_rules! each_state_field {
-    (($s:expr, $f:expr, $arg:expr) $($name:ident: $ty:ty, $kind:ident, $when:ident, $acc:ident, $unit:literal, $doc:literal;)*) => {
-        $( $f(&mut $s.$name, $arg); )*
-    };
-    // read only: `$f(&$sim.FIELD, $arg)`
-    ((ref $s:expr, $f:expr, $arg:expr) $($name:ident: $ty:ty, $kind:ident, $when:ident, $acc:ident, $unit:literal, $doc:literal;)*) => {
-        $( $f(&$s.$name, $arg); )*
-    };
-    // with the field's name and `?`: `$f(stringify!(FIELD), &mut $sim.FIELD, $arg)?`
-    ((named $s:expr, $f:expr, $arg:expr) $($name:ident: $ty:ty, $kind:ident, $when:ident, $acc:ident, $unit:literal, $doc:literal;)*) => {
-        $( $f(stringify!($name), &mut $s.$name, $arg)?; )*
-    };
-    // with whether the run stores the field: `$f(&$sim.FIELD, stored, $arg)`
-    ((stored $s:expr, $f:expr, $arg:expr) $($name:ident: $ty:ty, $kind:ident, $when:ident, $acc:ident, $unit:literal, $doc:literal;)*) => {
-        $( $f(&$s.$name, $s.effects.contains(gsph_core::effects::EffectSet::$when), $arg); )*
-    };
-    // the same, mutable: `$f(&mut $sim.FIELD, stored, $arg)`
-    ((stored_mut $s:expr, $f:expr, $arg:expr) $($name:ident: $ty:ty, $kind:ident, $when:ident, $acc:ident, $unit:literal, $doc:literal;)*) => {
-        $( $f(&mut $s.$name, $s.effects.contains(gsph_core::effects::EffectSet::$when), $arg); )*
-    };
-    // by the field's kind: `$module::KIND(&mut $sim.FIELD, $arg)` (`point`, `vector` …)
-    ((kind $s:expr, $module:ident, $arg:expr) $($name:ident: $ty:ty, $kind:ident, $when:ident, $acc:ident, $unit:literal, $doc:literal;)*) => {
-        $( $module::$kind(&mut $s.$name, $arg); )*
-    };
-}
-
+#[macro_use]
+mod fields;
 mod by_id;
+mod derived;
 #[cfg(feature = "mpi")]
 mod dist;
 mod edit;
@@ -59,6 +32,7 @@ mod state_io;
 pub mod walls;
 use by_id::{cause_by_id, overflow_by_id};
 pub use edit::HeldState;
+pub use fields::Particle;
 
 /// The step function for dimension `D` (looked up once per run; the specialisations are
 /// compiled in `gsph-steps`).
@@ -109,43 +83,18 @@ pub fn resolve_effects(scene: &Scene, materials: &[Material]) -> EffectSet {
 use crate::neighbors::default_capacity;
 use crate::scene::kernel_of;
 
-/// A running simulation in dimension `D`. Cloning it saves the whole state (the moving
-/// window restarts its trials from a clone).
+gsph_core::particle_fields!(define_sim {
+/// A running simulation in dimension `D`: one array per field of the core's particle
+/// table ([`gsph_core::particle_fields!`]; a field whose effect the run lacks is empty),
+/// then the workspace, lists and run parameters. Cloning it saves the whole state (the
+/// moving window restarts its trials from a clone).
 #[derive(Clone)]
-pub struct Sim<const D: usize> {
+pub struct Sim {
     /// Particle ids.
     pub ids: Vec<u32>,
     /// Driven particles (bodies with `driven = true`) and the velocity they keep: each step
     /// moves them by exactly `v dt` (their material state evolves as computed).
     pub driven: Vec<(usize, Vector<D>)>,
-    /// Positions.
-    pub x: Vec<Vector<D>>,
-    /// Velocities.
-    pub v: Vec<Vector<D>>,
-    /// Masses.
-    pub m: Vec<Real>,
-    /// Material indices.
-    pub mat: Vec<u16>,
-    /// Densities.
-    pub rho: Vec<Real>,
-    /// Specific internal energies.
-    pub e: Vec<Real>,
-    /// Pressures.
-    pub p: Vec<Real>,
-    /// Bulk sound speeds.
-    pub c: Vec<Real>,
-    /// Longitudinal sound speeds.
-    pub cl: Vec<Real>,
-    /// Smoothing lengths.
-    pub h: Vec<Real>,
-    /// Deviators (empty without strength).
-    pub s: Vec<Sym3>,
-    /// Plastic strains (empty without plasticity).
-    pub eps_p: Vec<Real>,
-    /// Damage (empty without damage).
-    pub damage: Vec<Real>,
-    /// Temperatures (empty without heat).
-    pub temp: Vec<Real>,
     sums: Vec<PairSums<D>>,
     grad: Vec<Gradients<D>>,
     grad_stress: Vec<[Vector<D>; 6]>,
@@ -202,6 +151,7 @@ pub struct Sim<const D: usize> {
     #[cfg(feature = "mpi")]
     pub dist: Option<Box<crate::dist::Dist<D>>>,
 }
+});
 
 fn vec_of<const D: usize>(a: &[f64; 3]) -> Vector<D> {
     Vector::<D>::from_fn(|k, _| a[k])
@@ -301,7 +251,7 @@ impl<const D: usize> Sim<D> {
         let capacity = scene
             .neighbor_capacity
             .unwrap_or_else(|| default_capacity(D, kernel, scene.h_factor));
-        let mut sim = Sim {
+        let mut sim = gsph_core::particle_fields!(each_state_field { literal Sim {
             ids: Vec::with_capacity(n),
             driven: (0..n)
                 .filter(|&i| {
@@ -313,20 +263,6 @@ impl<const D: usize> Sim<D> {
                 })
                 .map(|i| (i, vec_of::<D>(&parts.v[i])))
                 .collect(),
-            x: Vec::with_capacity(n),
-            v: Vec::with_capacity(n),
-            m: Vec::with_capacity(n),
-            mat: Vec::with_capacity(n),
-            rho: Vec::with_capacity(n),
-            e: Vec::with_capacity(n),
-            p: Vec::with_capacity(n),
-            c: Vec::with_capacity(n),
-            cl: Vec::with_capacity(n),
-            h: Vec::with_capacity(n),
-            s: Vec::new(),
-            eps_p: Vec::new(),
-            damage: Vec::new(),
-            temp: Vec::new(),
             sums: Vec::with_capacity(n),
             grad: Vec::new(),
             grad_stress: Vec::new(),
@@ -363,7 +299,7 @@ impl<const D: usize> Sim<D> {
             mirrors: walls::Mirrors::new(&scene.walls).map_err(SimError::Walls)?,
             #[cfg(feature = "mpi")]
             dist: None,
-        };
+        } });
         // the per-particle state, effect storage and workspace: one code path with the
         // particles a moving window feeds in later
         sim.append(parts);
@@ -394,19 +330,11 @@ impl<const D: usize> Sim<D> {
     pub fn bytes_per_particle(&self) -> usize {
         use std::mem::size_of;
         let n = self.len().max(1);
-        let state = self.x.len() * size_of::<Vector<D>>() * 2
-            + (self.m.len()
-                + self.rho.len()
-                + self.e.len()
-                + self.p.len()
-                + self.c.len()
-                + self.cl.len()
-                + self.h.len())
-                * size_of::<Real>()
-            + self.mat.len() * 2
-            + self.ids.len() * 4
-            + self.s.len() * size_of::<Sym3>()
-            + (self.eps_p.len() + self.damage.len() + self.temp.len()) * size_of::<Real>();
+        fn add<T>(v: &[T], bytes: &mut usize) {
+            *bytes += std::mem::size_of_val(v);
+        }
+        let mut state = self.ids.len() * size_of::<u32>();
+        gsph_core::particle_fields!(each_state_field { ref self, add, &mut state });
         let ws = self.sums.len() * size_of::<PairSums<D>>()
             + self.grad.len() * size_of::<Gradients<D>>()
             + self.grad_stress.len() * size_of::<[Vector<D>; 6]>()
@@ -519,22 +447,7 @@ impl<const D: usize> Sim<D> {
             options: self.options,
             effects: self.effects,
         };
-        let mut sys = System {
-            x: &mut self.x,
-            v: &mut self.v,
-            m: &self.m,
-            mat: &self.mat,
-            rho: &mut self.rho,
-            e: &mut self.e,
-            p: &mut self.p,
-            c: &mut self.c,
-            cl: &mut self.cl,
-            h: &mut self.h,
-            s: &mut self.s,
-            eps_p: &mut self.eps_p,
-            damage: &mut self.damage,
-            temp: &mut self.temp,
-        };
+        let mut sys = gsph_core::particle_fields!(step each_state_field { system self });
         let mut ws = Workspace {
             sums: &mut self.sums,
             grad: &mut self.grad,

@@ -20,6 +20,11 @@ use crate::codec::{Codec, Dec, DecodeError, Enc};
 /// `u64::MAX` would overflow on the next step.
 pub const MAX_STEP: u64 = 1 << 53;
 
+/// The names of the per-particle fields in the order a checkpoint stores them.
+fn field_names() -> String {
+    gsph_core::particles::FIELD_NAMES.join(",")
+}
+
 impl<const D: usize> Sim<D> {
     /// Appends the state to `e`.
     pub fn save_checkpoint(&self, e: &mut Enc) {
@@ -36,7 +41,9 @@ impl<const D: usize> Sim<D> {
         e.put(&self.primed);
         e.put(&(self.capacity as u64));
         e.put(&self.ids);
-        // the particle state in the order of the core's table (gsph_core::particle_fields!)
+        // the particle state in the order of the core's table (gsph_core::particle_fields!),
+        // after the table's field names: a checkpoint of another table is refused by name
+        e.put(&field_names());
         fn put<T: Codec>(v: &Vec<T>, e: &mut Enc) {
             e.put(v);
         }
@@ -95,6 +102,13 @@ impl<const D: usize> Sim<D> {
             Ok(())
         }
         field(d, "ids", &mut self.ids, n, true)?;
+        let names: String = d.get()?;
+        if names != field_names() {
+            return Err(DecodeError(format!(
+                "particle fields `{names}`, this gsph has `{}`",
+                field_names()
+            )));
+        }
         // the particle state: stored exactly as the scene sizes it
         fn state<T: Codec>(
             name: &str,

@@ -52,7 +52,7 @@ pub struct Window<const D: usize> {
     feed_x: f64,
     /// Next feed particle to insert (copy `next / n_feed`, particle `next % n_feed`).
     next: u64,
-    held: BTreeMap<u32, HeldState>,
+    held: BTreeMap<u32, HeldState<D>>,
     /// Particles at the start.
     pub n0: usize,
     /// Particles inserted and removed so far.
