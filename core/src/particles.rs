@@ -122,6 +122,14 @@ macro_rules! particle_fields {
                 api("h" [smoothing_length], write, positive)
                 out[h "smoothing length"]
             };
+            x0: Vector<D>, point, HYDRO, keep, "m", "Reference position: where the particle was created (the reference configuration of `det_f`)", {
+                api("reference_position" [], read, any)
+                out[
+                    x0 "reference (initial) position x",
+                    y0 "reference (initial) position y (0 in 1D)",
+                    z0 "reference (initial) position z (0 in 1D and 2D)"
+                ]
+            };
         }
     };
 }
@@ -157,6 +165,10 @@ macro_rules! derived_fields {
     ($cb:ident { $($args:tt)* }) => {
         $cb! {
             ($($args)*)
+            det_f: "1", "Determinant of the deformation gradient F = dx/dx0 from the current and reference positions", {
+                api("det_f" [], read, any)
+                out[det_f "det F, F = dx/dx0 from the positions and reference positions (corrected SPH gradient); rho0/rho while volume follows density"]
+            };
         }
     };
 }

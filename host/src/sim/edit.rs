@@ -90,6 +90,7 @@ impl<const D: usize> Sim<D> {
                     .copied()
                     .unwrap_or_else(|| mat.initial_temperature()),
                 h: smoothing_length::<D>(self.h_factor, parts.m[i], parts.rho[i]),
+                x0: x,
             });
             if layout.av {
                 self.av.push(AvRates::default());
