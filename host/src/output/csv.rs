@@ -160,7 +160,9 @@ mod tests {
         assert!(header.starts_with(
             "id,material,x,y,z,vx,vy,vz,m,rho,p,e,sxx,syy,szz,sxy,sxz,syz,eps_p,damage,temperature,h,"
         ));
-        assert!(header.ends_with(",sigma_xx,sigma_yy,sigma_zz,sigma_xy,sigma_xz,sigma_yz,von_mises"));
+        assert!(
+            header.ends_with(",sigma_xx,sigma_yy,sigma_zz,sigma_xy,sigma_xz,sigma_yz,von_mises")
+        );
         assert_eq!(text.lines().count(), 8);
         let back = read_csv(&p).unwrap();
         assert_eq!(back, t);

@@ -343,7 +343,12 @@ fn files_of_format_version_1_still_read() {
     assert_eq!(read_snapshot_times(&path).unwrap(), vec![(3, 1.5)]);
     // the columns appended since read as NaN
     let mut want = f.clone();
-    for c in want.table.float_columns_mut().into_iter().skip(BASE_COLUMNS - 2) {
+    for c in want
+        .table
+        .float_columns_mut()
+        .into_iter()
+        .skip(BASE_COLUMNS - 2)
+    {
         c.fill(f64::NAN);
     }
     let got = read_frame(&path, 3, usize::MAX).unwrap();

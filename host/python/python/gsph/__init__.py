@@ -196,8 +196,9 @@ class Simulation:
     def field(self, name):
         """A field as a new float64 array in particle-id order: position, velocity, mass,
         material, density, pressure, energy, sound_speed, longitudinal_sound_speed,
-        deviator, plastic_strain, damage, temperature, h (or x, v, m, mat, rho, p, e, c,
-        cl, s, eps_p, temp); the list is gsph.api's FIELDS, from the core's particle table."""
+        deviator, plastic_strain, damage, temperature, h, reference_position, det_f (or x,
+        v, m, mat, rho, p, e, c, cl, s, eps_p, temp, x0); the list is gsph.api's FIELDS,
+        from the core's particle table."""
         return self._raw.field(name)
 
     def set_field(self, name, values):
