@@ -13,13 +13,14 @@
 //! caller copies those fields from the owners into the ghost slots.
 //!
 //! A serial caller passes [`NoHalo`] (no ghosts; every call is a no-op). The exchanges of
-//! each family are listed as constants next to its step ([`crate::schemes::av`],
-//! [`crate::schemes::pm`], [`crate::schemes::ts`]) and collected by [`exchanges_of`], so
-//! a caller can print and account for them.
+//! each family are a constant of its step
+//! ([`SchemeFamily::EXCHANGES`](crate::schemes::SchemeFamily::EXCHANGES)), handed out at
+//! run time by [`Family::exchanges`](crate::state::Family::exchanges), so a caller can print
+//! and account for them.
 
 use crate::effects::EffectSet;
 use crate::math::Vector;
-use crate::state::{Correction, Family, Gradients, System};
+use crate::state::{Correction, Gradients, System};
 
 /// A set of per-particle fields that neighbours read.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
@@ -145,13 +146,4 @@ pub struct NoHalo;
 impl<const D: usize> Halo<D> for NoHalo {
     #[inline(always)]
     fn refresh(&mut self, _: &Exchange, _: &mut System<'_, D>, _: GhostWorkspace<'_, D>) {}
-}
-
-/// The exchanges a step of `family` makes, in order.
-pub const fn exchanges_of(family: Family) -> &'static [Exchange] {
-    match family {
-        Family::Av => &crate::schemes::av::EXCHANGES,
-        Family::Pm => &crate::schemes::pm::EXCHANGES,
-        Family::Ts => &crate::schemes::ts::EXCHANGES,
-    }
 }

@@ -385,19 +385,45 @@ pub struct Layout {
 }
 
 impl Layout {
-    /// The arrays needed by `family` with `effects`.
-    pub const fn of(family: Family, effects: EffectSet) -> Layout {
-        let muscl = effects.contains(EffectSet::MUSCL);
+    /// The arrays the effects ask for whatever the family: MUSCL gradients, kernel
+    /// corrections, artificial stress; a family's [`layout`](crate::schemes::SchemeFamily::layout)
+    /// adds its own.
+    pub const fn base(effects: EffectSet) -> Layout {
         Layout {
-            grad: muscl,
-            grad_stress: muscl
-                && matches!(family, Family::Pm)
-                && effects.contains(EffectSet::STRENGTH),
+            grad: effects.contains(EffectSet::MUSCL),
+            grad_stress: false,
             corr: effects.contains(EffectSet::CORRECTION),
-            av: matches!(family, Family::Av),
+            av: false,
             art: effects.contains(EffectSet::ARTIFICIAL_STRESS),
-            ts_star: matches!(family, Family::Ts),
-            pm_star: matches!(family, Family::Pm),
+            ts_star: false,
+            pm_star: false,
+        }
+    }
+}
+
+impl<const D: usize> Workspace<'_, D> {
+    /// Checks that the arrays `layout` asks for have their lengths: one per particle (`n`)
+    /// or per unordered pair (`pairs`); the sums, geometry and `aux` every step uses.
+    /// Arrays the layout does not ask for are not read and not checked.
+    pub fn check(&self, layout: &Layout, n: usize, pairs: usize) -> Result<(), StepError> {
+        let wrong = [
+            ("sums", true, self.sums.len(), n),
+            ("aux", true, self.aux.len(), n),
+            ("geom", true, self.geom.len(), pairs),
+            ("grad", layout.grad, self.grad.len(), n),
+            ("grad_stress", layout.grad_stress, self.grad_stress.len(), n),
+            ("corr", layout.corr, self.corr.len(), n),
+            ("av", layout.av, self.av.len(), n),
+            ("art", layout.art, self.art.len(), n),
+            ("fac", layout.art, self.fac.len(), pairs),
+            ("ts_star", layout.ts_star, self.ts_star.len(), pairs),
+            ("pm_star", layout.pm_star, self.pm_star.len(), pairs),
+        ]
+        .into_iter()
+        .find(|&(_, needed, len, want)| needed && len != want);
+        match wrong {
+            Some((field, ..)) => Err(StepError::Storage { field }),
+            None => Ok(()),
         }
     }
 }

@@ -179,7 +179,7 @@ fn step_fn(m: &Model, s: &Specialisation) -> TokenStream {
             exec: &X,
             halo: &mut dyn crate::halo::Halo<#d>,
         ) -> ::core::result::Result<(), crate::state::StepError> {
-            <#path as crate::schemes::SchemeFamily>::step::<#d, #marker, X>(sys, ws, params, exec, halo)
+            <#path as crate::schemes::SchemeFamily>::checked_step::<#d, #marker, X>(sys, ws, params, exec, halo)
         }
     }
 }

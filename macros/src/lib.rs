@@ -38,7 +38,7 @@ mod tests;
 /// - per effect set valid for some family, a marker type `Fx{Names}` (`FxHydro` for the
 ///   empty set, `FxStrengthPlasticity`, ...) implementing `crate::effects::Effects`;
 /// - per (dimension, family, valid set), `step_{d}d_{family}_{effects|hydro}`, calling
-///   `<Family as crate::schemes::SchemeFamily>::step::<D, Fx.., X>`, gated by
+///   `<Family as crate::schemes::SchemeFamily>::checked_step::<D, Fx.., X>`, gated by
 ///   `#[cfg(all(feature = "dim{d}", feature = "scheme-{family}", <effect features>))]`;
 /// - per dimension, `select_{d}d(family, effects) -> Option<StepFn<D, X>>`;
 /// - `Specialisation` and `CATALOGUE`, every specialisation with whether it is compiled.

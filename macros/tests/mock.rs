@@ -90,7 +90,7 @@ mod schemes {
     use crate::state::{Family, StepError, StepParams, System, Workspace};
 
     pub trait SchemeFamily {
-        fn step<const D: usize, E: Effects, X: Executor>(
+        fn checked_step<const D: usize, E: Effects, X: Executor>(
             sys: &mut System<'_, D>,
             ws: &mut Workspace<'_, D>,
             params: &StepParams<'_, D>,
@@ -124,7 +124,7 @@ mod schemes {
                 pub struct $ty;
 
                 impl super::SchemeFamily for $ty {
-                    fn step<const D: usize, E: super::Effects, X: super::Executor>(
+                    fn checked_step<const D: usize, E: super::Effects, X: super::Executor>(
                         sys: &mut super::System<'_, D>,
                         _: &mut super::Workspace<'_, D>,
                         _: &super::StepParams<'_, D>,

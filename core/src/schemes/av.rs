@@ -27,7 +27,9 @@ use crate::effects::{EffectSet, Effects};
 use crate::exec::Executor;
 use crate::halo::{Exchange, Fields, Halo};
 use crate::math::{Matrix, Real, Sym3, Vector};
-use crate::state::{Aux, AvRates, Family, PairGeom, StepError, StepParams, System, Workspace};
+use crate::state::{
+    Aux, AvRates, Family, Layout, PairGeom, StepError, StepParams, System, Workspace,
+};
 
 /// The halo exchanges of an `av` step (see [`crate::halo`]). The step is: kick and drift
 /// (local), then the rate evaluation — the pair geometry (x, h), the per-particle aux
@@ -131,6 +133,14 @@ impl SchemeFamily for Av {
         .union(EffectSet::HEAT)
         .union(EffectSet::PERIODIC)
         .union(EffectSet::ARTIFICIAL_STRESS);
+    const EXCHANGES: &'static [Exchange] = &EXCHANGES;
+
+    fn layout(effects: EffectSet) -> Layout {
+        Layout {
+            av: true,
+            ..Layout::base(effects)
+        }
+    }
 
     fn step<const D: usize, E: Effects, X: Executor>(
         sys: &mut System<'_, D>,
@@ -141,15 +151,6 @@ impl SchemeFamily for Av {
     ) -> Result<(), StepError> {
         let dt = params.dt;
         let hdt = 0.5 * dt;
-        let pairs = params.nbrs.unordered_pairs();
-        if ws.av.len() != sys.len()
-            || ws.aux.len() != sys.len()
-            || ws.geom.len() != pairs
-            || (params.has::<E>(EffectSet::ARTIFICIAL_STRESS)
-                && (ws.art.len() != sys.len() || ws.fac.len() != pairs))
-        {
-            return Err(StepError::Storage { field: "av" });
-        }
         if !ws.primed {
             halo_exchange!(params, halo, &EXCHANGES[0], sys, ws);
             rates::<D, E, X>(sys, ws, params, exec);

@@ -21,15 +21,38 @@ pub mod ts;
 
 use crate::effects::{EffectSet, Effects};
 use crate::exec::Executor;
-use crate::halo::Halo;
-use crate::state::{Family, StepError, StepParams, System, Workspace};
+use crate::halo::{Exchange, Halo};
+use crate::state::{Family, Layout, StepError, StepParams, System, Workspace};
 
-/// One scheme family: advances the particles by one step of `params.dt`.
+/// One scheme family: advances the particles by one step of `params.dt`. What the rest
+/// of the code needs to know of a family is here, declared by the family's module: the
+/// effects it runs with, the exchanges its step makes, the workspace it needs; [`Family`]
+/// hands them out at run time.
 pub trait SchemeFamily {
     /// The family.
     const FAMILY: Family;
     /// The effects this family can run with (others are rejected before stepping).
     const SUPPORTED: EffectSet;
+    /// The halo exchanges a step makes, in order (see [`crate::halo`]).
+    const EXCHANGES: &'static [Exchange];
+    /// The workspace arrays a step with `effects` reads and writes.
+    fn layout(effects: EffectSet) -> Layout;
+    /// [`SchemeFamily::step`] after checking the particle and workspace arrays have the
+    /// lengths `params.effects` and [`SchemeFamily::layout`] give them (the one storage
+    /// check of every family).
+    #[inline]
+    fn checked_step<const D: usize, E: Effects, X: Executor>(
+        sys: &mut System<'_, D>,
+        ws: &mut Workspace<'_, D>,
+        params: &StepParams<'_, D>,
+        exec: &X,
+        halo: &mut dyn Halo<D>,
+    ) -> Result<(), StepError> {
+        sys.check_storage(params.effects)?;
+        let layout = Self::layout(params.effects);
+        ws.check(&layout, sys.len(), params.nbrs.unordered_pairs())?;
+        Self::step::<D, E, X>(sys, ws, params, exec, halo)
+    }
     /// Advances `sys` by one time step, calling `halo` before each pass that reads a
     /// neighbour field an earlier pass changed (see [`crate::halo`]; serial: [`NoHalo`]).
     ///
@@ -109,12 +132,32 @@ impl Scheme {
     }
 }
 
-/// The effects a family supports.
-pub const fn supported(family: Family) -> EffectSet {
-    match family {
-        Family::Av => av::Av::SUPPORTED,
-        Family::Pm => pm::Pm::SUPPORTED,
-        Family::Ts => ts::Ts::SUPPORTED,
+impl Family {
+    /// The effects the family supports ([`SchemeFamily::SUPPORTED`]).
+    pub const fn supported(self) -> EffectSet {
+        match self {
+            Family::Av => av::Av::SUPPORTED,
+            Family::Pm => pm::Pm::SUPPORTED,
+            Family::Ts => ts::Ts::SUPPORTED,
+        }
+    }
+
+    /// The exchanges a step of the family makes, in order ([`SchemeFamily::EXCHANGES`]).
+    pub const fn exchanges(self) -> &'static [Exchange] {
+        match self {
+            Family::Av => av::Av::EXCHANGES,
+            Family::Pm => pm::Pm::EXCHANGES,
+            Family::Ts => ts::Ts::EXCHANGES,
+        }
+    }
+
+    /// The workspace arrays a step with `effects` needs ([`SchemeFamily::layout`]).
+    pub fn layout(self, effects: EffectSet) -> Layout {
+        match self {
+            Family::Av => av::Av::layout(effects),
+            Family::Pm => pm::Pm::layout(effects),
+            Family::Ts => ts::Ts::layout(effects),
+        }
     }
 }
 

@@ -38,8 +38,8 @@ use crate::limiter::{bounded_extrapolation, Limiter};
 use crate::math::{det, inverse, Matrix, Real, Sym3, Vector};
 use crate::riemann::{acoustic_star_vector, elastic_star_vector, two_shock_star, ShockSide};
 use crate::state::{
-    Aux, Correction, Family, Gradients, PairGeom, PairSums, PmStar, RiemannSolver, StepError,
-    StepParams, System, Workspace,
+    Aux, Correction, Family, Gradients, Layout, PairGeom, PairSums, PmStar, RiemannSolver,
+    StepError, StepParams, System, Workspace,
 };
 
 /// The halo exchanges of a `pm`/`tkc` step, in order (see [`crate::halo`]).
@@ -238,6 +238,16 @@ impl SchemeFamily for Pm {
         .union(EffectSet::CORRECTION)
         .union(EffectSet::MUSCL)
         .union(EffectSet::ARTIFICIAL_STRESS);
+    const EXCHANGES: &'static [Exchange] = &EXCHANGES;
+
+    fn layout(effects: EffectSet) -> Layout {
+        Layout {
+            grad_stress: effects.contains(EffectSet::MUSCL)
+                && effects.contains(EffectSet::STRENGTH),
+            pm_star: true,
+            ..Layout::base(effects)
+        }
+    }
 
     fn step<const D: usize, E: Effects, X: Executor>(
         sys: &mut System<'_, D>,
@@ -246,19 +256,6 @@ impl SchemeFamily for Pm {
         exec: &X,
         halo: &mut dyn Halo<D>,
     ) -> Result<(), StepError> {
-        let n = sys.len();
-        if ws.sums.len() != n
-            || (E::CORRECTION && ws.corr.len() != n)
-            || (E::MUSCL && ws.grad.len() != n)
-            || (E::MUSCL && E::STRENGTH && ws.grad_stress.len() != n)
-            || ws.aux.len() != n
-            || ws.pm_star.len() != params.nbrs.unordered_pairs()
-            || ws.geom.len() != params.nbrs.unordered_pairs()
-            || (params.has::<E>(EffectSet::ARTIFICIAL_STRESS)
-                && (ws.art.len() != n || ws.fac.len() != params.nbrs.unordered_pairs()))
-        {
-            return Err(StepError::Storage { field: "workspace" });
-        }
         let dt = params.dt;
         let [start, pair, dynamic] = &EXCHANGES;
         halo_exchange!(params, halo, start, sys, ws);

@@ -61,8 +61,8 @@ use crate::limiter::bounded_extrapolation;
 use crate::math::{det, inverse, real, Matrix, Real, Sym3, Vector};
 use crate::riemann::{pressure_star, two_shock_star, PressureSide, ShockSide};
 use crate::state::{
-    Aux, Family, Gradients, MusclTime, PairGeom, PairSums, RiemannSolver, StepError, StepParams,
-    System, TsStar, Workspace,
+    Aux, Family, Gradients, Layout, MusclTime, PairGeom, PairSums, RiemannSolver, StepError,
+    StepParams, System, TsStar, Workspace,
 };
 
 /// The halo exchanges of a `ts` step, in order (see [`crate::halo`]).
@@ -501,6 +501,14 @@ impl SchemeFamily for Ts {
         .union(EffectSet::PERIODIC)
         .union(EffectSet::MUSCL)
         .union(EffectSet::ARTIFICIAL_STRESS);
+    const EXCHANGES: &'static [Exchange] = &EXCHANGES;
+
+    fn layout(effects: EffectSet) -> Layout {
+        Layout {
+            ts_star: true,
+            ..Layout::base(effects)
+        }
+    }
 
     fn step<const D: usize, E: Effects, X: Executor>(
         sys: &mut System<'_, D>,
@@ -509,17 +517,6 @@ impl SchemeFamily for Ts {
         exec: &X,
         halo: &mut dyn Halo<D>,
     ) -> Result<(), StepError> {
-        let n = sys.len();
-        if ws.sums.len() != n
-            || (E::MUSCL && ws.grad.len() != n)
-            || ws.aux.len() != n
-            || ws.ts_star.len() != params.nbrs.unordered_pairs()
-            || ws.geom.len() != params.nbrs.unordered_pairs()
-            || (params.has::<E>(EffectSet::ARTIFICIAL_STRESS)
-                && (ws.art.len() != n || ws.fac.len() != params.nbrs.unordered_pairs()))
-        {
-            return Err(StepError::Storage { field: "workspace" });
-        }
         let dt = params.dt;
         // 1. Kinematics at the start of the step: gradients, then density from the contact
         //    velocities (seed 000 eq 22) and the deviator from the velocity gradient.

@@ -96,7 +96,9 @@ pub fn command(args: CheckArgs) -> Result<(), String> {
                 s.name
             );
             // what crosses rank boundaries under MPI (docs/mpi.md)
-            let halo: Vec<String> = gsph_core::halo::exchanges_of(scheme.family())
+            let halo: Vec<String> = scheme
+                .family()
+                .exchanges()
                 .iter()
                 .filter(|x| x.applies(effects))
                 .map(|x| {

@@ -115,7 +115,7 @@ impl std::fmt::Display for SimError {
                 "scheme {} cannot run the effects {effects} (no build has that specialisation; the {} family supports {})",
                 scheme.name(),
                 crate::specs::family_name(scheme.family()),
-                gsph_core::schemes::supported(scheme.family())
+                scheme.family().supported()
             ),
         }
     }

@@ -177,9 +177,7 @@ impl<const D: usize> Sim<D> {
             .collect();
         let scheme = Scheme::from_name(&scene.scheme).expect("validated scheme");
         let effects = resolve_effects(scene, &materials);
-        let unsupported = effects
-            .kernel_part()
-            .without(gsph_core::schemes::supported(scheme.family()));
+        let unsupported = effects.kernel_part().without(scheme.family().supported());
         if unsupported != EffectSet::HYDRO {
             return Err(SimError::Unsupported {
                 scheme,

@@ -96,7 +96,7 @@ pub fn step_1d_av_hydro<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::av::Av as crate::schemes::SchemeFamily>::checked_step::<
         1,
         FxHydro,
         X,
@@ -114,7 +114,7 @@ pub fn step_1d_av_strength<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::av::Av as crate::schemes::SchemeFamily>::checked_step::<
         1,
         FxStrength,
         X,
@@ -132,7 +132,7 @@ pub fn step_1d_pm_hydro<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
         1,
         FxHydro,
         X,
@@ -150,7 +150,7 @@ pub fn step_1d_pm_strength<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
         1,
         FxStrength,
         X,
@@ -168,7 +168,7 @@ pub fn step_1d_pm_correction<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
         1,
         FxCorrection,
         X,
@@ -193,7 +193,7 @@ pub fn step_1d_pm_strength_correction<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
         1,
         FxStrengthCorrection,
         X,
@@ -211,7 +211,7 @@ pub fn step_1d_pm_muscl<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
         1,
         FxMuscl,
         X,
@@ -236,7 +236,7 @@ pub fn step_1d_pm_strength_muscl<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
         1,
         FxStrengthMuscl,
         X,
@@ -261,7 +261,7 @@ pub fn step_1d_pm_correction_muscl<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
         1,
         FxCorrectionMuscl,
         X,
@@ -287,7 +287,7 @@ pub fn step_1d_pm_strength_correction_muscl<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
         1,
         FxStrengthCorrectionMuscl,
         X,
@@ -305,7 +305,7 @@ pub fn step_1d_ts_hydro<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::checked_step::<
         1,
         FxHydro,
         X,
@@ -323,7 +323,7 @@ pub fn step_1d_ts_strength<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::checked_step::<
         1,
         FxStrength,
         X,
@@ -341,7 +341,7 @@ pub fn step_1d_ts_muscl<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::checked_step::<
         1,
         FxMuscl,
         X,
@@ -366,7 +366,7 @@ pub fn step_1d_ts_strength_muscl<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::checked_step::<
         1,
         FxStrengthMuscl,
         X,
@@ -543,7 +543,7 @@ pub fn step_2d_av_hydro<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::av::Av as crate::schemes::SchemeFamily>::checked_step::<
         2,
         FxHydro,
         X,
@@ -561,7 +561,7 @@ pub fn step_2d_av_strength<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::av::Av as crate::schemes::SchemeFamily>::checked_step::<
         2,
         FxStrength,
         X,
@@ -579,7 +579,7 @@ pub fn step_2d_pm_hydro<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
         2,
         FxHydro,
         X,
@@ -597,7 +597,7 @@ pub fn step_2d_pm_strength<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
         2,
         FxStrength,
         X,
@@ -615,7 +615,7 @@ pub fn step_2d_pm_correction<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
         2,
         FxCorrection,
         X,
@@ -640,7 +640,7 @@ pub fn step_2d_pm_strength_correction<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
         2,
         FxStrengthCorrection,
         X,
@@ -658,7 +658,7 @@ pub fn step_2d_pm_muscl<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
         2,
         FxMuscl,
         X,
@@ -683,7 +683,7 @@ pub fn step_2d_pm_strength_muscl<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
         2,
         FxStrengthMuscl,
         X,
@@ -708,7 +708,7 @@ pub fn step_2d_pm_correction_muscl<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
         2,
         FxCorrectionMuscl,
         X,
@@ -734,7 +734,7 @@ pub fn step_2d_pm_strength_correction_muscl<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
         2,
         FxStrengthCorrectionMuscl,
         X,
@@ -752,7 +752,7 @@ pub fn step_2d_ts_hydro<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::checked_step::<
         2,
         FxHydro,
         X,
@@ -770,7 +770,7 @@ pub fn step_2d_ts_strength<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::checked_step::<
         2,
         FxStrength,
         X,
@@ -788,7 +788,7 @@ pub fn step_2d_ts_muscl<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::checked_step::<
         2,
         FxMuscl,
         X,
@@ -813,7 +813,7 @@ pub fn step_2d_ts_strength_muscl<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::checked_step::<
         2,
         FxStrengthMuscl,
         X,
@@ -990,7 +990,7 @@ pub fn step_3d_av_hydro<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::av::Av as crate::schemes::SchemeFamily>::checked_step::<
         3,
         FxHydro,
         X,
@@ -1008,7 +1008,7 @@ pub fn step_3d_av_strength<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::av::Av as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::av::Av as crate::schemes::SchemeFamily>::checked_step::<
         3,
         FxStrength,
         X,
@@ -1026,7 +1026,7 @@ pub fn step_3d_pm_hydro<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
         3,
         FxHydro,
         X,
@@ -1044,7 +1044,7 @@ pub fn step_3d_pm_strength<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
         3,
         FxStrength,
         X,
@@ -1062,7 +1062,7 @@ pub fn step_3d_pm_correction<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
         3,
         FxCorrection,
         X,
@@ -1087,7 +1087,7 @@ pub fn step_3d_pm_strength_correction<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
         3,
         FxStrengthCorrection,
         X,
@@ -1105,7 +1105,7 @@ pub fn step_3d_pm_muscl<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
         3,
         FxMuscl,
         X,
@@ -1130,7 +1130,7 @@ pub fn step_3d_pm_strength_muscl<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
         3,
         FxStrengthMuscl,
         X,
@@ -1155,7 +1155,7 @@ pub fn step_3d_pm_correction_muscl<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
         3,
         FxCorrectionMuscl,
         X,
@@ -1181,7 +1181,7 @@ pub fn step_3d_pm_strength_correction_muscl<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
         3,
         FxStrengthCorrectionMuscl,
         X,
@@ -1199,7 +1199,7 @@ pub fn step_3d_ts_hydro<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::checked_step::<
         3,
         FxHydro,
         X,
@@ -1217,7 +1217,7 @@ pub fn step_3d_ts_strength<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::checked_step::<
         3,
         FxStrength,
         X,
@@ -1235,7 +1235,7 @@ pub fn step_3d_ts_muscl<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::checked_step::<
         3,
         FxMuscl,
         X,
@@ -1260,7 +1260,7 @@ pub fn step_3d_ts_strength_muscl<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::checked_step::<
         3,
         FxStrengthMuscl,
         X,

@@ -75,7 +75,7 @@ pub fn step_2d_pm_hydro<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
         2,
         FxHydro,
         X,
@@ -93,7 +93,7 @@ pub fn step_2d_pm_strength<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
         2,
         FxStrength,
         X,
@@ -111,7 +111,7 @@ pub fn step_2d_pm_strength_plasticity<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
         2,
         FxStrengthPlasticity,
         X,
@@ -129,7 +129,7 @@ pub fn step_2d_pm_periodic<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
         2,
         FxPeriodic,
         X,
@@ -154,7 +154,7 @@ pub fn step_2d_pm_strength_periodic<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
         2,
         FxStrengthPeriodic,
         X,
@@ -179,7 +179,7 @@ pub fn step_2d_pm_strength_plasticity_periodic<X: crate::exec::Executor>(
     exec: &X,
     halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::step::<
+    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
         2,
         FxStrengthPlasticityPeriodic,
         X,
