@@ -464,6 +464,35 @@ pub enum MusclTime {
     None,
 }
 
+impl RiemannSolver {
+    /// The scene names, in the order messages list them.
+    pub const NAMES: [&'static str; 2] = ["acoustic", "two_shock"];
+
+    /// The solver of a scene name.
+    pub fn from_name(name: &str) -> Option<RiemannSolver> {
+        match name {
+            "acoustic" => Some(RiemannSolver::Acoustic),
+            "two_shock" => Some(RiemannSolver::TwoShock),
+            _ => None,
+        }
+    }
+}
+
+impl MusclTime {
+    /// The scene names, in the order messages list them.
+    pub const NAMES: [&'static str; 3] = ["predictor", "courant", "none"];
+
+    /// The time treatment of a scene name.
+    pub fn from_name(name: &str) -> Option<MusclTime> {
+        match name {
+            "predictor" => Some(MusclTime::Predictor),
+            "courant" => Some(MusclTime::CourantFactor),
+            "none" => Some(MusclTime::None),
+            _ => None,
+        }
+    }
+}
+
 /// Scheme options (with the defaults of the seeds).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SchemeOptions {

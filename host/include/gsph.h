@@ -169,9 +169,11 @@ int gsph_advance(gsph_sim *sim, double t, uint64_t *steps);
 // in parallel.
 int gsph_run(gsph_sim *sim, uint64_t *steps);
 
-// Values per particle of the field `name` (position, velocity, mass, density, pressure,
-// energy, sound_speed, deviator, plastic_strain, damage, temperature, h, material; or
-// the short names of final.csv: x, v, m, rho, p, e, c, s, eps_p, temp).
+// Values per particle of the field `name`: an `api` name of the core's particle table
+// (position, velocity, mass, material, density, pressure, energy, sound_speed,
+// longitudinal_sound_speed, deviator, plastic_strain, damage, temperature, h,
+// reference_position, det_f) or the table's own (x, v, m, mat, rho, p, e, c, cl, s,
+// eps_p, temp, x0); docs/embedding.md.
 //
 // Thread safety: one call at a time per handle (GSPH_ERR_BUSY otherwise); distinct handles
 // in parallel.

@@ -22,7 +22,8 @@ use super::common::{
     artificial_stress_tensors, cauchy, deviator_rate, equivalent_strain_rate, for_each_pair,
     geometry_pass, halo_exchange, outer, refresh_aux, refresh_eos, return_deviator,
 };
-use super::SchemeFamily;
+use super::options::{read_if, why, NotRead, OptionKey};
+use super::{Scheme, SchemeFamily};
 use crate::effects::{EffectSet, Effects};
 use crate::exec::Executor;
 use crate::halo::{Exchange, Fields, Halo};
@@ -123,6 +124,19 @@ fn rates<const D: usize, E: Effects, X: Executor>(
             };
         }
     });
+}
+
+/// Whether scheme `av` reads `key`, or why not ([`crate::schemes::options`]).
+pub(crate) fn reads(scheme: Scheme, key: OptionKey) -> Result<(), NotRead> {
+    use OptionKey::*;
+    match key {
+        AvAlpha | AvBeta | ArtificialStress | ArtificialStressExponent => Ok(()),
+        Limiter => read_if(false, scheme, why::NO_MUSCL),
+        Riemann => read_if(false, scheme, why::NO_RIEMANN),
+        MusclTime => read_if(false, scheme, why::NO_MUSCL_TIME),
+        SurfaceLambda | DetEpsilon => read_if(false, scheme, why::NO_SURFACE),
+        Correction | Muscl => Err(NotRead::OnlyPm { scheme }),
+    }
 }
 
 impl SchemeFamily for Av {

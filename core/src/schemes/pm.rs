@@ -30,7 +30,8 @@ use super::common::{
     halo_exchange, min_sym_eigenvalue, outer, refresh_aux, refresh_eos, refresh_pressure,
     solve_pairs, Pair,
 };
-use super::SchemeFamily;
+use super::options::{read_if, why, NotRead, OptionKey};
+use super::{Scheme, SchemeFamily};
 use crate::effects::{EffectSet, Effects};
 use crate::exec::Executor;
 use crate::halo::{Exchange, Fields, Halo};
@@ -39,7 +40,7 @@ use crate::math::{det, inverse, Matrix, Real, Sym3, Vector};
 use crate::riemann::{acoustic_star_vector, elastic_star_vector, two_shock_star, ShockSide};
 use crate::state::{
     Aux, Correction, Family, Gradients, Layout, PairGeom, PairSums, PmStar, RiemannSolver,
-    StepError, StepParams, System, Workspace,
+    SchemeOptions, StepError, StepParams, System, Workspace,
 };
 
 /// The halo exchanges of a `pm`/`tkc` step, in order (see [`crate::halo`]).
@@ -226,6 +227,37 @@ fn gradient_pass<const D: usize, E: Effects, X: Executor>(
             }
         },
     );
+}
+
+/// Whether a scheme of the contact family (`pm`, `tkc`) reads `key` with `effects` (its
+/// own and those the scene's `correction` and `muscl` ask for), or why not
+/// ([`crate::schemes::options`]).
+pub(crate) fn reads(scheme: Scheme, key: OptionKey, effects: EffectSet) -> Result<(), NotRead> {
+    use OptionKey::*;
+    match key {
+        AvAlpha | AvBeta => read_if(false, scheme, why::AV_ONLY),
+        Limiter => read_if(effects.contains(EffectSet::MUSCL), scheme, why::NO_MUSCL),
+        Riemann | ArtificialStress | ArtificialStressExponent => Ok(()),
+        MusclTime => read_if(false, scheme, why::NO_MUSCL_TIME),
+        SurfaceLambda | DetEpsilon => read_if(
+            effects.contains(EffectSet::CORRECTION),
+            scheme,
+            why::NO_SURFACE,
+        ),
+        Correction if scheme == Scheme::Tkc => Err(NotRead::Always { what: "correction" }),
+        Muscl if scheme == Scheme::Tkc => Err(NotRead::Always { what: "MUSCL" }),
+        Correction | Muscl => Ok(()),
+    }
+}
+
+/// The options a scheme of the contact family starts from: `tkc` limits with minmod
+/// (Rublev & Murzov), `pm` with MUSCL keeps the seeds' superbee.
+pub(crate) fn defaults(scheme: Scheme) -> SchemeOptions {
+    let mut o = SchemeOptions::default();
+    if scheme == Scheme::Tkc {
+        o.limiter = Limiter::Minmod;
+    }
+    o
 }
 
 impl SchemeFamily for Pm {

@@ -53,7 +53,8 @@ use super::common::{
     halo_exchange, min_sym_eigenvalue, outer, pair_pressure, refresh_aux, refresh_eos,
     refresh_pressure, solve_pairs,
 };
-use super::SchemeFamily;
+use super::options::{read_if, why, NotRead, OptionKey};
+use super::{Scheme, SchemeFamily};
 use crate::effects::{EffectSet, Effects};
 use crate::exec::{Executor, Optional};
 use crate::halo::{Exchange, Fields, Halo};
@@ -490,6 +491,22 @@ fn hydro_pass<const D: usize, E: Effects, X: Executor>(
             out.power = power;
         }
     });
+}
+
+/// Whether a scheme of the time-split family (`ts1`, `ts2`) reads `key`, or why not
+/// ([`crate::schemes::options`]).
+pub(crate) fn reads(scheme: Scheme, key: OptionKey) -> Result<(), NotRead> {
+    use OptionKey::*;
+    let muscl = scheme.effects().contains(EffectSet::MUSCL);
+    match key {
+        AvAlpha | AvBeta => read_if(false, scheme, why::AV_ONLY),
+        Limiter => read_if(muscl, scheme, why::NO_MUSCL),
+        MusclTime => read_if(muscl, scheme, why::NO_MUSCL_TIME),
+        Riemann | SurfaceLambda | DetEpsilon | ArtificialStress | ArtificialStressExponent => {
+            Ok(())
+        }
+        Correction | Muscl => Err(NotRead::OnlyPm { scheme }),
+    }
 }
 
 impl SchemeFamily for Ts {

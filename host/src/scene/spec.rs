@@ -1,6 +1,9 @@
 //! The scene schema (serde). Units are SI; every field is documented in `cases/README.md`.
 
 pub use super::material_spec::{EosSpec, MaterialSpec, StrengthSpec};
+use gsph_core::limiter::Limiter;
+use gsph_core::schemes::options::{OptionKey, SceneOptions};
+use gsph_core::state::{MusclTime, RiemannSolver};
 use serde::{Deserialize, Serialize};
 
 pub(super) fn one() -> f64 {
@@ -261,6 +264,60 @@ pub struct OptionsSpec {
     /// The exponent n of the artificial stress's `(W(r)/W(dp))^n` (default 4).
     #[serde(default)]
     pub artificial_stress_exponent: Option<u32>,
+}
+
+impl OptionsSpec {
+    /// Whether the scene sets `key` (whatever its value).
+    pub fn is_set(&self, key: OptionKey) -> bool {
+        match key {
+            OptionKey::AvAlpha => self.av_alpha.is_some(),
+            OptionKey::AvBeta => self.av_beta.is_some(),
+            OptionKey::Limiter => self.limiter.is_some(),
+            OptionKey::Riemann => self.riemann.is_some(),
+            OptionKey::MusclTime => self.muscl_time.is_some(),
+            OptionKey::SurfaceLambda => self.surface_lambda.is_some(),
+            OptionKey::DetEpsilon => self.det_epsilon.is_some(),
+            OptionKey::Correction => self.correction.is_some(),
+            OptionKey::Muscl => self.muscl.is_some(),
+            OptionKey::ArtificialStress => self.artificial_stress.is_some(),
+            OptionKey::ArtificialStressExponent => self.artificial_stress_exponent.is_some(),
+        }
+    }
+
+    /// Removes `key` from the scene.
+    pub fn unset(&mut self, key: OptionKey) {
+        match key {
+            OptionKey::AvAlpha => self.av_alpha = None,
+            OptionKey::AvBeta => self.av_beta = None,
+            OptionKey::Limiter => self.limiter = None,
+            OptionKey::Riemann => self.riemann = None,
+            OptionKey::MusclTime => self.muscl_time = None,
+            OptionKey::SurfaceLambda => self.surface_lambda = None,
+            OptionKey::DetEpsilon => self.det_epsilon = None,
+            OptionKey::Correction => self.correction = None,
+            OptionKey::Muscl => self.muscl = None,
+            OptionKey::ArtificialStress => self.artificial_stress = None,
+            OptionKey::ArtificialStressExponent => self.artificial_stress_exponent = None,
+        }
+    }
+
+    /// The options as the core's types (names parsed; a name validation refuses reads as
+    /// unset).
+    pub fn to_core(&self) -> SceneOptions {
+        SceneOptions {
+            av_alpha: self.av_alpha,
+            av_beta: self.av_beta,
+            limiter: self.limiter.as_deref().and_then(Limiter::from_name),
+            riemann: self.riemann.as_deref().and_then(RiemannSolver::from_name),
+            muscl_time: self.muscl_time.as_deref().and_then(MusclTime::from_name),
+            surface_lambda: self.surface_lambda,
+            det_epsilon: self.det_epsilon,
+            correction: self.correction,
+            muscl: self.muscl,
+            artificial_stress: self.artificial_stress,
+            artificial_stress_exponent: self.artificial_stress_exponent,
+        }
+    }
 }
 
 /// Output schedule.

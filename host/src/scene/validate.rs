@@ -6,6 +6,7 @@ use super::validate_parts::{material_known, validate_eos, validate_shape, valida
 use super::SceneError;
 use gsph_core::limiter::Limiter;
 use gsph_core::schemes::Scheme;
+use gsph_core::state::{MusclTime, RiemannSolver};
 
 pub(super) type R = Result<(), SceneError>;
 
@@ -269,18 +270,24 @@ fn validate_with(s: &Scene, bodies_required: bool) -> R {
         }
     }
     if let Some(r) = &o.riemann {
-        if r != "acoustic" && r != "two_shock" {
+        if RiemannSolver::from_name(r).is_none() {
             return fail(
                 "options.riemann",
-                format!("unknown Riemann solver `{r}` (known: acoustic, two_shock)"),
+                format!(
+                    "unknown Riemann solver `{r}` (known: {})",
+                    RiemannSolver::NAMES.join(", ")
+                ),
             );
         }
     }
     if let Some(m) = &o.muscl_time {
-        if !["predictor", "courant", "none"].contains(&m.as_str()) {
+        if MusclTime::from_name(m).is_none() {
             return fail(
                 "options.muscl_time",
-                format!("unknown value `{m}` (known: predictor, courant, none)"),
+                format!(
+                    "unknown value `{m}` (known: {})",
+                    MusclTime::NAMES.join(", ")
+                ),
             );
         }
     }

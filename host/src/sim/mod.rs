@@ -7,7 +7,6 @@ use crate::output::{ParticleRow, ParticleTable};
 use crate::scene::{InitialParticles, Scene};
 use gsph_core::effects::EffectSet;
 use gsph_core::kernel::Kernel;
-use gsph_core::limiter::Limiter;
 use gsph_core::material::Material;
 use gsph_core::math::{Matrix, Real, Sym3, Vector};
 use gsph_core::neighbors::{NeighborError, Periodic};
@@ -191,47 +190,7 @@ impl<const D: usize> Sim<D> {
         })?;
         let n = parts.len();
         let kernel = kernel_of(&scene.kernel);
-        let opt = &scene.options;
-        let mut options = SchemeOptions::default();
-        if let Some(v) = opt.av_alpha {
-            options.av_alpha = v;
-        }
-        if let Some(v) = opt.av_beta {
-            options.av_beta = v;
-        }
-        if let Some(l) = &opt.limiter {
-            options.limiter = Limiter::from_name(l).expect("validated limiter");
-        }
-        if scheme == Scheme::Tkc && opt.limiter.is_none() {
-            options.limiter = Limiter::Minmod;
-        }
-        if let Some(r) = &opt.riemann {
-            options.riemann = if r == "two_shock" {
-                RiemannSolver::TwoShock
-            } else {
-                RiemannSolver::Acoustic
-            };
-        }
-        if let Some(m) = &opt.muscl_time {
-            options.muscl_time = match m.as_str() {
-                "courant" => MusclTime::CourantFactor,
-                "predictor" => MusclTime::Predictor,
-                _ => MusclTime::None,
-            };
-        }
-        if let Some(v) = opt.surface_lambda {
-            options.surface_lambda = v;
-        }
-        if let Some(v) = opt.det_epsilon {
-            options.det_epsilon = v;
-        }
-        if let Some(eps) = opt.artificial_stress {
-            options.artificial_stress.epsilon = eps;
-        }
-        if let Some(n) = opt.artificial_stress_exponent {
-            options.artificial_stress.exponent = n;
-        }
-        options.constant_h = scene.constant_h;
+        let options = scene.options.to_core().resolve(scheme, scene.constant_h);
         let periodic = match &scene.periodic {
             None => Periodic::none(),
             Some(p) => {
