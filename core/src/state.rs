@@ -230,45 +230,6 @@ impl<const D: usize> Default for Correction<D> {
     }
 }
 
-/// State of the leap-frog integration of `av` kept between steps.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct AvRates<const D: usize> {
-    /// dv/dt.
-    pub acc: Vector<D>,
-    /// de/dt.
-    pub de: Real,
-    /// drho/dt.
-    pub drho: Real,
-    /// dS/dt.
-    pub ds: Sym3,
-    /// Equivalent strain rate, 1/s (rate-dependent strength).
-    pub rate: Real,
-    /// Half-step velocity (scratch).
-    pub v_half: Vector<D>,
-    /// Half-step energy (scratch).
-    pub e_half: Real,
-    /// Half-step density (scratch).
-    pub rho_half: Real,
-    /// Half-step deviator (scratch).
-    pub s_half: Sym3,
-}
-
-impl<const D: usize> Default for AvRates<D> {
-    fn default() -> Self {
-        AvRates {
-            acc: Vector::<D>::zeros(),
-            de: 0.0,
-            drho: 0.0,
-            ds: Sym3::ZERO,
-            rate: 0.0,
-            v_half: Vector::<D>::zeros(),
-            e_half: 0.0,
-            rho_half: 0.0,
-            s_half: Sym3::ZERO,
-        }
-    }
-}
-
 /// Per-particle quantities that the pair loops read from neighbours, computed once per
 /// particle (not once per pair) whenever the density changes.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -304,36 +265,9 @@ impl<const D: usize> Default for PairGeom<D> {
     }
 }
 
-/// The star state of one pair of the time-split family's hydrodynamic Riemann problem,
-/// solved on the side of the pair's owner (`u` along the axis from the owner to the other
-/// particle).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct TsStar {
-    /// Contact velocity along the axis, m/s.
-    pub u: Real,
-    /// Contact pressure, Pa.
-    pub p: Real,
-}
-
-/// The star state of one pair of the contact family's elastic Riemann problem, solved on
-/// the side of the pair's owner (traction on the contact plane whose normal points from
-/// the owner to the other particle; seen from the other side it is `-t`).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct PmStar<const D: usize> {
-    /// Contact velocity, m/s.
-    pub v: Vector<D>,
-    /// Contact traction, Pa (tension positive).
-    pub t: Vector<D>,
-}
-
-impl<const D: usize> Default for PmStar<D> {
-    fn default() -> Self {
-        PmStar {
-            v: Vector::<D>::zeros(),
-            t: Vector::<D>::zeros(),
-        }
-    }
-}
+pub use crate::schemes::av::AvRates;
+pub use crate::schemes::pm::PmStar;
+pub use crate::schemes::ts::TsStar;
 
 /// Per-step scratch and scheme state owned by the caller. Arrays a family or effect set
 /// does not use are empty (see [`Layout`]).

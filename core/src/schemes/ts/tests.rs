@@ -1,13 +1,17 @@
 //! Unit tests of the `ts` reconstruction and continuity on small 1D systems.
 
+use super::pairs::{riemann_states, star};
 use super::*;
 use crate::exec::Serial;
 use crate::kernel::Kernel;
 use crate::material::eos::Linear;
 use crate::material::{Material, Strength};
 use crate::math::Sym3;
+use crate::math::Vector;
 use crate::neighbors::{build_naive, NeighborList, Periodic};
+use crate::schemes::common::{for_each_pair, pair_pressure};
 use crate::state::SchemeOptions;
+use crate::state::{Aux, Gradients};
 
 #[derive(Clone, Copy, Debug)]
 struct Failing;

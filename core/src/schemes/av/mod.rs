@@ -17,20 +17,20 @@
 //! the pair force gains `f_ij^n (R_i + R_j) . grad_i W_ij` (see
 //! [`super::artificial_stress`]), in the force and so in the energy rate.
 
-use super::artificial_stress::pair_acceleration;
-use super::common::{
-    artificial_stress_tensors, cauchy, deviator_rate, equivalent_strain_rate, for_each_pair,
-    geometry_pass, halo_exchange, outer, refresh_aux, refresh_eos, return_deviator,
-};
-use super::options::{read_if, why, NotRead, OptionKey};
-use super::{Scheme, SchemeFamily};
+mod options;
+mod pairs;
+mod records;
+
+pub(crate) use options::reads;
+use pairs::rates;
+
 use crate::effects::{EffectSet, Effects};
 use crate::exec::Executor;
 use crate::halo::{Exchange, Fields, Halo};
-use crate::math::{Matrix, Real, Sym3, Vector};
-use crate::state::{
-    Aux, AvRates, Family, Layout, PairGeom, StepError, StepParams, System, Workspace,
-};
+use crate::schemes::common::{halo_exchange, refresh_eos, return_deviator};
+use crate::schemes::SchemeFamily;
+use crate::state::{Family, Layout, StepError, StepParams, System, Workspace};
+pub use records::AvRates;
 
 /// The halo exchanges of an `av` step (see [`crate::halo`]). The step is: kick and drift
 /// (local), then the rate evaluation — the pair geometry (x, h), the per-particle aux
@@ -47,97 +47,6 @@ pub const EXCHANGES: [Exchange; 1] = [Exchange {
 /// The artificial-viscosity family.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Av;
-
-/// Evaluates the rates of every particle at the current state into `ws.av` (the pair
-/// geometry, artificial-stress tensors and per-particle aux of `ws` are its scratch).
-fn rates<const D: usize, E: Effects, X: Executor>(
-    sys: &System<'_, D>,
-    ws: &mut Workspace<'_, D>,
-    params: &StepParams<'_, D>,
-    exec: &X,
-) {
-    let (rates, geom, fac, art, aux) = (
-        &mut *ws.av,
-        &mut *ws.geom,
-        &mut *ws.fac,
-        &mut *ws.art,
-        &mut *ws.aux,
-    );
-    geometry_pass::<D, E, X>(sys.x, sys.h, params, geom, fac, exec);
-    refresh_aux::<D, false, X>(sys, aux, params, exec);
-    let art_on = params.has::<E>(EffectSet::ARTIFICIAL_STRESS);
-    if art_on {
-        artificial_stress_tensors::<D, E, X>(sys, art, params, exec);
-    }
-    let (geom, fac, art, aux): (&[PairGeom<D>], &[Real], &[Matrix<D>], &[Aux]) =
-        (geom, fac, art, aux);
-    let alpha = params.options.av_alpha;
-    let beta = params.options.av_beta;
-    exec.run(rates, |off, chunk: &mut [AvRates<D>]| {
-        for (k, out) in chunk.iter_mut().enumerate() {
-            let i = off + k;
-            let sig_i = cauchy::<D, E>(sys, i);
-            let (vi, rhoi, hi, cli) = (sys.v[i], sys.rho[i], sys.h[i], sys.cl[i]);
-            let inv_i = aux[i].inv_rho;
-            let mut acc = Vector::<D>::zeros();
-            let mut de: Real = 0.0;
-            let mut div: Real = 0.0;
-            let mut grad_v = Matrix::<D>::zeros();
-            for_each_pair(params, geom, i, |pr, e| {
-                let j = pr.j;
-                let aj = aux[j];
-                let vij = vi - sys.v[j];
-                // (v_i - v_j).(x_i - x_j) = -r (v_ij . n)
-                let vr = -pr.r * vij.dot(&pr.n);
-                let mut pi_ij = 0.0;
-                if vr < 0.0 {
-                    let hij = 0.5 * (hi + sys.h[j]);
-                    let mu = hij * vr / (pr.r * pr.r + 0.01 * hij * hij);
-                    let cij = 0.5 * (cli + sys.cl[j]);
-                    pi_ij = (-alpha * cij * mu + beta * mu * mu) / (0.5 * (rhoi + sys.rho[j]));
-                }
-                let sig = sig_i + cauchy::<D, E>(sys, j);
-                let mut t = sig.dot_vec(&pr.grad) * (inv_i * aj.inv_rho) - pr.grad * pi_ij;
-                if art_on {
-                    t += pair_acceleration(1.0, fac[e.pair], &art[i], &art[j], &pr.grad);
-                }
-                let mj = sys.m[j];
-                acc += t * mj;
-                de -= 0.5 * mj * vij.dot(&t);
-                div -= aj.vol * vij.dot(&pr.grad);
-                if E::STRENGTH {
-                    grad_v -= outer(&vij, &pr.grad) * aj.vol;
-                }
-            });
-            out.acc = acc;
-            out.de = de;
-            out.drho = -rhoi * div;
-            out.rate = if E::STRENGTH {
-                equivalent_strain_rate(&grad_v)
-            } else {
-                0.0
-            };
-            out.ds = if E::STRENGTH {
-                deviator_rate(&sys.s[i], &params.materials[sys.mat[i] as usize], &grad_v)
-            } else {
-                Sym3::ZERO
-            };
-        }
-    });
-}
-
-/// Whether scheme `av` reads `key`, or why not ([`crate::schemes::options`]).
-pub(crate) fn reads(scheme: Scheme, key: OptionKey) -> Result<(), NotRead> {
-    use OptionKey::*;
-    match key {
-        AvAlpha | AvBeta | ArtificialStress | ArtificialStressExponent => Ok(()),
-        Limiter => read_if(false, scheme, why::NO_MUSCL),
-        Riemann => read_if(false, scheme, why::NO_RIEMANN),
-        MusclTime => read_if(false, scheme, why::NO_MUSCL_TIME),
-        SurfaceLambda | DetEpsilon => read_if(false, scheme, why::NO_SURFACE),
-        Correction | Muscl => Err(NotRead::OnlyPm { scheme }),
-    }
-}
 
 impl SchemeFamily for Av {
     const FAMILY: Family = Family::Av;
