@@ -19,6 +19,8 @@ cargo test --workspace --exclude gsph-python --release --features gsph/mpi
 echo "== no_std: gsph-core for thumbv7em-none-eabihf"
 cargo build -p gsph-core --release --target thumbv7em-none-eabihf
 cargo build -p gsph-core --release --target thumbv7em-none-eabihf --no-default-features --features f32,dim1,scheme-ts,effects-strength
+# the scene-reading types (feature serde: no_std with serde's alloc)
+cargo build -p gsph-core --release --target thumbv7em-none-eabihf --no-default-features --features serde,dim1,scheme-ts
 # the firmware with every specialisation links into the board's memory map
 cargo rustc -p gsph-core --release --example firmware_flyer --target thumbv7em-none-eabihf -- -C link-arg=-Tcore/firmware/mps2_an386.ld
 echo "== firmware runner on the host (fails if stepping allocates)"

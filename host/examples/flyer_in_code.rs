@@ -10,8 +10,9 @@
 //! `gsph = { path = "host", default-features = false, features = ["dim1", "scheme-ts", "effects-strength"] }`.
 
 use gsph::api::{Effect, SceneBuilder};
-use gsph::scene::{BodySpec, EosSpec, MaterialSpec, ShapeSpec, StrengthSpec, VelocitySpec};
+use gsph::scene::{BodySpec, MaterialSpec, ShapeSpec, StrengthSpec, VelocitySpec};
 use gsph_core::kernel::Kernel;
+use gsph_core::material::eos::{Eos, Hugoniot};
 use gsph_core::schemes::Scheme;
 
 fn plate(min: f64, max: f64, velocity: f64) -> BodySpec {
@@ -37,10 +38,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         rho0: 6100.0,
         shear_modulus: 48.1e9,
         poisson_ratio: None,
-        eos: EosSpec::Hugoniot {
+        eos: Eos::Hugoniot(Hugoniot {
+            rho0: 0.0, // the material's rho0 is used
             c0: 5077.0,
             s1: 1.201,
-        },
+        }),
         strength: Some(StrengthSpec::VonMises {
             yield_stress: 2.5e9,
         }),

@@ -2,11 +2,12 @@
 //! `series.csv`.
 
 use crate::output::ParticleTable;
-use crate::scene::{EosSpec, ReferenceSpec, Scene, SceneError, StrengthSpec};
+use crate::scene::{Eos, ReferenceSpec, Scene, SceneError, StrengthSpec};
 use gsph_core::exact::{
     ElasticPlasticRiemann, EpRiemannParams, FlyerPlate, FlyerPlateParams, ShellCollapse,
     ShellParams, SoundPulse, SoundPulseParams,
 };
+use gsph_core::material::eos::{Hugoniot, Linear, Logarithmic};
 
 /// A case's exact or analytic solution.
 #[derive(Debug, Clone)]
@@ -135,7 +136,7 @@ impl Reference {
                 interface,
             } => {
                 let m = find(material);
-                let EosSpec::Hugoniot { c0, s1 } = m.eos else {
+                let Eos::Hugoniot(Hugoniot { c0, s1, .. }) = m.eos else {
                     return Err(SceneError(format!(
                         "reference.material: `{material}` must use the hugoniot EOS for the flyer-plate reference"
                     )));
@@ -161,7 +162,7 @@ impl Reference {
                 x_left,
             } => {
                 let m = find(material);
-                let EosSpec::Logarithmic { bulk_modulus } = m.eos else {
+                let Eos::Logarithmic(Logarithmic { bulk_modulus, .. }) = m.eos else {
                     return Err(SceneError(format!(
                         "reference.material: `{material}` must use the logarithmic EOS for this reference"
                     )));
@@ -188,7 +189,7 @@ impl Reference {
                 center,
             } => {
                 let m = find(material);
-                let EosSpec::Linear { c0, .. } = m.eos else {
+                let Eos::Linear(Linear { c0, .. }) = m.eos else {
                     return Err(SceneError(format!(
                         "reference.material: `{material}` must use the linear EOS for the sound-wave reference"
                     )));

@@ -6,7 +6,8 @@
 
 use gsph::api::{unset, Effect, Particles, SceneBuilder, Simulation};
 use gsph::driver::{run, RunOptions};
-use gsph::scene::{self, BodySpec, EosSpec, MaterialSpec, ShapeSpec, StrengthSpec, VelocitySpec};
+use gsph::scene::{self, BodySpec, MaterialSpec, ShapeSpec, StrengthSpec, VelocitySpec};
+use gsph_core::material::eos::{Eos, Hugoniot};
 use gsph_core::schemes::Scheme;
 use std::path::Path;
 
@@ -61,10 +62,11 @@ fn metal() -> MaterialSpec {
         rho0: 6100.0,
         shear_modulus: 48.1e9,
         poisson_ratio: None,
-        eos: EosSpec::Hugoniot {
+        eos: Eos::Hugoniot(Hugoniot {
+            rho0: 0.0, // the material's rho0 is used
             c0: 5077.0,
             s1: 1.201,
-        },
+        }),
         strength: Some(StrengthSpec::VonMises {
             yield_stress: 2.5e9,
         }),

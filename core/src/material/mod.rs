@@ -4,6 +4,7 @@
 //! `c_b` the bulk sound speed of the EOS.
 
 pub mod eos;
+pub mod params;
 pub mod strength;
 
 use crate::math::{real, Real};

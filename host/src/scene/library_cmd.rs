@@ -1,7 +1,7 @@
 //! `gsph materials`: the library listed, one material printed, a scene's resolved materials.
 
 use super::{find, not_in_library, source_line, table_of, Entry, LIBRARY};
-use crate::scene::{EosSpec, MaterialSpec, StrengthSpec};
+use crate::scene::{MaterialSpec, StrengthSpec};
 use std::path::Path;
 use toml::Value;
 
@@ -14,15 +14,7 @@ pub fn spec_of(e: &Entry) -> Result<MaterialSpec, String> {
 
 /// `EOS + strength [+ pressure cut-off]`, e.g. `mie_gruneisen + johnson_cook`.
 pub fn model_summary(m: &MaterialSpec) -> String {
-    let eos = match m.eos {
-        EosSpec::Linear { .. } => "linear",
-        EosSpec::Logarithmic { .. } => "logarithmic",
-        EosSpec::MieGruneisen { .. } => "mie_gruneisen",
-        EosSpec::Hugoniot { .. } => "hugoniot",
-        EosSpec::TwoCurve { .. } => "two_curve",
-        EosSpec::Polynomial { .. } => "polynomial",
-        EosSpec::Tillotson { .. } => "tillotson",
-    };
+    let eos = m.eos.name();
     let strength = match &m.strength {
         Some(StrengthSpec::Fluid {}) => "fluid",
         Some(StrengthSpec::Elastic {}) => "elastic",

@@ -3,7 +3,8 @@
 
 use super::super::{parse, parse_settings, Scene};
 use super::*;
-use crate::scene::{EosSpec, StrengthSpec};
+use crate::scene::StrengthSpec;
+use gsph_core::material::eos::{Eos, MieGruneisen, Tillotson};
 use std::path::PathBuf;
 
 fn cases_dir() -> PathBuf {
@@ -114,7 +115,7 @@ fn local_keys_override_the_library_key_by_key() {
         (800.0e6, 510.0e6),
         "a overridden, b from the library"
     );
-    let EosSpec::MieGruneisen { c0, gamma0, .. } = m.eos else {
+    let Eos::MieGruneisen(MieGruneisen { c0, gamma0, .. }) = m.eos else {
         panic!("{m:?}")
     };
     assert_eq!((c0, gamma0), (4569.0, 2.0));
@@ -480,9 +481,9 @@ fn al_tillotson_is_a_tillotson_fluid_and_bad_tillotson_parameters_are_refused() 
     let s = parse(&bar("", "al_tillotson"), "scene.toml", &[]).unwrap();
     let m = &s.materials[0];
     assert_eq!(model_summary(m), "tillotson + fluid");
-    let EosSpec::Tillotson {
+    let Eos::Tillotson(Tillotson {
         big_a, e_iv, e_cv, ..
-    } = m.eos
+    }) = m.eos
     else {
         panic!("{m:?}")
     };

@@ -1,7 +1,8 @@
-//! The materials of a scene (`[[materials]]`): the EOS and strength models with their
-//! parameters and units. Converted to the core's materials by [`super::materials`].
+//! The materials of a scene (`[[materials]]`): the EOS (the core's models, which read and
+//! check themselves) and strength models with their parameters and units. Converted to the core's materials by [`super::materials`].
 
 use super::spec::one;
+pub use gsph_core::material::Eos;
 use serde::{Deserialize, Serialize};
 
 /// A material. In a scene file a `[[materials]]` table may also say `library = "NAME"`,
@@ -21,8 +22,9 @@ pub struct MaterialSpec {
     /// modulus K = rho0 c² of the EOS at the reference state (seed 004's sound wave).
     #[serde(default)]
     pub poisson_ratio: Option<f64>,
-    /// Equation of state.
-    pub eos: EosSpec,
+    /// Equation of state: the core's [`Eos`], read from the `eos` table (`type` and the
+    /// model's parameters; its `rho0` is this material's, set by [`super::materials`]).
+    pub eos: Eos,
     /// Strength model (default: elastic if shear_modulus > 0, else fluid).
     #[serde(default)]
     pub strength: Option<StrengthSpec>,
@@ -30,86 +32,6 @@ pub struct MaterialSpec {
     /// 004 table 1: copper 0.35 GPa). Not with JH1, which has its own `tensile_limit`.
     #[serde(default)]
     pub tensile_strength: Option<f64>,
-}
-
-/// Equations of state (DESIGN §4).
-#[derive(Debug, Clone, Deserialize, Serialize)]
-#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
-pub enum EosSpec {
-    /// p = c0² (rho - rho0) + (gamma - 1) rho e.
-    Linear {
-        /// Sound speed, m/s.
-        c0: f64,
-        /// Gamma (1: no thermal term).
-        #[serde(default = "one")]
-        gamma: f64,
-    },
-    /// P = B ln(rho/rho0).
-    Logarithmic {
-        /// Bulk modulus B, Pa.
-        bulk_modulus: f64,
-    },
-    /// Mie–Grüneisen with Hugoniot reference (seed 000 eq 37).
-    MieGruneisen {
-        /// Bulk sound speed, m/s.
-        c0: f64,
-        /// Us-up slope.
-        s1: f64,
-        /// Grüneisen gamma.
-        gamma0: f64,
-    },
-    /// Isothermal Mie–Grüneisen in Hugoniot form (flyer plate).
-    Hugoniot {
-        /// Bulk sound speed, m/s.
-        c0: f64,
-        /// Us-up slope.
-        s1: f64,
-    },
-    /// Mie–Grüneisen with two reference curves (seed 004 eqs 6–7).
-    TwoCurve {
-        /// c_a, m/s.
-        c_a: f64,
-        /// s_a.
-        s_a: f64,
-        /// Grüneisen gamma.
-        gamma: f64,
-    },
-    /// Polynomial P = k1 z + k2 z² + k3 z³ (seed 000 eq 39).
-    Polynomial {
-        /// k1, Pa.
-        k1: f64,
-        /// k2, Pa.
-        #[serde(default)]
-        k2: f64,
-        /// k3, Pa.
-        #[serde(default)]
-        k3: f64,
-    },
-    /// Tillotson's metallic EOS (Tillotson 1962; Melosh 1989; Benz & Asphaug 1999):
-    /// `P = [a + b/w] rho e + A mu + B mu²` compressed or cold (`e <= e_iv`),
-    /// `P = a rho e + [b rho e/w + A mu exp(-beta z)] exp(-alpha z²)` expanded and hot
-    /// (`e >= e_cv`), linear in `e` between; `w = e/(e0 eta²) + 1`, `eta = rho/rho0`,
-    /// `mu = eta - 1`, `z = 1/eta - 1` (core `material::eos::tillotson`).
-    Tillotson {
-        /// Tillotson `a`, dimensionless.
-        a: f64,
-        /// Tillotson `b`, dimensionless.
-        b: f64,
-        /// Tillotson `A` (bulk modulus at rho0), Pa.
-        big_a: f64,
-        /// Tillotson `B` (coefficient of mu²), Pa.
-        big_b: f64,
-        /// Tillotson `alpha` (in `exp(-alpha z²)`), dimensionless.
-        alpha: f64,
-        /// Tillotson `beta` (in `exp(-beta z)`), dimensionless.
-        beta: f64,
-        /// Tillotson `E0`, J/kg.
-        e0: f64,
-        /// Energy of incipient vaporisation `E_iv`, J/kg.
-        e_iv: f64,
-        /// Energy of complete vaporisation `E_cv` (above `e_iv`), J/kg.
-        e_cv: f64,
-    },
 }
 
 /// Strength models.

@@ -1,58 +1,13 @@
 //! Scene materials to core materials.
 
-use super::{EosSpec, MaterialSpec, StrengthSpec};
-use gsph_core::material::eos::{
-    Eos, Hugoniot, Linear, Logarithmic, MieGruneisen, Polynomial, Tillotson, TwoCurve,
-};
+use super::{MaterialSpec, StrengthSpec};
 use gsph_core::material::strength::{Jh1, JohnsonCook};
 use gsph_core::material::{Material, Strength};
 
 /// The core material of a (validated) scene material.
 pub fn material_of(m: &MaterialSpec) -> Material {
     let rho0 = m.rho0;
-    let eos: Eos = match m.eos {
-        EosSpec::Linear { c0, gamma } => Linear { rho0, c0, gamma }.into(),
-        EosSpec::Logarithmic { bulk_modulus } => Logarithmic { rho0, bulk_modulus }.into(),
-        EosSpec::MieGruneisen { c0, s1, gamma0 } => MieGruneisen {
-            rho0,
-            c0,
-            s1,
-            gamma0,
-        }
-        .into(),
-        EosSpec::Hugoniot { c0, s1 } => Hugoniot { rho0, c0, s1 }.into(),
-        EosSpec::TwoCurve { c_a, s_a, gamma } => TwoCurve {
-            rho0,
-            c_a,
-            s_a,
-            gamma,
-        }
-        .into(),
-        EosSpec::Polynomial { k1, k2, k3 } => Polynomial { rho0, k1, k2, k3 }.into(),
-        EosSpec::Tillotson {
-            a,
-            b,
-            big_a,
-            big_b,
-            alpha,
-            beta,
-            e0,
-            e_iv,
-            e_cv,
-        } => Tillotson {
-            rho0,
-            a,
-            b,
-            big_a,
-            big_b,
-            alpha,
-            beta,
-            e0,
-            e_iv,
-            e_cv,
-        }
-        .into(),
-    };
+    let eos = m.eos.with_rho0(rho0);
     let strength = match &m.strength {
         Some(spec) => strength_of(spec),
         None if m.shear_modulus > 0.0 => Strength::Elastic,

@@ -1,6 +1,6 @@
 //! The scene schema (serde). Units are SI; every field is documented in `cases/README.md`.
 
-pub use super::material_spec::{EosSpec, MaterialSpec, StrengthSpec};
+pub use super::material_spec::{Eos, MaterialSpec, StrengthSpec};
 use gsph_core::limiter::Limiter;
 use gsph_core::schemes::options::{OptionKey, SceneOptions};
 use gsph_core::state::{MusclTime, RiemannSolver};

@@ -26,67 +26,9 @@ pub(super) fn material_known(s: &Scene, key: &str, name: &str) -> R {
     }
 }
 
-pub(super) fn validate_eos(key: &str, e: &EosSpec) -> R {
-    match e {
-        EosSpec::Linear { c0, gamma } => {
-            positive(&format!("{key}.c0"), *c0)?;
-            finite(&format!("{key}.gamma"), *gamma)
-        }
-        EosSpec::Logarithmic { bulk_modulus } => {
-            positive(&format!("{key}.bulk_modulus"), *bulk_modulus)
-        }
-        EosSpec::MieGruneisen { c0, s1, gamma0 } => {
-            positive(&format!("{key}.c0"), *c0)?;
-            non_negative(&format!("{key}.s1"), *s1)?;
-            finite(&format!("{key}.gamma0"), *gamma0)
-        }
-        EosSpec::Hugoniot { c0, s1 } => {
-            positive(&format!("{key}.c0"), *c0)?;
-            non_negative(&format!("{key}.s1"), *s1)
-        }
-        EosSpec::TwoCurve { c_a, s_a, gamma } => {
-            positive(&format!("{key}.c_a"), *c_a)?;
-            non_negative(&format!("{key}.s_a"), *s_a)?;
-            finite(&format!("{key}.gamma"), *gamma)
-        }
-        EosSpec::Polynomial { k1, k2, k3 } => {
-            positive(&format!("{key}.k1"), *k1)?;
-            finite(&format!("{key}.k2"), *k2)?;
-            finite(&format!("{key}.k3"), *k3)
-        }
-        EosSpec::Tillotson {
-            a,
-            b,
-            big_a,
-            big_b,
-            alpha,
-            beta,
-            e0,
-            e_iv,
-            e_cv,
-        } => {
-            non_negative(&format!("{key}.a"), *a)?;
-            non_negative(&format!("{key}.b"), *b)?;
-            positive(&format!("{key}.big_a"), *big_a)?;
-            finite(&format!("{key}.big_b"), *big_b)?;
-            non_negative(&format!("{key}.alpha"), *alpha)?;
-            non_negative(&format!("{key}.beta"), *beta)?;
-            positive(&format!("{key}.e0"), *e0)?;
-            non_negative(&format!("{key}.e_iv"), *e_iv)?;
-            finite(&format!("{key}.e_cv"), *e_cv)?;
-            if e_cv <= e_iv {
-                return fail(
-                    &format!("{key}.e_cv"),
-                    format!(
-                        "must exceed e_iv = {} J/kg (got {})",
-                        num(*e_iv),
-                        num(*e_cv)
-                    ),
-                );
-            }
-            Ok(())
-        }
-    }
+/// The EOS checks its own parameters ([`Eos::check`]); the message names the key's path.
+pub(super) fn validate_eos(key: &str, e: &Eos) -> R {
+    e.check().or_else(|p| fail(&format!("{key}.{}", p.key), p))
 }
 
 pub(super) fn validate_shape(key: &str, sh: &ShapeSpec, dim: usize) -> R {

@@ -27,12 +27,19 @@
 //! (parent module doc).
 
 use super::{guard_density, EosState};
+use crate::material::params::{non_negative, positive, ParamError};
 use crate::math::Real;
 
 /// Parameters of the Hugoniot (isothermal Mie–Grüneisen) EOS.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Deserialize, serde::Serialize),
+    serde(deny_unknown_fields)
+)]
 pub struct Hugoniot {
     /// Reference density rho0, kg/m³.
+    #[cfg_attr(feature = "serde", serde(skip))]
     pub rho0: Real,
     /// Bulk sound speed c0 (intercept of the `Us`–`up` fit), m/s.
     pub c0: Real,
@@ -81,6 +88,13 @@ pub(crate) fn linear_us_up_hugoniot(rho0: Real, c: Real, s: Real, rho: Real) -> 
 }
 
 impl Hugoniot {
+    /// Checks the parameters (all but `rho0`, the material's): the rules the model's
+    /// formulas need ([`crate::material::params`]).
+    pub fn check(&self) -> Result<(), ParamError> {
+        positive("c0", self.c0)?;
+        non_negative("s1", self.s1)
+    }
+
     /// Pressure (Pa) and `c²` (m²/s²) at `rho` (kg/m³); `e` (J/kg) is ignored (Gamma = 0).
     #[inline]
     pub fn eval(&self, rho: Real, e: Real) -> EosState {

@@ -9,20 +9,35 @@
 //! `e = 0`) or at negative energies; there `c²` is floored (see the parent module).
 
 use super::{floor_c2, EosState};
+use crate::material::params::{finite, positive, ParamError};
 use crate::math::Real;
 
 /// Parameters of the linear EOS.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Deserialize, serde::Serialize),
+    serde(deny_unknown_fields)
+)]
 pub struct Linear {
     /// Reference density rho0, kg/m³.
+    #[cfg_attr(feature = "serde", serde(skip))]
     pub rho0: Real,
     /// Reference bulk sound speed c0, m/s.
     pub c0: Real,
     /// Grüneisen-like exponent gamma, dimensionless (1 for a barotropic EOS).
+    #[cfg_attr(feature = "serde", serde(default = "crate::material::params::one"))]
     pub gamma: Real,
 }
 
 impl Linear {
+    /// Checks the parameters (all but `rho0`, the material's): the rules the model's
+    /// formulas need ([`crate::material::params`]).
+    pub fn check(&self) -> Result<(), ParamError> {
+        positive("c0", self.c0)?;
+        finite("gamma", self.gamma)
+    }
+
     /// Pressure (Pa) and `c²` (m²/s²) at `rho` (kg/m³), `e` (J/kg).
     #[inline]
     pub fn eval(&self, rho: Real, e: Real) -> EosState {

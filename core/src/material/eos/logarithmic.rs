@@ -4,18 +4,31 @@
 //! is kept.
 
 use super::EosState;
+use crate::material::params::{positive, ParamError};
 use crate::math::{real, Real};
 
 /// Parameters of the logarithmic EOS.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Deserialize, serde::Serialize),
+    serde(deny_unknown_fields)
+)]
 pub struct Logarithmic {
     /// Reference density rho0, kg/m³.
+    #[cfg_attr(feature = "serde", serde(skip))]
     pub rho0: Real,
     /// Bulk modulus B, Pa.
     pub bulk_modulus: Real,
 }
 
 impl Logarithmic {
+    /// Checks the parameters (all but `rho0`, the material's): the rules the model's
+    /// formulas need ([`crate::material::params`]).
+    pub fn check(&self) -> Result<(), ParamError> {
+        positive("bulk_modulus", self.bulk_modulus)
+    }
+
     /// Pressure (Pa) and `c²` (m²/s²) at `rho` (kg/m³); `e` (J/kg) is ignored.
     #[inline]
     pub fn eval(&self, rho: Real, e: Real) -> EosState {

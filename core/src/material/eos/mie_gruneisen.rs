@@ -21,12 +21,19 @@
 //! finite and continuous for every finite `rho`.
 
 use super::{floor_c2, guard_density, EosState};
+use crate::material::params::{finite, non_negative, positive, ParamError};
 use crate::math::Real;
 
 /// Parameters of the Mie–Grüneisen EOS (seed 000 eq 37).
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Deserialize, serde::Serialize),
+    serde(deny_unknown_fields)
+)]
 pub struct MieGruneisen {
     /// Reference density rho0, kg/m³.
+    #[cfg_attr(feature = "serde", serde(skip))]
     pub rho0: Real,
     /// Bulk sound speed c0 (intercept of the `Us`–`up` fit), m/s.
     pub c0: Real,
@@ -37,6 +44,14 @@ pub struct MieGruneisen {
 }
 
 impl MieGruneisen {
+    /// Checks the parameters (all but `rho0`, the material's): the rules the model's
+    /// formulas need ([`crate::material::params`]).
+    pub fn check(&self) -> Result<(), ParamError> {
+        positive("c0", self.c0)?;
+        non_negative("s1", self.s1)?;
+        finite("gamma0", self.gamma0)
+    }
+
     /// The cold part `Q` (Pa) and `dQ/drho` (m²/s²) at `rho` (kg/m³).
     #[inline]
     fn cold(&self, rho: Real) -> (Real, Real) {

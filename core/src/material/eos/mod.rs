@@ -46,6 +46,7 @@ pub use polynomial::Polynomial;
 pub use tillotson::Tillotson;
 pub use two_curve::TwoCurve;
 
+use crate::material::params::ParamError;
 use crate::math::{real, Real};
 
 /// Pressure and squared bulk sound speed at one state.
@@ -87,8 +88,16 @@ pub(crate) fn floor_c2(c2: Real, c_ref2: Real) -> Real {
     real::max(c2, C2_FLOOR_FRACTION * c_ref2)
 }
 
-/// An equation of state. Each variant holds the parameters of one model.
+/// An equation of state. Each variant holds the parameters of one model. With the
+/// feature `serde` it reads from a scene's `eos` table: `type` names the variant in
+/// snake_case (`mie_gruneisen`), the other keys are the model's fields but `rho0`, which
+/// the material gives ([`Eos::with_rho0`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Deserialize, serde::Serialize),
+    serde(tag = "type", rename_all = "snake_case")
+)]
 pub enum Eos {
     /// `P = c0² (rho - rho0) + (gamma - 1) rho e` (seed 004).
     Linear(Linear),
@@ -146,6 +155,46 @@ impl Eos {
             Eos::Polynomial(m) => 0.5 + 0.5 * m.k2 / m.k1,
             Eos::Tillotson(m) => 0.5 + 0.5 * m.big_b / m.big_a + 0.25 * (m.a + m.b),
         }
+    }
+
+    /// The model's name in a scene (`type = "..."`).
+    pub const fn name(&self) -> &'static str {
+        match self {
+            Eos::Linear(_) => "linear",
+            Eos::Logarithmic(_) => "logarithmic",
+            Eos::MieGruneisen(_) => "mie_gruneisen",
+            Eos::Hugoniot(_) => "hugoniot",
+            Eos::TwoCurve(_) => "two_curve",
+            Eos::Polynomial(_) => "polynomial",
+            Eos::Tillotson(_) => "tillotson",
+        }
+    }
+
+    /// Checks the model's parameters (each model's `check`).
+    pub fn check(&self) -> Result<(), ParamError> {
+        match self {
+            Eos::Linear(m) => m.check(),
+            Eos::Logarithmic(m) => m.check(),
+            Eos::MieGruneisen(m) => m.check(),
+            Eos::Hugoniot(m) => m.check(),
+            Eos::TwoCurve(m) => m.check(),
+            Eos::Polynomial(m) => m.check(),
+            Eos::Tillotson(m) => m.check(),
+        }
+    }
+
+    /// The same model with reference density `rho0` (kg/m³).
+    pub fn with_rho0(mut self, rho0: Real) -> Eos {
+        match &mut self {
+            Eos::Linear(m) => m.rho0 = rho0,
+            Eos::Logarithmic(m) => m.rho0 = rho0,
+            Eos::MieGruneisen(m) => m.rho0 = rho0,
+            Eos::Hugoniot(m) => m.rho0 = rho0,
+            Eos::TwoCurve(m) => m.rho0 = rho0,
+            Eos::Polynomial(m) => m.rho0 = rho0,
+            Eos::Tillotson(m) => m.rho0 = rho0,
+        }
+        self
     }
 
     /// Reference density, kg/m³.

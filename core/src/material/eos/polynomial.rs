@@ -7,22 +7,39 @@
 //! negative `k3` at large `z`), where the fit is outside its range.
 
 use super::{floor_c2, EosState};
+use crate::material::params::{finite, positive, ParamError};
 use crate::math::Real;
 
 /// Parameters of the polynomial EOS (seed 000 eq 39).
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Deserialize, serde::Serialize),
+    serde(deny_unknown_fields)
+)]
 pub struct Polynomial {
     /// Reference density rho0, kg/m³.
+    #[cfg_attr(feature = "serde", serde(skip))]
     pub rho0: Real,
     /// Linear coefficient k1 (bulk modulus), Pa.
     pub k1: Real,
     /// Quadratic coefficient k2, Pa.
+    #[cfg_attr(feature = "serde", serde(default))]
     pub k2: Real,
     /// Cubic coefficient k3, Pa.
+    #[cfg_attr(feature = "serde", serde(default))]
     pub k3: Real,
 }
 
 impl Polynomial {
+    /// Checks the parameters (all but `rho0`, the material's): the rules the model's
+    /// formulas need ([`crate::material::params`]).
+    pub fn check(&self) -> Result<(), ParamError> {
+        positive("k1", self.k1)?;
+        finite("k2", self.k2)?;
+        finite("k3", self.k3)
+    }
+
     /// Pressure (Pa) and `c²` (m²/s²) at `rho` (kg/m³); `e` (J/kg) is ignored.
     #[inline]
     pub fn eval(&self, rho: Real, e: Real) -> EosState {

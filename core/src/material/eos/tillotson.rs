@@ -46,12 +46,19 @@
 //! [`super::C2_FLOOR_FRACTION`] times the reference `c0² = A/rho0` (parent module).
 
 use super::{floor_c2, EosState};
+use crate::material::params::{check, finite, non_negative, positive, ParamError, Rule};
 use crate::math::{real, Real};
 
 /// Parameters of the Tillotson EOS (Tillotson 1962; Melosh 1989; Benz & Asphaug 1999).
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Deserialize, serde::Serialize),
+    serde(deny_unknown_fields)
+)]
 pub struct Tillotson {
     /// Reference density rho0, kg/m³.
+    #[cfg_attr(feature = "serde", serde(skip))]
     pub rho0: Real,
     /// Tillotson `a` (Grüneisen-like constant of the `rho e` term), dimensionless.
     pub a: Real,
@@ -82,6 +89,29 @@ pub struct Tillotson {
 type Branch = (Real, Real, Real);
 
 impl Tillotson {
+    /// Checks the parameters (all but `rho0`, the material's): the rules the model's
+    /// formulas need ([`crate::material::params`]).
+    pub fn check(&self) -> Result<(), ParamError> {
+        non_negative("a", self.a)?;
+        non_negative("b", self.b)?;
+        positive("big_a", self.big_a)?;
+        finite("big_b", self.big_b)?;
+        non_negative("alpha", self.alpha)?;
+        non_negative("beta", self.beta)?;
+        positive("e0", self.e0)?;
+        non_negative("e_iv", self.e_iv)?;
+        finite("e_cv", self.e_cv)?;
+        check(
+            "e_cv",
+            self.e_cv,
+            Rule::Exceeds {
+                other: "e_iv",
+                bound: self.e_iv,
+                unit: "J/kg",
+            },
+        )
+    }
+
     /// The compressed / cold-expanded branch `P_c` and its derivatives at `rho` (kg/m³),
     /// `e >= 0` (J/kg).
     #[inline]

@@ -23,12 +23,19 @@
 
 use super::hugoniot::{linear_us_up_hugoniot, RefCurve};
 use super::{floor_c2, EosState};
+use crate::material::params::{finite, non_negative, positive, ParamError};
 use crate::math::Real;
 
 /// Parameters of the two-curve Mie–Grüneisen EOS (seed 004 eqs 6–7).
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Deserialize, serde::Serialize),
+    serde(deny_unknown_fields)
+)]
 pub struct TwoCurve {
     /// Reference density rho0, kg/m³.
+    #[cfg_attr(feature = "serde", serde(skip))]
     pub rho0: Real,
     /// Bulk sound speed c_a (intercept of `us = c_a + s_a up`), m/s.
     pub c_a: Real,
@@ -39,6 +46,14 @@ pub struct TwoCurve {
 }
 
 impl TwoCurve {
+    /// Checks the parameters (all but `rho0`, the material's): the rules the model's
+    /// formulas need ([`crate::material::params`]).
+    pub fn check(&self) -> Result<(), ParamError> {
+        positive("c_a", self.c_a)?;
+        non_negative("s_a", self.s_a)?;
+        finite("gamma", self.gamma)
+    }
+
     /// Reference curves `P_ref`, `e_ref` and their `rho` derivatives at `rho` (kg/m³).
     #[inline]
     fn reference(&self, rho: Real) -> RefCurve {
