@@ -203,17 +203,10 @@ fn eos_model() -> impl Strategy<Value = Eos> {
     ]
 }
 
-/// Reference `c0²` of a model (the scale of its floor and of `c²`).
+/// Reference `c0²` of a model (the scale of its floor and of `c²`): its `c²` at the
+/// reference state `(rho0, e = 0)`, where no model is floored.
 fn c0_squared(eos: &Eos) -> Real {
-    match *eos {
-        Eos::Linear(m) => m.c0 * m.c0,
-        Eos::Logarithmic(m) => m.bulk_modulus / m.rho0,
-        Eos::MieGruneisen(m) => m.c0 * m.c0,
-        Eos::Hugoniot(m) => m.c0 * m.c0,
-        Eos::TwoCurve(m) => m.c_a * m.c_a,
-        Eos::Polynomial(m) => m.k1 / m.rho0,
-        Eos::Tillotson(m) => m.big_a / m.rho0,
-    }
+    eos.eval(eos.rho0(), 0.0).c2
 }
 
 /// Densities where a model is only C¹ (a central difference straddling them is not
