@@ -9,7 +9,7 @@
 //! `P` along `de = P/rho² drho`.
 //!
 //! One file per model: [`linear`], [`logarithmic`], [`mie_gruneisen`], [`hugoniot`],
-//! [`two_curve`], [`polynomial`], [`tillotson`].
+//! [`two_curve`], [`polynomial`], [`tillotson`], [`murnaghan`].
 //!
 //! ## Sound-speed floor
 //! Where a model can reach `c² <= 0` (the linear EOS with `gamma != 1`, Mie–Grüneisen,
@@ -34,6 +34,7 @@ pub mod hugoniot;
 pub mod linear;
 pub mod logarithmic;
 pub mod mie_gruneisen;
+pub mod murnaghan;
 pub mod polynomial;
 pub mod tillotson;
 pub mod two_curve;
@@ -42,6 +43,7 @@ pub use hugoniot::Hugoniot;
 pub use linear::Linear;
 pub use logarithmic::Logarithmic;
 pub use mie_gruneisen::MieGruneisen;
+pub use murnaghan::Murnaghan;
 pub use polynomial::Polynomial;
 pub use tillotson::Tillotson;
 pub use two_curve::TwoCurve;
@@ -116,6 +118,9 @@ pub enum Eos {
     /// Tillotson's metallic EOS: compressed, cold and hot expanded states and an
     /// interpolation between (Tillotson 1962; Melosh 1989; Benz & Asphaug 1999).
     Tillotson(Tillotson),
+    /// Murnaghan (Tait): `P = (rho0 c0²/gamma)((rho/rho0)^gamma - 1)`, the weakly
+    /// compressible SPH users' liquid.
+    Murnaghan(Murnaghan),
 }
 
 impl Eos {
@@ -131,6 +136,7 @@ impl Eos {
             Eos::TwoCurve(m) => m.eval(rho, e),
             Eos::Polynomial(m) => m.eval(rho, e),
             Eos::Tillotson(m) => m.eval(rho, e),
+            Eos::Murnaghan(m) => m.eval(rho, e),
         }
     }
 
@@ -140,7 +146,7 @@ impl Eos {
     /// state (`K_S = rho c²` the isentropic bulk modulus; a weak shock is isentropic to
     /// second order, so `dUs/dup` at `up = 0` is fixed by `K'`):
     /// linear `(1 + gamma)/4` (`K_S' = gamma`; 1/2 for the barotropic `gamma = 1`),
-    /// logarithmic 1/4 (`K_S = B`), polynomial `1/2 + k2/(2 k1)` (compression branch),
+    /// logarithmic 1/4 (`K_S = B`), Murnaghan `(1 + gamma)/4` (`K_S = rho0 c0² + gamma P`), polynomial `1/2 + k2/(2 k1)` (compression branch),
     /// Tillotson `1/2 + B/(2A) + (a + b)/4` (`K_S = eta (A + 2 B mu) + (a + b) P` along
     /// the isentrope from `(rho0, 0)`, where `e` is of second order: `K_S' = 1 + 2B/A + a + b`).
     /// The test `weak_shock_slope_matches_the_exact_hugoniot` checks each against the
@@ -154,6 +160,7 @@ impl Eos {
             Eos::Logarithmic(_) => 0.25,
             Eos::Polynomial(m) => 0.5 + 0.5 * m.k2 / m.k1,
             Eos::Tillotson(m) => 0.5 + 0.5 * m.big_b / m.big_a + 0.25 * (m.a + m.b),
+            Eos::Murnaghan(m) => 0.25 * (1.0 + m.gamma),
         }
     }
 
@@ -167,6 +174,7 @@ impl Eos {
             Eos::TwoCurve(_) => "two_curve",
             Eos::Polynomial(_) => "polynomial",
             Eos::Tillotson(_) => "tillotson",
+            Eos::Murnaghan(_) => "murnaghan",
         }
     }
 
@@ -180,6 +188,7 @@ impl Eos {
             Eos::TwoCurve(m) => m.check(),
             Eos::Polynomial(m) => m.check(),
             Eos::Tillotson(m) => m.check(),
+            Eos::Murnaghan(m) => m.check(),
         }
     }
 
@@ -193,6 +202,7 @@ impl Eos {
             Eos::TwoCurve(m) => m.rho0 = rho0,
             Eos::Polynomial(m) => m.rho0 = rho0,
             Eos::Tillotson(m) => m.rho0 = rho0,
+            Eos::Murnaghan(m) => m.rho0 = rho0,
         }
         self
     }
@@ -208,6 +218,7 @@ impl Eos {
             Eos::TwoCurve(m) => m.rho0,
             Eos::Polynomial(m) => m.rho0,
             Eos::Tillotson(m) => m.rho0,
+            Eos::Murnaghan(m) => m.rho0,
         }
     }
 }
@@ -229,7 +240,8 @@ impl_from!(
     Hugoniot,
     TwoCurve,
     Polynomial,
-    Tillotson
+    Tillotson,
+    Murnaghan
 );
 
 /// Helpers shared by the models' unit tests.
@@ -332,7 +344,13 @@ mod tests {
     /// [`Eos::hugoniot_slope`] to first order in `eta`.
     #[test]
     fn weak_shock_slope_matches_the_exact_hugoniot() {
-        let cases: [Eos; 10] = [
+        let cases: [Eos; 11] = [
+            Murnaghan {
+                rho0: 1000.0,
+                c0: 1480.0,
+                gamma: 7.0,
+            }
+            .into(),
             Linear {
                 rho0: 8960.0,
                 c0: 4148.0,
