@@ -6,8 +6,8 @@
 //! `properties_ts.rs`. Each property runs at most 256 cases (well under a second in release).
 
 use gsph_core::material::eos::{
-    guard_density, Eos, Hugoniot, Linear, Logarithmic, MieGruneisen, Polynomial, Tillotson,
-    TwoCurve, C2_FLOOR_FRACTION,
+    guard_density, Eos, Hugoniot, Linear, Logarithmic, MieGruneisen, Murnaghan, Polynomial,
+    Tillotson, TwoCurve, C2_FLOOR_FRACTION,
 };
 use gsph_core::material::strength::{radial_return, Jh1, JohnsonCook};
 use gsph_core::math::{Real, Sym3, Vector};
@@ -148,6 +148,8 @@ fn eos_model() -> impl Strategy<Value = Eos> {
             c0,
             gamma
         })),
+        (rho0.clone(), c0.clone(), 1.0..8.0)
+            .prop_map(|(rho0, c0, gamma)| { Eos::Murnaghan(Murnaghan { rho0, c0, gamma }) }),
         (rho0.clone(), 1e9..5e11)
             .prop_map(|(rho0, bulk_modulus)| Eos::Logarithmic(Logarithmic { rho0, bulk_modulus })),
         (rho0.clone(), c0.clone(), 0.8..2.5, 0.0..3.0).prop_map(|(rho0, c0, s1, gamma0)| {

@@ -500,3 +500,30 @@ fn lattice_origin_errors_name_the_key() {
         "{e}"
     );
 }
+
+/// The Murnaghan EOS through a scene: read into the core's model (rho0 the material's),
+/// its parameters checked by the model with the key's path in the message.
+#[test]
+fn murnaghan_eos_reads_and_checks_itself() {
+    let water = "dim = 1\nscheme = \"ts1\"\nt_end = 2e-6\n\
+                 [[materials]]\nname = \"water\"\nrho0 = 1000.0\n\
+                 eos = { type = \"murnaghan\", c0 = 1480.0, gamma = 7.0 }\n\
+                 [[bodies]]\nmaterial = \"water\"\nspacing = 1e-4\n\
+                 shape = { type = \"segment\", min = 0.0, max = 0.01 }\n";
+    let s = parse(water, "water.toml", &[]).unwrap();
+    let m = materials::material_of(&s.materials[0]);
+    assert_eq!(m.eos.name(), "murnaghan");
+    assert_eq!(m.eos.rho0(), 1000.0);
+    // 1.1 rho0: (rho0 c0²/7)(1.1^7 - 1) (the model's hand-computed value)
+    let st = m.eos.eval(1100.0, 0.0);
+    assert!((st.p - 296_867_133.69).abs() < 1.0, "{}", st.p);
+    assert_eq!(
+        parse_err(water, &["materials.0.eos.gamma=-1"]),
+        "--set materials.0.eos.gamma=-1: materials[0].eos.gamma: must be positive and finite (got -1)"
+    );
+    let e = parse_err(water, &["materials.0.eos.k1=1"]);
+    assert!(
+        e.contains("materials[0].eos.k1") && e.contains("c0, gamma"),
+        "{e}"
+    );
+}
