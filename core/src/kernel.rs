@@ -39,6 +39,23 @@ pub enum Kernel {
 }
 
 impl Kernel {
+    /// Every kernel, in the order messages list them.
+    pub const ALL: [Kernel; 3] = [Kernel::CubicSpline, Kernel::WendlandC2, Kernel::Gaussian];
+
+    /// The scene name.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Kernel::CubicSpline => "cubic_spline",
+            Kernel::WendlandC2 => "wendland_c2",
+            Kernel::Gaussian => "gaussian",
+        }
+    }
+
+    /// The kernel of a scene name.
+    pub fn from_name(name: &str) -> Option<Kernel> {
+        Kernel::ALL.into_iter().find(|k| k.name() == name)
+    }
+
     /// Support radius in units of h (dimensionless): 2 for the cubic spline and Wendland
     /// C2, 3 for the Gaussian-like kernel.
     pub const fn support(self) -> Real {
@@ -162,6 +179,13 @@ impl Kernel {
     /// `dW/dr rij / r`.
     pub fn gradient<const D: usize>(self, rij: &Vector<D>, r: Real, h: Real) -> Vector<D> {
         rij * (self.dw::<D>(r, h) / r)
+    }
+}
+
+/// The scene name.
+impl core::fmt::Display for Kernel {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(self.name())
     }
 }
 

@@ -25,6 +25,7 @@ pub mod kernel;
 pub mod limiter;
 pub mod material;
 pub mod math;
+pub mod named;
 pub mod neighbors;
 pub mod particles;
 pub mod riemann;

@@ -402,6 +402,14 @@ impl RiemannSolver {
     /// The scene names, in the order messages list them.
     pub const NAMES: [&'static str; 2] = ["acoustic", "two_shock"];
 
+    /// The scene name.
+    pub const fn name(self) -> &'static str {
+        match self {
+            RiemannSolver::Acoustic => "acoustic",
+            RiemannSolver::TwoShock => "two_shock",
+        }
+    }
+
     /// The solver of a scene name.
     pub fn from_name(name: &str) -> Option<RiemannSolver> {
         match name {
@@ -409,6 +417,24 @@ impl RiemannSolver {
             "two_shock" => Some(RiemannSolver::TwoShock),
             _ => None,
         }
+    }
+}
+
+/// The scene name.
+impl core::fmt::Display for RiemannSolver {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// The scene name.
+impl core::fmt::Display for MusclTime {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(match self {
+            MusclTime::Predictor => "predictor",
+            MusclTime::CourantFactor => "courant",
+            MusclTime::None => "none",
+        })
     }
 }
 

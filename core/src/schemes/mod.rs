@@ -133,6 +133,13 @@ impl Scheme {
     }
 }
 
+/// The CLI/scene name.
+impl core::fmt::Display for Scheme {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
 impl Family {
     /// The effects the family supports ([`SchemeFamily::SUPPORTED`]).
     pub const fn supported(self) -> EffectSet {

@@ -140,8 +140,16 @@ pub(crate) fn read_if(read: bool, scheme: Scheme, why: &'static str) -> Result<(
     }
 }
 
-/// A scene's `[options]` as given: `None` for a key it does not set.
+/// A scene's `[options]` as given: `None` for a key it does not set. With the feature
+/// `serde` it reads from the scene's `[options]` table (the names of the limiter, the
+/// Riemann solver and the time treatment parsed there, an unknown one refused with the
+/// known ones).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Deserialize, serde::Serialize),
+    serde(default, deny_unknown_fields)
+)]
 pub struct SceneOptions {
     /// Monaghan alpha.
     pub av_alpha: Option<Real>,
@@ -182,6 +190,23 @@ impl SceneOptions {
             OptionKey::Muscl => self.muscl.is_some(),
             OptionKey::ArtificialStress => self.artificial_stress.is_some(),
             OptionKey::ArtificialStressExponent => self.artificial_stress_exponent.is_some(),
+        }
+    }
+
+    /// Removes `key` from the scene's options.
+    pub fn unset(&mut self, key: OptionKey) {
+        match key {
+            OptionKey::AvAlpha => self.av_alpha = None,
+            OptionKey::AvBeta => self.av_beta = None,
+            OptionKey::Limiter => self.limiter = None,
+            OptionKey::Riemann => self.riemann = None,
+            OptionKey::MusclTime => self.muscl_time = None,
+            OptionKey::SurfaceLambda => self.surface_lambda = None,
+            OptionKey::DetEpsilon => self.det_epsilon = None,
+            OptionKey::Correction => self.correction = None,
+            OptionKey::Muscl => self.muscl = None,
+            OptionKey::ArtificialStress => self.artificial_stress = None,
+            OptionKey::ArtificialStressExponent => self.artificial_stress_exponent = None,
         }
     }
 

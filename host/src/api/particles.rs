@@ -134,7 +134,7 @@ impl Particles<'_> {
         if let Some(p) = &scene.periodic {
             // as scene::periodic::check_length, with the caller's coarsest spacing
             let dx = out.spacing.iter().cloned().fold(0.0, f64::max);
-            let support = crate::scene::kernel_of(&scene.kernel).support();
+            let support = scene.kernel.support();
             let min = 2.0 * support * scene.h_factor * dx;
             if let Some(&a) = p
                 .axes

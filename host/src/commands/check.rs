@@ -65,7 +65,7 @@ pub fn command(args: CheckArgs) -> Result<(), String> {
         }
     }
     out!("effects   {effects}");
-    if sc.options.riemann.as_deref() == Some("two_shock") {
+    if sc.options.riemann == Some(gsph_core::state::RiemannSolver::TwoShock) {
         // the two-shock solver's Us = c + s up slope of each material
         let slopes: Vec<String> = sc
             .materials
@@ -87,7 +87,7 @@ pub fn command(args: CheckArgs) -> Result<(), String> {
         );
     }
     let dim = sc.dim;
-    let scheme = gsph_core::schemes::Scheme::from_name(&sc.scheme).expect("validated");
+    let scheme = sc.scheme;
     let (n, all) = crate::specs::compiled();
     match crate::specs::find(dim, scheme.family(), effects) {
         Some(s) if s.compiled => {

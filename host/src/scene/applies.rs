@@ -11,11 +11,8 @@ use gsph_core::schemes::Scheme;
 
 /// The `[options]` keys set in `o` that scheme `scheme` does not read, each with the
 /// reason (`options.KEY`, why), in [`OptionKey::ALL`] order.
-pub fn inapplicable(o: &OptionsSpec, scheme: &str) -> Vec<(&'static str, String)> {
-    let Some(scheme) = Scheme::from_name(scheme) else {
-        return Vec::new();
-    };
-    let asked = o.to_core().asked();
+pub fn inapplicable(o: &OptionsSpec, scheme: Scheme) -> Vec<(&'static str, String)> {
+    let asked = o.asked();
     OptionKey::ALL
         .into_iter()
         .filter(|&k| o.is_set(k))
@@ -29,7 +26,7 @@ pub fn inapplicable(o: &OptionsSpec, scheme: &str) -> Vec<(&'static str, String)
 /// Removes from `scene` the `[options]` keys its scheme does not read and returns them
 /// (`options.KEY` each), for the sweeps that choose the scheme themselves.
 pub fn strip_inapplicable(scene: &mut Scene) -> Vec<&'static str> {
-    let keys: Vec<&'static str> = inapplicable(&scene.options, &scene.scheme)
+    let keys: Vec<&'static str> = inapplicable(&scene.options, scene.scheme)
         .into_iter()
         .map(|(k, _)| k)
         .collect();

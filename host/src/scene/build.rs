@@ -127,9 +127,9 @@ pub fn check_particles(scene: &Scene, parts: &InitialParticles) -> Result<(), Sc
             "bodies: the particles span {cells:.2e} cells of the finest spacing {finest:e} m (limit {MAX_CELLS:.2e}); are bodies far apart or a spacing too fine?"
         )));
     }
-    let capacity = scene.neighbor_capacity.unwrap_or_else(|| {
-        crate::neighbors::default_capacity(dim, super::kernel_of(&scene.kernel), scene.h_factor)
-    });
+    let capacity = scene
+        .neighbor_capacity
+        .unwrap_or_else(|| crate::neighbors::default_capacity(dim, scene.kernel, scene.h_factor));
     let entries = parts.len() as f64 * capacity as f64;
     if !at_most(entries, MAX_NEIGHBOR_ENTRIES) {
         return Err(SceneError(format!(
@@ -196,11 +196,7 @@ pub fn build_particles(scene: &Scene) -> Result<InitialParticles, SceneError> {
                 ),
             }));
         }
-        let each = crate::memory::bytes_per_particle(
-            scene.dim,
-            super::kernel_of(&scene.kernel),
-            scene.h_factor,
-        );
+        let each = crate::memory::bytes_per_particle(scene.dim, scene.kernel, scene.h_factor);
         crate::memory::check_fits(each, total, crate::memory::available(), &count_key)
             .map_err(SceneError)?;
         let mut pts = match source {

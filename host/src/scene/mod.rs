@@ -27,7 +27,6 @@ pub use walls::WallSpec;
 pub use window::{WindowGeometry, WindowSpec};
 
 use crate::output::safe::{excerpt, excerpt_to, shorten_quotes};
-use gsph_core::kernel::Kernel;
 use std::path::Path;
 
 /// Scene name: the `name` key or the file stem of `path`.
@@ -37,15 +36,6 @@ pub fn scene_name(scene: &Scene, path: &Path) -> String {
             .map(|s| s.to_string_lossy().into_owned())
             .unwrap_or_default()
     })
-}
-
-/// The kernel named in a scene (`kernel`; validated to be one of these).
-pub fn kernel_of(name: &str) -> Kernel {
-    match name {
-        "wendland_c2" => Kernel::WendlandC2,
-        "gaussian" => Kernel::Gaussian,
-        _ => Kernel::CubicSpline,
-    }
 }
 
 /// A scene error: one line naming the key (or position) and the cause.

@@ -7,7 +7,6 @@
 //! by round-off only (1e-9 relative) passes, so `L = 2R` written in the scene is accepted.
 
 use super::build::InitialParticles;
-use super::kernel_of;
 use super::spec::Scene;
 use super::SceneError;
 
@@ -58,7 +57,7 @@ fn check_with(s: &Scene, dx_of: impl Fn(usize) -> Option<f64>) -> Result<(), Sce
     let Some((b, dx)) = coarsest else {
         return Ok(());
     };
-    let support = kernel_of(&s.kernel).support();
+    let support = s.kernel.support();
     let h = s.h_factor * dx;
     let min = 2.0 * support * h;
     for &a in &p.axes {

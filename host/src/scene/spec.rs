@@ -1,9 +1,9 @@
 //! The scene schema (serde). Units are SI; every field is documented in `cases/README.md`.
 
 pub use super::material_spec::{Eos, MaterialSpec, StrengthSpec};
-use gsph_core::limiter::Limiter;
-use gsph_core::schemes::options::{OptionKey, SceneOptions};
-use gsph_core::state::{MusclTime, RiemannSolver};
+pub use gsph_core::kernel::Kernel;
+pub use gsph_core::schemes::options::SceneOptions;
+pub use gsph_core::schemes::Scheme;
 use serde::{Deserialize, Serialize};
 
 pub(super) fn one() -> f64 {
@@ -24,8 +24,8 @@ fn no_spacing() -> f64 {
 fn default_snapshots() -> usize {
     10
 }
-fn default_kernel() -> String {
-    "cubic_spline".into()
+fn default_kernel() -> Kernel {
+    Kernel::CubicSpline
 }
 
 /// A whole scene.
@@ -41,7 +41,7 @@ pub struct Scene {
     /// Dimension: 1 (uniaxial strain), 2 (plane strain) or 3.
     pub dim: usize,
     /// Scheme: av, pm, ts1, ts2, tkc.
-    pub scheme: String,
+    pub scheme: Scheme,
     /// End time, s.
     pub t_end: f64,
     /// Factor on the number of particles along each axis (spacing / factor).
@@ -57,9 +57,9 @@ pub struct Scene {
     /// Keep every particle's smoothing length at its initial `h_factor (m/rho)^(1/dim)`.
     #[serde(default)]
     pub constant_h: bool,
-    /// Kernel: cubic_spline, wendland_c2, gaussian.
+    /// Kernel: cubic_spline (default), wendland_c2, gaussian.
     #[serde(default = "default_kernel")]
-    pub kernel: String,
+    pub kernel: Kernel,
     /// Smoothing length factor: h = h_factor (m/rho)^(1/dim) (seed 004's theta is h_factor/2).
     #[serde(default = "default_h_factor")]
     pub h_factor: f64,
@@ -218,107 +218,9 @@ impl Scene {
     }
 }
 
-/// Scheme options. Each is read by some schemes only and refused for the others (see
-/// `scene::applies`); absent keys take the scheme's default.
-#[derive(Debug, Clone, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct OptionsSpec {
-    /// Monaghan alpha (av; default 1).
-    #[serde(default)]
-    pub av_alpha: Option<f64>,
-    /// Monaghan beta (av; default 1).
-    #[serde(default)]
-    pub av_beta: Option<f64>,
-    /// Slope limiter of the MUSCL reconstruction (ts2: superbee default; tkc: minmod
-    /// default; pm with `muscl`: superbee default): minmod, superbee, mc, vanleer,
-    /// sweby:BETA.
-    #[serde(default)]
-    pub limiter: Option<String>,
-    /// Riemann solver (pm, tkc, ts1, ts2): acoustic (default) or two_shock.
-    #[serde(default)]
-    pub riemann: Option<String>,
-    /// Time treatment of the ts2 reconstruction, one choice for continuity, momentum and
-    /// energy: none (default: spatial reconstruction only), courant (slopes scaled by
-    /// 1 - c dt / r, seed 000 eq 23 made dimensionless), predictor (MUSCL–Hancock).
-    #[serde(default)]
-    pub muscl_time: Option<String>,
-    /// Free-surface eigenvalue threshold (tkc, pm with correction: L = I below it; ts1,
-    /// ts2: consistent divergence below it; default 0.75).
-    #[serde(default)]
-    pub surface_lambda: Option<f64>,
-    /// det L threshold below which L is not inverted (same schemes; default 0.05).
-    #[serde(default)]
-    pub det_epsilon: Option<f64>,
-    /// Kernel gradient correction for scheme pm (adds the `correction` effect; tkc always
-    /// has it).
-    #[serde(default)]
-    pub correction: Option<bool>,
-    /// MUSCL reconstruction for scheme pm (adds the `muscl` effect; tkc always has it).
-    #[serde(default)]
-    pub muscl: Option<bool>,
-    /// Monaghan's artificial stress against the tensile instability (Gray, Monaghan &
-    /// Swift 2001), its epsilon (they use 0.3): adds the `artificial_stress` effect, read by
-    /// every scheme.
-    #[serde(default)]
-    pub artificial_stress: Option<f64>,
-    /// The exponent n of the artificial stress's `(W(r)/W(dp))^n` (default 4).
-    #[serde(default)]
-    pub artificial_stress_exponent: Option<u32>,
-}
-
-impl OptionsSpec {
-    /// Whether the scene sets `key` (whatever its value).
-    pub fn is_set(&self, key: OptionKey) -> bool {
-        match key {
-            OptionKey::AvAlpha => self.av_alpha.is_some(),
-            OptionKey::AvBeta => self.av_beta.is_some(),
-            OptionKey::Limiter => self.limiter.is_some(),
-            OptionKey::Riemann => self.riemann.is_some(),
-            OptionKey::MusclTime => self.muscl_time.is_some(),
-            OptionKey::SurfaceLambda => self.surface_lambda.is_some(),
-            OptionKey::DetEpsilon => self.det_epsilon.is_some(),
-            OptionKey::Correction => self.correction.is_some(),
-            OptionKey::Muscl => self.muscl.is_some(),
-            OptionKey::ArtificialStress => self.artificial_stress.is_some(),
-            OptionKey::ArtificialStressExponent => self.artificial_stress_exponent.is_some(),
-        }
-    }
-
-    /// Removes `key` from the scene.
-    pub fn unset(&mut self, key: OptionKey) {
-        match key {
-            OptionKey::AvAlpha => self.av_alpha = None,
-            OptionKey::AvBeta => self.av_beta = None,
-            OptionKey::Limiter => self.limiter = None,
-            OptionKey::Riemann => self.riemann = None,
-            OptionKey::MusclTime => self.muscl_time = None,
-            OptionKey::SurfaceLambda => self.surface_lambda = None,
-            OptionKey::DetEpsilon => self.det_epsilon = None,
-            OptionKey::Correction => self.correction = None,
-            OptionKey::Muscl => self.muscl = None,
-            OptionKey::ArtificialStress => self.artificial_stress = None,
-            OptionKey::ArtificialStressExponent => self.artificial_stress_exponent = None,
-        }
-    }
-
-    /// The options as the core's types (names parsed; a name validation refuses reads as
-    /// unset).
-    pub fn to_core(&self) -> SceneOptions {
-        SceneOptions {
-            av_alpha: self.av_alpha,
-            av_beta: self.av_beta,
-            limiter: self.limiter.as_deref().and_then(Limiter::from_name),
-            riemann: self.riemann.as_deref().and_then(RiemannSolver::from_name),
-            muscl_time: self.muscl_time.as_deref().and_then(MusclTime::from_name),
-            surface_lambda: self.surface_lambda,
-            det_epsilon: self.det_epsilon,
-            correction: self.correction,
-            muscl: self.muscl,
-            artificial_stress: self.artificial_stress,
-            artificial_stress_exponent: self.artificial_stress_exponent,
-        }
-    }
-}
+/// Scheme options: the core's [`SceneOptions`] (each key is read by some schemes only and
+/// refused for the others, see `scene::applies`; absent keys take the scheme's default).
+pub type OptionsSpec = SceneOptions;
 
 /// Output schedule.
 #[derive(Debug, Clone, Deserialize)]

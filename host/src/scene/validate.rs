@@ -4,9 +4,6 @@ use super::spec::*;
 pub use super::validate_parts::resolve_poisson;
 use super::validate_parts::{material_known, validate_eos, validate_shape, validate_strength};
 use super::SceneError;
-use gsph_core::limiter::Limiter;
-use gsph_core::schemes::Scheme;
-use gsph_core::state::{MusclTime, RiemannSolver};
 
 pub(super) type R = Result<(), SceneError>;
 
@@ -78,9 +75,6 @@ pub const MAX_SNAPSHOTS: usize = 100_000;
 /// the driver walks the sample times one by one, so a huge count stalls every step.
 pub const MAX_SERIES: usize = 10_000_000;
 
-/// Known kernel names.
-pub const KERNELS: [&str; 3] = ["cubic_spline", "wendland_c2", "gaussian"];
-
 /// Checks the scene.
 pub fn validate(s: &Scene) -> R {
     validate_with(s, true)
@@ -113,15 +107,6 @@ pub fn validate_settings(s: &Scene) -> R {
 fn validate_with(s: &Scene, bodies_required: bool) -> R {
     if !(1..=3).contains(&s.dim) {
         return fail("dim", format!("must be 1, 2 or 3 (got {})", s.dim));
-    }
-    if Scheme::from_name(&s.scheme).is_none() {
-        return fail(
-            "scheme",
-            format!(
-                "unknown scheme `{}` (known: av, pm, ts1, ts2, tkc)",
-                s.scheme
-            ),
-        );
     }
     positive("t_end", s.t_end)?;
     positive("resolution_scale", s.resolution_scale)?;
@@ -175,16 +160,6 @@ fn validate_with(s: &Scene, bodies_required: bool) -> R {
                 format!("must be between 1 and 16 (got {n}; Gray, Monaghan & Swift use 4)"),
             );
         }
-    }
-    if !KERNELS.contains(&s.kernel.as_str()) {
-        return fail(
-            "kernel",
-            format!(
-                "unknown kernel `{}` (known: {})",
-                s.kernel,
-                KERNELS.join(", ")
-            ),
-        );
     }
     if !(0.5..=100.0).contains(&s.h_factor) {
         return fail(
@@ -249,10 +224,7 @@ fn validate_with(s: &Scene, bodies_required: bool) -> R {
         );
     }
     let o = &s.options;
-    if let Some((key, why)) = super::applies::inapplicable(o, &s.scheme)
-        .into_iter()
-        .next()
-    {
+    if let Some((key, why)) = super::applies::inapplicable(o, s.scheme).into_iter().next() {
         return fail(key, why);
     }
     if let Some(v) = o.av_alpha {
@@ -260,36 +232,6 @@ fn validate_with(s: &Scene, bodies_required: bool) -> R {
     }
     if let Some(v) = o.av_beta {
         non_negative("options.av_beta", v)?;
-    }
-    if let Some(l) = &o.limiter {
-        if Limiter::from_name(l).is_none() {
-            return fail(
-                "options.limiter",
-                format!("unknown limiter `{l}` (known: minmod, superbee, mc, vanleer, sweby:BETA)"),
-            );
-        }
-    }
-    if let Some(r) = &o.riemann {
-        if RiemannSolver::from_name(r).is_none() {
-            return fail(
-                "options.riemann",
-                format!(
-                    "unknown Riemann solver `{r}` (known: {})",
-                    RiemannSolver::NAMES.join(", ")
-                ),
-            );
-        }
-    }
-    if let Some(m) = &o.muscl_time {
-        if MusclTime::from_name(m).is_none() {
-            return fail(
-                "options.muscl_time",
-                format!(
-                    "unknown value `{m}` (known: {})",
-                    MusclTime::NAMES.join(", ")
-                ),
-            );
-        }
     }
     if let Some(v) = o.surface_lambda {
         positive("options.surface_lambda", v)?;

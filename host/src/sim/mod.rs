@@ -50,7 +50,7 @@ fn select<const D: usize>(scheme: Scheme, effects: EffectSet) -> Option<StepFn<D
 
 /// The effects a scene calls for (DESIGN §5): from its materials, options and scheme.
 pub fn resolve_effects(scene: &Scene, materials: &[Material]) -> EffectSet {
-    let mut e = Scheme::from_name(&scene.scheme).map_or(EffectSet::HYDRO, |s| s.effects());
+    let mut e = scene.scheme.effects();
     if materials.iter().any(|m| m.has_strength()) {
         e = e.union(EffectSet::STRENGTH);
     }
@@ -80,7 +80,6 @@ pub fn resolve_effects(scene: &Scene, materials: &[Material]) -> EffectSet {
 }
 
 use crate::neighbors::default_capacity;
-use crate::scene::kernel_of;
 
 gsph_core::particle_fields!(define_sim {
 /// A running simulation in dimension `D`: one array per field of the core's particle
@@ -174,7 +173,7 @@ impl<const D: usize> Sim<D> {
             .iter()
             .map(crate::scene::materials::material_of)
             .collect();
-        let scheme = Scheme::from_name(&scene.scheme).expect("validated scheme");
+        let scheme = scene.scheme;
         let effects = resolve_effects(scene, &materials);
         let unsupported = effects.kernel_part().without(scheme.family().supported());
         if unsupported != EffectSet::HYDRO {
@@ -189,8 +188,8 @@ impl<const D: usize> Sim<D> {
             effects,
         })?;
         let n = parts.len();
-        let kernel = kernel_of(&scene.kernel);
-        let options = scene.options.to_core().resolve(scheme, scene.constant_h);
+        let kernel = scene.kernel;
+        let options = scene.options.resolve(scheme, scene.constant_h);
         let periodic = match &scene.periodic {
             None => Periodic::none(),
             Some(p) => {
