@@ -104,7 +104,23 @@ pub fn validate_settings(s: &Scene) -> R {
     validate_with(s, false)
 }
 
+/// The scene's checks, in order (the first failure is reported): each a named check of
+/// one part or one cross-key rule; the models check their own parameters.
 fn validate_with(s: &Scene, bodies_required: bool) -> R {
+    check_run_time(s)?;
+    check_artificial_stress(s)?;
+    check_numerics(s)?;
+    check_output(s)?;
+    check_options(s)?;
+    check_periodic(s)?;
+    check_materials(s)?;
+    check_bodies(s, bodies_required)?;
+    check_monitor(s)?;
+    check_window_and_reference(s)
+}
+
+/// The dimension, the end time, the resolution, the time step.
+fn check_run_time(s: &Scene) -> R {
     if !(1..=3).contains(&s.dim) {
         return fail("dim", format!("must be 1, 2 or 3 (got {})", s.dim));
     }
@@ -135,6 +151,11 @@ fn validate_with(s: &Scene, bodies_required: bool) -> R {
             );
         }
     }
+    Ok(())
+}
+
+/// Artificial stress: its epsilon and exponent.
+fn check_artificial_stress(s: &Scene) -> R {
     if let Some(e) = s.options.artificial_stress {
         positive("options.artificial_stress", e)?;
         if e > 1.0 {
@@ -161,6 +182,11 @@ fn validate_with(s: &Scene, bodies_required: bool) -> R {
             );
         }
     }
+    Ok(())
+}
+
+/// The smoothing-length factor and the capacities.
+fn check_numerics(s: &Scene) -> R {
     if !(0.5..=100.0).contains(&s.h_factor) {
         return fail(
             "h_factor",
@@ -180,6 +206,11 @@ fn validate_with(s: &Scene, bodies_required: bool) -> R {
     if s.max_steps == Some(0) {
         return fail("max_steps", "must be at least 1");
     }
+    Ok(())
+}
+
+/// The output schedule and checkpoints.
+fn check_output(s: &Scene) -> R {
     if s.output.snapshots == 0 {
         return fail(
             "output.snapshots",
@@ -223,6 +254,11 @@ fn validate_with(s: &Scene, bodies_required: bool) -> R {
             "checkpoints are not supported for moving-window scenes",
         );
     }
+    Ok(())
+}
+
+/// The `[options]` keys: read by the scheme (the core says), in range.
+fn check_options(s: &Scene) -> R {
     let o = &s.options;
     if let Some((key, why)) = super::applies::inapplicable(o, s.scheme).into_iter().next() {
         return fail(key, why);
@@ -239,6 +275,11 @@ fn validate_with(s: &Scene, bodies_required: bool) -> R {
     if let Some(v) = o.det_epsilon {
         non_negative("options.det_epsilon", v)?;
     }
+    Ok(())
+}
+
+/// Periodic boundaries.
+fn check_periodic(s: &Scene) -> R {
     if let Some(p) = &s.periodic {
         dims("periodic.lo", &p.lo, s.dim)?;
         dims("periodic.hi", &p.hi, s.dim)?;
@@ -261,6 +302,11 @@ fn validate_with(s: &Scene, bodies_required: bool) -> R {
         }
     }
     super::walls::validate(s)?;
+    Ok(())
+}
+
+/// The materials: names, densities, moduli; each model checks its own parameters.
+fn check_materials(s: &Scene) -> R {
     if s.materials.is_empty() {
         return fail("materials", "at least one material is required");
     }
@@ -314,138 +360,11 @@ fn validate_with(s: &Scene, bodies_required: bool) -> R {
             _ => {}
         }
     }
-    if bodies_required && s.bodies.is_empty() {
-        return fail("bodies", "at least one body is required");
-    }
-    if s.bodies.len() > MAX_COUNT {
-        return fail("bodies", format!("at most {MAX_COUNT} bodies"));
-    }
-    for (k, b) in s.bodies.iter().enumerate() {
-        let key = format!("bodies[{k}]");
-        material_known(s, &format!("{key}.material"), &b.material)?;
-        let from_file = matches!(b.shape, ShapeSpec::Particles { .. });
-        if b.spacing.is_nan() && !from_file {
-            return fail(
-                &format!("{key}.spacing"),
-                "missing (this key is required; only a `particles` body whose file has an `m` column may leave it out)",
-            );
-        }
-        if !b.spacing.is_nan() {
-            positive(&format!("{key}.spacing"), b.spacing)?;
-        }
-        validate_shape(&format!("{key}.shape"), &b.shape, s.dim)?;
-        if from_file {
-            if s.resolution_scale != 1.0 {
-                return fail(
-                    "resolution_scale",
-                    format!(
-                        "{key} is read from a file (shape `particles`): there is no lattice to refine; keep resolution_scale = 1 (got {})",
-                        num(s.resolution_scale)
-                    ),
-                );
-            }
-            if b.jitter != 0.0 {
-                return fail(
-                    &format!("{key}.jitter"),
-                    "not for a `particles` body (its positions come from the file)",
-                );
-            }
-        }
-        if !(b.jitter >= 0.0 && b.jitter < 0.5) {
-            return fail(
-                &format!("{key}.jitter"),
-                format!(
-                    "must lie in [0, 0.5) (a fraction of the spacing; got {})",
-                    num(b.jitter)
-                ),
-            );
-        }
-        if let Some(p) = &b.pores {
-            if s.dim == 1 {
-                return fail(&format!("{key}.pores"), "pores need 2 or 3 dimensions");
-            }
-            super::pores::validate(&format!("{key}.pores"), p, s.dim)?;
-        }
-        match b.lattice.as_deref() {
-            None | Some("square") => {}
-            Some("polar") => {
-                if !matches!(b.shape, ShapeSpec::Disc { .. } | ShapeSpec::Annulus { .. })
-                    || s.dim != 2
-                {
-                    return fail(
-                        &format!("{key}.lattice"),
-                        "polar lattices exist for 2D discs and annuli only",
-                    );
-                }
-            }
-            Some(other) => {
-                return fail(
-                    &format!("{key}.lattice"),
-                    format!("unknown lattice `{other}` (known: square, polar)"),
-                )
-            }
-        }
-        if let Some(o) = &b.lattice_origin {
-            let k = format!("{key}.lattice_origin");
-            let r_out = match b.shape {
-                ShapeSpec::Disc { radius, .. } => radius,
-                ShapeSpec::Annulus { r_outer, .. } => r_outer,
-                _ => return fail(&k, "a lattice origin is for discs and annuli only"),
-            };
-            if b.lattice.as_deref() == Some("polar") {
-                return fail(&k, "a lattice origin is for the square lattice only");
-            }
-            if o.len() != s.dim {
-                return fail(
-                    &k,
-                    format!("must have {} components (got {})", s.dim, o.len()),
-                );
-            }
-            if let Some(v) = o.iter().find(|v| !(v.is_finite() && v.abs() <= r_out)) {
-                return fail(
-                    &k,
-                    format!("{v} must lie within the outer radius {r_out} of the centre"),
-                );
-            }
-        }
-        match &b.velocity {
-            Some(VelocitySpec::Uniform { value }) => {
-                dims(&format!("{key}.velocity.value"), value, s.dim)?
-            }
-            Some(VelocitySpec::Radial { v0, r_ref, center }) => {
-                finite(&format!("{key}.velocity.v0"), *v0)?;
-                positive(&format!("{key}.velocity.r_ref"), *r_ref)?;
-                dims(&format!("{key}.velocity.center"), center, s.dim)?;
-            }
-            Some(VelocitySpec::Pulse {
-                amplitude,
-                k: kk,
-                center,
-                axis,
-            }) => {
-                finite(&format!("{key}.velocity.amplitude"), *amplitude)?;
-                positive(&format!("{key}.velocity.k"), *kk)?;
-                finite(&format!("{key}.velocity.center"), *center)?;
-                if *axis >= s.dim {
-                    return fail(
-                        &format!("{key}.velocity.axis"),
-                        format!("axis {axis} does not exist in {}D", s.dim),
-                    );
-                }
-            }
-            None => {}
-        }
-        match &b.initial {
-            Some(InitialSpec::UniaxialStress { sigma_xx }) => {
-                finite(&format!("{key}.initial.sigma_xx"), *sigma_xx)?
-            }
-            Some(InitialSpec::Density { rho, e }) => {
-                positive(&format!("{key}.initial.rho"), *rho)?;
-                finite(&format!("{key}.initial.e"), *e)?;
-            }
-            None => {}
-        }
-    }
+    Ok(())
+}
+
+/// The monitored quantities.
+fn check_monitor(s: &Scene) -> R {
     if let Some(bf) = s.monitor.as_ref().and_then(|m| m.back_face.as_ref()) {
         material_known(s, "monitor.back_face.material", &bf.material)?;
         if bf.axis >= s.dim {
@@ -496,6 +415,11 @@ fn validate_with(s: &Scene, bodies_required: bool) -> R {
             }
         }
     }
+    Ok(())
+}
+
+/// The moving window and the exact reference.
+fn check_window_and_reference(s: &Scene) -> R {
     if let Some(w) = &s.window {
         w.geometry(s)?;
     }
@@ -549,6 +473,160 @@ fn validate_with(s: &Scene, bodies_required: bool) -> R {
                 return fail("reference.r_outer", "must exceed r_inner");
             }
             non_negative("reference.v0", *v0)?;
+        }
+        None => {}
+    }
+    Ok(())
+}
+
+/// The bodies: each one's material, spacing, shape, lattice and motion.
+fn check_bodies(s: &Scene, bodies_required: bool) -> R {
+    if bodies_required && s.bodies.is_empty() {
+        return fail("bodies", "at least one body is required");
+    }
+    if s.bodies.len() > MAX_COUNT {
+        return fail("bodies", format!("at most {MAX_COUNT} bodies"));
+    }
+    for (k, b) in s.bodies.iter().enumerate() {
+        let key = format!("bodies[{k}]");
+        check_body(s, &key, b)?;
+        check_lattice(s, &key, b)?;
+        check_motion(s, &key, b)?;
+    }
+    Ok(())
+}
+
+/// A body's material, spacing, shape, jitter and pores (`key`: `bodies[k]`).
+fn check_body(s: &Scene, key: &str, b: &BodySpec) -> R {
+    material_known(s, &format!("{key}.material"), &b.material)?;
+    let from_file = matches!(b.shape, ShapeSpec::Particles { .. });
+    if b.spacing.is_nan() && !from_file {
+        return fail(
+            &format!("{key}.spacing"),
+            "missing (this key is required; only a `particles` body whose file has an `m` column may leave it out)",
+        );
+    }
+    if !b.spacing.is_nan() {
+        positive(&format!("{key}.spacing"), b.spacing)?;
+    }
+    validate_shape(&format!("{key}.shape"), &b.shape, s.dim)?;
+    if from_file {
+        if s.resolution_scale != 1.0 {
+            return fail(
+                "resolution_scale",
+                format!(
+                    "{key} is read from a file (shape `particles`): there is no lattice to refine; keep resolution_scale = 1 (got {})",
+                    num(s.resolution_scale)
+                ),
+            );
+        }
+        if b.jitter != 0.0 {
+            return fail(
+                &format!("{key}.jitter"),
+                "not for a `particles` body (its positions come from the file)",
+            );
+        }
+    }
+    if !(b.jitter >= 0.0 && b.jitter < 0.5) {
+        return fail(
+            &format!("{key}.jitter"),
+            format!(
+                "must lie in [0, 0.5) (a fraction of the spacing; got {})",
+                num(b.jitter)
+            ),
+        );
+    }
+    if let Some(p) = &b.pores {
+        if s.dim == 1 {
+            return fail(&format!("{key}.pores"), "pores need 2 or 3 dimensions");
+        }
+        super::pores::validate(&format!("{key}.pores"), p, s.dim)?;
+    }
+    Ok(())
+}
+
+/// A body's lattice and lattice origin.
+fn check_lattice(s: &Scene, key: &str, b: &BodySpec) -> R {
+    match b.lattice.as_deref() {
+        None | Some("square") => {}
+        Some("polar") => {
+            if !matches!(b.shape, ShapeSpec::Disc { .. } | ShapeSpec::Annulus { .. }) || s.dim != 2
+            {
+                return fail(
+                    &format!("{key}.lattice"),
+                    "polar lattices exist for 2D discs and annuli only",
+                );
+            }
+        }
+        Some(other) => {
+            return fail(
+                &format!("{key}.lattice"),
+                format!("unknown lattice `{other}` (known: square, polar)"),
+            )
+        }
+    }
+    if let Some(o) = &b.lattice_origin {
+        let k = format!("{key}.lattice_origin");
+        let r_out = match b.shape {
+            ShapeSpec::Disc { radius, .. } => radius,
+            ShapeSpec::Annulus { r_outer, .. } => r_outer,
+            _ => return fail(&k, "a lattice origin is for discs and annuli only"),
+        };
+        if b.lattice.as_deref() == Some("polar") {
+            return fail(&k, "a lattice origin is for the square lattice only");
+        }
+        if o.len() != s.dim {
+            return fail(
+                &k,
+                format!("must have {} components (got {})", s.dim, o.len()),
+            );
+        }
+        if let Some(v) = o.iter().find(|v| !(v.is_finite() && v.abs() <= r_out)) {
+            return fail(
+                &k,
+                format!("{v} must lie within the outer radius {r_out} of the centre"),
+            );
+        }
+    }
+    Ok(())
+}
+
+/// A body's initial velocity and state.
+fn check_motion(s: &Scene, key: &str, b: &BodySpec) -> R {
+    match &b.velocity {
+        Some(VelocitySpec::Uniform { value }) => {
+            dims(&format!("{key}.velocity.value"), value, s.dim)?
+        }
+        Some(VelocitySpec::Radial { v0, r_ref, center }) => {
+            finite(&format!("{key}.velocity.v0"), *v0)?;
+            positive(&format!("{key}.velocity.r_ref"), *r_ref)?;
+            dims(&format!("{key}.velocity.center"), center, s.dim)?;
+        }
+        Some(VelocitySpec::Pulse {
+            amplitude,
+            k: kk,
+            center,
+            axis,
+        }) => {
+            finite(&format!("{key}.velocity.amplitude"), *amplitude)?;
+            positive(&format!("{key}.velocity.k"), *kk)?;
+            finite(&format!("{key}.velocity.center"), *center)?;
+            if *axis >= s.dim {
+                return fail(
+                    &format!("{key}.velocity.axis"),
+                    format!("axis {axis} does not exist in {}D", s.dim),
+                );
+            }
+        }
+        None => {}
+    }
+    match &b.initial {
+        Some(InitialSpec::UniaxialStress { sigma_xx }) => {
+            finite(&format!("{key}.initial.sigma_xx"), *sigma_xx)?
+        }
+        Some(InitialSpec::Density { rho, e }) => {
+            positive(&format!("{key}.initial.rho"), *rho)?;
+            finite(&format!("{key}.initial.e"), *e)?;
         }
         None => {}
     }
