@@ -40,6 +40,9 @@ pub struct InitialParticles {
     pub damage: Vec<f64>,
     /// Temperature of each particle, K, or empty: each material's initial temperature.
     pub temperature: Vec<f64>,
+    /// Reference position of each particle (where it was created: its position as built,
+    /// or a particle file's `x0` columns), m, or empty: its position.
+    pub x0: Vec<[f64; 3]>,
 }
 
 impl InitialParticles {
@@ -81,6 +84,9 @@ impl InitialParticles {
             if let Some(&v) = from.get(i) {
                 to.push(v);
             }
+        }
+        if let Some(&x0) = src.x0.get(i) {
+            self.x0.push(x0);
         }
     }
 }
@@ -229,6 +235,7 @@ pub fn build_particles(scene: &Scene) -> Result<InitialParticles, SceneError> {
         for (x, vol) in pts {
             let x = jittered(x, scene.dim, body.jitter * dx, out.x.len() as u64);
             out.v.push(velocity(body.velocity.as_ref(), &x));
+            out.x0.push(x);
             out.x.push(x);
             out.m.push(rho * vol);
             out.rho.push(rho);
@@ -298,6 +305,7 @@ fn file_body(
             Some(_) => velocity(body.velocity.as_ref(), &p.x),
             None => p.v,
         });
+        out.x0.push(p.x0.unwrap_or(p.x));
         out.x.push(p.x);
         out.m.push(p.m);
         out.rho.push(p.rho);

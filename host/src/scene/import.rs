@@ -93,7 +93,7 @@ pub(super) fn resolve_files(scene: &mut Scene, base: Option<&Path>) {
 }
 
 /// The state columns of a particle file, in `final.csv` order.
-pub const STATE_COLUMNS: [&str; 18] = [
+pub const STATE_COLUMNS: [&str; 21] = [
     "x",
     "y",
     "z",
@@ -112,15 +112,19 @@ pub const STATE_COLUMNS: [&str; 18] = [
     "eps_p",
     "damage",
     "temperature",
+    "x0",
+    "y0",
+    "z0",
 ];
 
 /// Columns of a particle file that are skipped unread: the id (particles get new ids in
 /// file order), the pressure and smoothing length (recomputed from the state) and the
 /// derived columns of `final.csv`.
-pub const IGNORED_COLUMNS: [&str; 10] = [
+pub const IGNORED_COLUMNS: [&str; 11] = [
     "id",
     "p",
     "h",
+    "det_f",
     "sigma_xx",
     "sigma_yy",
     "sigma_zz",
@@ -140,6 +144,7 @@ const S: usize = 9;
 const EPS_P: usize = 15;
 const DAMAGE: usize = 16;
 const TEMPERATURE: usize = 17;
+const X0: usize = 18;
 
 /// Where the rows of a particle file are, for messages.
 #[derive(Debug, Clone)]
@@ -156,7 +161,7 @@ enum Rows {
 pub(super) struct FileParticles {
     /// The file, for messages.
     shown: String,
-    cols: [Option<Vec<f64>>; 18],
+    cols: [Option<Vec<f64>>; STATE_COLUMNS.len()],
     material: Option<Vec<u32>>,
     rows: Rows,
 }
@@ -342,12 +347,16 @@ fn read_snapshot(
     }
     let names = crate::output::table::FLOAT_COLUMNS;
     let floats = t.float_columns();
-    let mut cols: [Option<Vec<f64>>; 18] = Default::default();
+    let mut cols: [Option<Vec<f64>>; STATE_COLUMNS.len()] = Default::default();
     for (c, name) in STATE_COLUMNS.iter().enumerate() {
         let k = names
             .iter()
             .position(|n| n == name)
             .expect("a table column");
+        // a snapshot written before the reference position was reads it as NaN: absent
+        if c >= X0 && floats[k].iter().any(|v| v.is_nan()) {
+            continue;
+        }
         cols[c] = Some(floats[k].clone());
     }
     Ok(FileParticles {
@@ -367,7 +376,9 @@ fn check_values(f: &FileParticles, dim: usize) -> Result<(), String> {
     for (c, col) in f.cols.iter().enumerate() {
         let Some(col) = col else { continue };
         let name = STATE_COLUMNS[c];
-        let beyond = (c < V && c - X >= dim) || ((V..V + 3).contains(&c) && c - V >= dim);
+        let beyond = (c < V && c - X >= dim)
+            || ((V..V + 3).contains(&c) && c - V >= dim)
+            || ((X0..X0 + 3).contains(&c) && c - X0 >= dim);
         for (i, &v) in col.iter().enumerate() {
             let bad = if !v.is_finite() {
                 Some("not finite".to_string())
@@ -454,6 +465,9 @@ pub(super) struct FileParticle {
     pub eps_p: f64,
     pub damage: f64,
     pub temperature: f64,
+    /// The file's reference position (`x0`, `y0`, `z0`: a `final.csv` of an earlier run),
+    /// if it has one.
+    pub x0: Option<[f64; 3]>,
 }
 
 /// The particles of a file body of material `mat` (see the module docs for what comes
@@ -523,6 +537,13 @@ pub(super) fn file_body(
             eps_p: col(EPS_P).unwrap_or(0.0),
             damage: col(DAMAGE).unwrap_or(0.0),
             temperature: col(TEMPERATURE).unwrap_or_else(|| mat.initial_temperature()),
+            x0: f.cols[X0].as_ref().map(|_| {
+                let mut x0 = [0.0; 3];
+                for (a, x0a) in x0.iter_mut().enumerate() {
+                    *x0a = col(X0 + a).unwrap_or(0.0);
+                }
+                x0
+            }),
         });
     }
     Ok(out)

@@ -144,7 +144,7 @@ pub(super) fn parse_csv(
         .trim(csv::Trim::All)
         .from_reader(BufReader::new(file));
     let mut slots: Option<(u64, Vec<Slot>)> = None;
-    let mut cols: [Option<Vec<f64>>; 18] = Default::default();
+    let mut cols: [Option<Vec<f64>>; STATE_COLUMNS.len()] = Default::default();
     let mut material: Option<Vec<u32>> = None;
     let mut lines = Vec::new();
     let mut record = csv::StringRecord::new();

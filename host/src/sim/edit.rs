@@ -90,7 +90,8 @@ impl<const D: usize> Sim<D> {
                     .copied()
                     .unwrap_or_else(|| mat.initial_temperature()),
                 h: smoothing_length::<D>(self.h_factor, parts.m[i], parts.rho[i]),
-                x0: x,
+                // where it was created, or the reference a particle file gives
+                x0: parts.x0.get(i).map_or(x, vec_of::<D>),
             });
             if layout.av {
                 self.av.push(AvRates::default());

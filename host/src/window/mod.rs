@@ -224,6 +224,10 @@ impl<const D: usize> Window<D> {
             add.push_from(&self.feed, k);
             let last = add.len() - 1;
             add.x[last][0] = x;
+            // a fed particle is created where it enters
+            if let Some(x0) = add.x0.get_mut(last) {
+                *x0 = add.x[last];
+            }
             add.v[last] = [self.u_in, 0.0, 0.0];
             self.mass_in += self.feed.m[k];
             self.next += 1;
