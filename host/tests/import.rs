@@ -124,7 +124,10 @@ fn a_continued_run_starts_from_the_previous_final_state() {
         // the reference position carries over: det F continues from the first run's
         // reference configuration
         assert_same_state(&start.table, &last, &["x0", "y0", "z0", "det_f"], file);
-        assert_ne!(start.table.x0, start.table.x, "{file}: the impact moved the particles");
+        assert_ne!(
+            start.table.x0, start.table.x,
+            "{file}: the impact moved the particles"
+        );
     }
     // `step` picks a snapshot: the first run's initial state
     run(
