@@ -26,6 +26,11 @@ macro_rules! derived_columns {
         out[$($dcol:ident $dcdoc:literal),*]
     };)*) => {
         particle_types! { $($col $unit $cdoc,)* $($($dcol $dunit $dcdoc,)*)* }
+
+        /// The float columns computed from the state for output (the core's
+        /// `derived_fields!`): not state, and NaN where undefined (`det_f` of a particle
+        /// without neighbours).
+        pub const DERIVED_FLOAT_COLUMNS: &[&str] = &[$($(stringify!($dcol)),*),*];
     };
 }
 

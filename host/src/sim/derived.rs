@@ -11,7 +11,9 @@ use gsph_core::neighbors::Periodic;
 use rayon::prelude::*;
 
 /// det F of each particle, F = dx/dx0 the deformation gradient from the reference
-/// positions `x0` to the positions now (NaN for wall mirrors and ghosts).
+/// positions `x0` to the positions now (NaN for wall mirrors and ghosts, and where it is
+/// undefined: a particle without neighbours, or whose reference neighbourhood is
+/// degenerate, `det A = 0`).
 ///
 /// With `B = sum_j V_j (x_j - x_i) (x) grad_i W_ij` and `A = sum_j V_j (x0_j - x0_i) (x)
 /// grad_i W_ij` over the neighbours now (`V_j = m_j / rho_j`, `W_ij` at the mean smoothing
@@ -85,7 +87,17 @@ fn det_f_of<const D: usize>(
                     b += dx * g.transpose() * vol;
                     a += periodic.min_image(s.x0[j] - s.x0[i]) * g.transpose() * vol;
                 }
-                det(&b) / det(&a)
+                // F is undefined where a neighbourhood does not span D dimensions (a
+                // fragment of one particle, a row of particles in 2D): NaN, not 0/0 or inf
+                let spans = |m: &Matrix<D>| {
+                    let d = det(m);
+                    d.is_finite() && d.abs() > 1e-12 * m.norm().powi(D as i32)
+                };
+                if spans(&a) && spans(&b) {
+                    det(&b) / det(&a)
+                } else {
+                    f64::NAN
+                }
             })
             .collect(),
     )
@@ -137,6 +149,25 @@ mod tests {
                 );
             }
         }
+    }
+
+    #[test]
+    fn det_f_is_nan_where_the_neighbourhood_spans_no_area() {
+        // a row of particles in 2D: A and B have rank 1
+        let x0: Vec<Vector<2>> = (0..5)
+            .map(|k| Vector::<2>::new(k as f64 * 0.1, 0.0))
+            .collect();
+        let (m, rho, h) = (vec![1.0; 5], vec![100.0; 5], vec![0.13; 5]);
+        let s = Positions {
+            x: &x0,
+            x0: &x0,
+            m: &m,
+            rho: &rho,
+            h: &h,
+        };
+        let ids: Vec<u32> = (0..5).collect();
+        let d = det_f_of(&s, &ids, Kernel::CubicSpline, &Periodic::none()).unwrap();
+        assert!(d.iter().all(|v| v.is_nan()), "{d:?}");
     }
 
     #[test]
