@@ -38,9 +38,9 @@
 //! contact pressure and velocity of the momentum and energy equations (eq 34) come from
 //! the same left/right states, as in the seed. Eq 23 prints the factor `[1 - c_i dt]`,
 //! which has units of length; divided by the pair distance it becomes the MUSCL–Hancock
-//! factor `f_i = max(0, 1 - c_i dt / r_ij)` ([`MusclTime::CourantFactor`]); a genuine
-//! half-step predictor is [`MusclTime::Predictor`]; the default is the spatial
-//! reconstruction alone (`f = 1`, [`MusclTime::None`]): the most accurate of the three,
+//! factor `f_i = max(0, 1 - c_i dt / r_ij)` ([`MusclTime::CourantFactor`](crate::state::MusclTime::CourantFactor)); a genuine
+//! half-step predictor is [`MusclTime::Predictor`](crate::state::MusclTime::Predictor); the default is the spatial
+//! reconstruction alone (`f = 1`, [`MusclTime::None`](crate::state::MusclTime::None)): the most accurate of the three,
 //! and with the bounded extrapolation and the symplectic-Euler ordering it keeps an
 //! elastic standing wave bounded (measurements in docs/ts2_reconstruction.md).
 //!
