@@ -205,11 +205,10 @@ impl Values for u16 {
 
 impl Values for Sym3 {
     fn get(&self, out: &mut [f64]) {
-        out.copy_from_slice(&[self.xx, self.yy, self.zz, self.xy, self.xz, self.yz]);
+        out.copy_from_slice(&self.to_array());
     }
     fn set(&mut self, x: &[f64]) {
-        (self.xx, self.yy, self.zz) = (x[0], x[1], x[2]);
-        (self.xy, self.xz, self.yz) = (x[3], x[4], x[5]);
+        *self = Sym3::from_array([x[0], x[1], x[2], x[3], x[4], x[5]]);
     }
 }
 

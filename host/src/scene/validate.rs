@@ -4,6 +4,7 @@ use super::spec::*;
 pub use super::validate_parts::resolve_poisson;
 use super::validate_parts::{material_known, validate_eos, validate_shape, validate_strength};
 use super::SceneError;
+use gsph_core::material::params::{self, Num, Rule};
 
 pub(super) type R = Result<(), SceneError>;
 
@@ -11,41 +12,27 @@ pub(super) fn fail(key: &str, msg: impl std::fmt::Display) -> R {
     Err(SceneError(format!("{key}: {msg}")))
 }
 
-/// A number for a message: plain where short (`0.5`, `-1`), else in `e` notation (`1e-300`).
-pub(super) fn num(v: f64) -> String {
-    let a = v.abs();
-    if v == 0.0 || !v.is_finite() || (1e-3..1e6).contains(&a) {
-        format!("{v}")
-    } else {
-        format!("{v:e}")
-    }
+/// A number for a message: plain where short (`0.5`, `-1`), else in `e` notation (`1e-300`)
+/// (the core's [`Num`], as the models' own checks print it).
+pub(crate) fn num(v: f64) -> String {
+    Num(v).to_string()
+}
+
+/// `v` of `key` checked against `rule` by the core's rule (the message the models give).
+fn rule(key: &str, v: f64, rule: Rule) -> R {
+    params::check("", v, rule).or_else(|e| fail(key, e))
 }
 
 pub(super) fn positive(key: &str, v: f64) -> R {
-    if v.is_finite() && v > 0.0 {
-        Ok(())
-    } else {
-        fail(key, format!("must be positive and finite (got {})", num(v)))
-    }
+    rule(key, v, Rule::Positive)
 }
 
 pub(super) fn non_negative(key: &str, v: f64) -> R {
-    if v.is_finite() && v >= 0.0 {
-        Ok(())
-    } else {
-        fail(
-            key,
-            format!("must be non-negative and finite (got {})", num(v)),
-        )
-    }
+    rule(key, v, Rule::NonNegative)
 }
 
 pub(super) fn finite(key: &str, v: f64) -> R {
-    if v.is_finite() {
-        Ok(())
-    } else {
-        fail(key, format!("must be finite (got {})", num(v)))
-    }
+    rule(key, v, Rule::Finite)
 }
 
 pub(super) fn dims(key: &str, v: &[f64], dim: usize) -> R {

@@ -160,7 +160,7 @@ impl Columns for u16 {
 
 impl Columns for Sym3 {
     fn put_columns(&self, out: &mut [f64], k: &mut usize) {
-        out[*k..*k + 6].copy_from_slice(&[self.xx, self.yy, self.zz, self.xy, self.xz, self.yz]);
+        out[*k..*k + 6].copy_from_slice(&self.to_array());
         *k += 6;
     }
 }
