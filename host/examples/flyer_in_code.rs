@@ -10,7 +10,7 @@
 //! `gsph = { path = "host", default-features = false, features = ["dim1", "scheme-ts", "effects-strength"] }`.
 
 use gsph::api::{Effect, SceneBuilder};
-use gsph::scene::{BodySpec, MaterialSpec, ShapeSpec, StrengthSpec, VelocitySpec};
+use gsph::scene::{BodySpec, MaterialSpec, ShapeSpec, Strength, VelocitySpec};
 use gsph_core::kernel::Kernel;
 use gsph_core::material::eos::{Eos, Hugoniot};
 use gsph_core::schemes::Scheme;
@@ -43,7 +43,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             c0: 5077.0,
             s1: 1.201,
         }),
-        strength: Some(StrengthSpec::VonMises {
+        strength: Some(Strength::VonMises {
             yield_stress: 2.5e9,
         }),
         tensile_strength: None,

@@ -2,7 +2,7 @@
 //! `series.csv`.
 
 use crate::output::ParticleTable;
-use crate::scene::{Eos, ReferenceSpec, Scene, SceneError, StrengthSpec};
+use crate::scene::{Eos, ReferenceSpec, Scene, SceneError, Strength};
 use gsph_core::exact::{
     ElasticPlasticRiemann, EpRiemannParams, FlyerPlate, FlyerPlateParams, ShellCollapse,
     ShellParams, SoundPulse, SoundPulseParams,
@@ -103,7 +103,7 @@ fn yield_of(scene: &Scene, name: &str, key: &str) -> Result<(f64, f64), SceneErr
         .find(|m| m.name == name)
         .expect("validated");
     match m.strength {
-        Some(StrengthSpec::VonMises { yield_stress }) => Ok((m.shear_modulus, yield_stress)),
+        Some(Strength::VonMises { yield_stress }) => Ok((m.shear_modulus, yield_stress)),
         _ => Err(SceneError(format!(
             "{key}: material `{name}` must use von_mises strength for this reference"
         ))),

@@ -6,7 +6,7 @@
 
 use gsph::api::{unset, Effect, Particles, SceneBuilder, Simulation};
 use gsph::driver::{run, RunOptions};
-use gsph::scene::{self, BodySpec, MaterialSpec, ShapeSpec, StrengthSpec, VelocitySpec};
+use gsph::scene::{self, BodySpec, MaterialSpec, ShapeSpec, Strength, VelocitySpec};
 use gsph_core::material::eos::{Eos, Hugoniot};
 use gsph_core::schemes::Scheme;
 use std::path::Path;
@@ -67,7 +67,7 @@ fn metal() -> MaterialSpec {
             c0: 5077.0,
             s1: 1.201,
         }),
-        strength: Some(StrengthSpec::VonMises {
+        strength: Some(Strength::VonMises {
             yield_stress: 2.5e9,
         }),
         tensile_strength: None,

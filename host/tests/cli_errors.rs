@@ -241,6 +241,8 @@ fn cases() -> Vec<Case> {
         case("particle file that is a device", f(), "run", &["--set", "bodies.0.shape={ type = \"particles\", file = \"/dev/zero\" }"], &["bodies[0].shape.file: /dev/zero: not a regular file"]),
         case("long value quoted as an excerpt", f(), "check", &["--set", "materials.0.rho0=dddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddd"], &["materials[0].rho0: invalid type: string \"dddddddddddddddddddddddddddddddddddddddd…\", expected f64"]),
         case("more particles than max_particles", f(), "run", &["--set", "max_particles=50"], &["bodies[1].spacing", "more than the limit 5e1 (`max_particles` raises it)"]),
+        case("key an elastic material does not read", f(), "check", &["--set", "materials.0.strength={ type = \"elastic\", yield_stress = 1e9 }"], &["materials[0].strength.yield_stress: unknown key (this table takes no other keys)"]),
+        case("key of the Johnson-Cook model misspelt", impact(), "check", &["--set", "materials.0.strength.t_mel=1800"], &["materials[0].strength.t_mel: unknown key (known: a, b, n, c, m, eps_dot0, t_room, t_melt, specific_heat, taylor_quinney)"]),
     ]
 }
 

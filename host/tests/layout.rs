@@ -267,7 +267,7 @@ fn every_scene_key_is_in_the_user_guide() {
     let guide = std::fs::read_to_string(repo.join("docs/user-guide.md")).unwrap();
     let mut keys = BTreeSet::new();
     // the scene's own structs, and the core's types a scene is read into (its options,
-    // the equations of state)
+    // the equations of state, the strength models)
     let core = repo.join("core/src");
     let mut files: Vec<std::path::PathBuf> = [
         "spec.rs",
@@ -280,25 +280,33 @@ fn every_scene_key_is_in_the_user_guide() {
     .map(|f| src().join("scene").join(f))
     .collect();
     files.push(core.join("schemes/options.rs"));
-    for e in std::fs::read_dir(core.join("material/eos")).unwrap() {
-        let p = e.unwrap().path();
-        if p.file_name().is_some_and(|n| n != "mod.rs") {
-            files.push(p);
+    for dir in ["material/eos", "material/strength"] {
+        for e in std::fs::read_dir(core.join(dir)).unwrap() {
+            let p = e.unwrap().path();
+            if p.file_name().is_some_and(|n| n != "mod.rs") {
+                files.push(p);
+            }
         }
     }
+    files.push(core.join("material/mod.rs"));
     for f in files {
         let mut text = std::fs::read_to_string(&f).unwrap();
         if f.starts_with(&core) {
-            // the core's files: their structs only (the rest is physics)
+            // the core's files: the structs and enums a scene is read into (those that
+            // derive serde's Deserialize; the rest is physics)
             let mut structs = String::new();
-            let mut inside = false;
+            let (mut inside, mut serde) = (false, false);
             for line in text.lines() {
-                inside |= line.starts_with("pub struct");
+                serde |= line.contains("serde::Deserialize");
+                let item = ["pub struct", "pub enum", "    pub enum"];
+                if serde && item.iter().any(|i| line.starts_with(i)) {
+                    (inside, serde) = (true, false);
+                }
                 if inside {
                     structs.push_str(line);
                     structs.push('\n');
                 }
-                inside &= line != "}";
+                inside &= line != "}" && line != "    }";
             }
             text = structs;
         }

@@ -10,8 +10,16 @@ pub mod strength;
 use crate::math::{real, Real};
 pub use eos::{Eos, EosState};
 
-/// How a material resists shear.
+/// How a material resists shear. With the feature `serde` it reads from a scene's
+/// `strength` table: `type` names the variant (`fluid`, `elastic`, `von_mises`,
+/// `johnson_cook`, `jh1`), the other keys are the model's parameters, and a key the model
+/// does not read is refused.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Deserialize, serde::Serialize),
+    serde(from = "serde_repr::Tagged", into = "serde_repr::Tagged")
+)]
 pub enum Strength {
     /// No deviatoric stress (fluid). The shear modulus must be zero.
     Fluid,
@@ -26,6 +34,71 @@ pub enum Strength {
     JohnsonCook(strength::JohnsonCook),
     /// Johnson–Holmquist JH1 ceramic with scalar damage (damage effect).
     Jh1(strength::Jh1),
+}
+
+impl Strength {
+    /// The model's name in a scene (its `type`).
+    pub fn name(&self) -> &'static str {
+        match self {
+            Strength::Fluid => "fluid",
+            Strength::Elastic => "elastic",
+            Strength::VonMises { .. } => "von_mises",
+            Strength::JohnsonCook(_) => "johnson_cook",
+            Strength::Jh1(_) => "jh1",
+        }
+    }
+
+    /// Checks the model's parameters (each model's `check`).
+    pub fn check(&self) -> Result<(), params::ParamError> {
+        match self {
+            Strength::Fluid | Strength::Elastic => Ok(()),
+            Strength::VonMises { yield_stress } => params::positive("yield_stress", *yield_stress),
+            Strength::JohnsonCook(m) => m.check(),
+            Strength::Jh1(m) => m.check(),
+        }
+    }
+}
+
+/// The scene form of [`Strength`]: the same variants with the parameterless ones as empty
+/// structs, because serde's internally tagged unit variants would ignore keys they do not
+/// read (a scene key must change the result or be refused).
+#[cfg(feature = "serde")]
+mod serde_repr {
+    use super::{strength, Real, Strength};
+
+    #[derive(serde::Deserialize, serde::Serialize)]
+    #[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+    pub enum Tagged {
+        Fluid {},
+        Elastic {},
+        VonMises { yield_stress: Real },
+        JohnsonCook(strength::JohnsonCook),
+        Jh1(strength::Jh1),
+    }
+
+    impl From<Tagged> for Strength {
+        fn from(t: Tagged) -> Strength {
+            match t {
+                Tagged::Fluid {} => Strength::Fluid,
+                Tagged::Elastic {} => Strength::Elastic,
+                Tagged::VonMises { yield_stress } => Strength::VonMises { yield_stress },
+                Tagged::JohnsonCook(m) => Strength::JohnsonCook(m),
+                Tagged::Jh1(m) => Strength::Jh1(m),
+            }
+        }
+    }
+
+    impl From<Strength> for Tagged {
+        fn from(s: Strength) -> Tagged {
+            match s {
+                Strength::Fluid => Tagged::Fluid {},
+                Strength::Elastic => Tagged::Elastic {},
+                Strength::VonMises { yield_stress } => Tagged::VonMises { yield_stress },
+                Strength::JohnsonCook(m) => Tagged::JohnsonCook(m),
+                Strength::Jh1(m) => Tagged::Jh1(m),
+            }
+        }
+    }
 }
 
 /// One material of a scene.

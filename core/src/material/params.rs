@@ -15,6 +15,18 @@ pub enum Rule {
     NonNegative,
     /// Finite.
     Finite,
+    /// Finite and < 0, with what a negative value means (`a hydrostatic tension`).
+    Negative {
+        /// The meaning, for the message.
+        meaning: &'static str,
+    },
+    /// Within `[lo, hi]`.
+    Within {
+        /// Lower bound.
+        lo: Real,
+        /// Upper bound.
+        hi: Real,
+    },
     /// Greater than another parameter of the model.
     Exceeds {
         /// The other parameter's key.
@@ -61,6 +73,10 @@ impl fmt::Display for ParamError {
             Rule::Positive => write!(f, "must be positive and finite (got {got})"),
             Rule::NonNegative => write!(f, "must be non-negative and finite (got {got})"),
             Rule::Finite => write!(f, "must be finite (got {got})"),
+            Rule::Negative { meaning } => write!(f, "must be negative ({meaning}; got {got})"),
+            Rule::Within { lo, hi } => {
+                write!(f, "must lie in [{}, {}] (got {got})", Num(lo), Num(hi))
+            }
             Rule::Exceeds { other, bound, unit } => {
                 write!(f, "must exceed {other} = {} {unit} (got {got})", Num(bound))
             }
@@ -75,6 +91,8 @@ pub fn check(key: &'static str, value: Real, rule: Rule) -> Result<(), ParamErro
             Rule::Positive => value > 0.0,
             Rule::NonNegative => value >= 0.0,
             Rule::Finite => true,
+            Rule::Negative { .. } => value < 0.0,
+            Rule::Within { lo, hi } => (lo..=hi).contains(&value),
             Rule::Exceeds { bound, .. } => value > bound,
         };
     if ok {
@@ -97,6 +115,17 @@ pub fn non_negative(key: &'static str, value: Real) -> Result<(), ParamError> {
 /// [`check`] of `Rule::Finite`.
 pub fn finite(key: &'static str, value: Real) -> Result<(), ParamError> {
     check(key, value, Rule::Finite)
+}
+
+/// [`check`] of `Rule::Exceeds`: `value` (in `unit`) above parameter `other`'s `bound`.
+pub fn exceeds(
+    key: &'static str,
+    value: Real,
+    other: &'static str,
+    bound: Real,
+    unit: &'static str,
+) -> Result<(), ParamError> {
+    check(key, value, Rule::Exceeds { other, bound, unit })
 }
 
 /// 1 (a serde default).

@@ -1,7 +1,7 @@
 //! `gsph materials`: the library listed, one material printed, a scene's resolved materials.
 
 use super::{find, not_in_library, source_line, table_of, Entry, LIBRARY};
-use crate::scene::{MaterialSpec, StrengthSpec};
+use crate::scene::MaterialSpec;
 use std::path::Path;
 use toml::Value;
 
@@ -16,11 +16,7 @@ pub fn spec_of(e: &Entry) -> Result<MaterialSpec, String> {
 pub fn model_summary(m: &MaterialSpec) -> String {
     let eos = m.eos.name();
     let strength = match &m.strength {
-        Some(StrengthSpec::Fluid {}) => "fluid",
-        Some(StrengthSpec::Elastic {}) => "elastic",
-        Some(StrengthSpec::VonMises { .. }) => "von_mises",
-        Some(StrengthSpec::JohnsonCook { .. }) => "johnson_cook",
-        Some(StrengthSpec::Jh1 { .. }) => "jh1",
+        Some(strength) => strength.name(),
         None if m.shear_modulus > 0.0 || m.poisson_ratio.is_some() => "elastic",
         None => "fluid",
     };

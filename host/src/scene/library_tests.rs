@@ -3,8 +3,9 @@
 
 use super::super::{parse, parse_settings, Scene};
 use super::*;
-use crate::scene::StrengthSpec;
 use gsph_core::material::eos::{Eos, MieGruneisen, Tillotson};
+use gsph_core::material::strength::JohnsonCook;
+use gsph_core::material::Strength;
 use std::path::PathBuf;
 
 fn cases_dir() -> PathBuf {
@@ -86,7 +87,7 @@ fn a_body_takes_a_library_material_by_name() {
     let m = &s.materials[0];
     assert_eq!(m.name, "steel_4340");
     assert_eq!(m.rho0, 7830.0);
-    let Some(StrengthSpec::JohnsonCook { a, t_melt, .. }) = m.strength else {
+    let Some(Strength::JohnsonCook(JohnsonCook { a, t_melt, .. })) = m.strength else {
         panic!("{m:?}")
     };
     assert_eq!((a, t_melt), (792.0e6, 1793.0));
@@ -107,7 +108,7 @@ fn local_keys_override_the_library_key_by_key() {
     let s = parse(&bar(t, "st"), "scene.toml", &[]).unwrap();
     let m = &s.materials[0];
     assert_eq!(m.rho0, 7850.0);
-    let Some(StrengthSpec::JohnsonCook { a, b, .. }) = m.strength else {
+    let Some(Strength::JohnsonCook(JohnsonCook { a, b, .. })) = m.strength else {
         panic!("{m:?}")
     };
     assert_eq!(
@@ -129,7 +130,7 @@ fn local_keys_override_the_library_key_by_key() {
     let s = parse(&bar(t, "st"), "scene.toml", &[]).unwrap();
     assert!(matches!(
         s.materials[0].strength,
-        Some(StrengthSpec::VonMises { yield_stress }) if yield_stress == 1.0e9
+        Some(Strength::VonMises { yield_stress }) if yield_stress == 1.0e9
     ));
     // --set reaches into a library-based table the same way
     let t = "[[materials]]\nname = \"st\"\nlibrary = \"steel_4340\"\n";
@@ -232,7 +233,7 @@ fn include_reads_a_file_beside_the_scene() {
     let m = &s.materials[0];
     assert_eq!((m.name.as_str(), m.rho0), ("my_steel", 7800.0));
     assert!(
-        matches!(m.strength, Some(StrengthSpec::JohnsonCook { a, n, .. }) if a == 1.0e9 && n == 0.26)
+        matches!(m.strength, Some(Strength::JohnsonCook(JohnsonCook { a, n, .. })) if a == 1.0e9 && n == 0.26)
     );
     assert_eq!(
         s.material_sources[0],

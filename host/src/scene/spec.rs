@@ -1,6 +1,6 @@
 //! The scene schema (serde). Units are SI; every field is documented in `cases/README.md`.
 
-pub use super::material_spec::{Eos, MaterialSpec, StrengthSpec};
+pub use super::material_spec::{Eos, MaterialSpec, Strength};
 pub use gsph_core::kernel::Kernel;
 pub use gsph_core::schemes::options::SceneOptions;
 pub use gsph_core::schemes::Scheme;

@@ -2,7 +2,7 @@
 
 use super::spec::*;
 pub use super::validate_parts::resolve_poisson;
-use super::validate_parts::{material_known, validate_eos, validate_shape, validate_strength};
+use super::validate_parts::{material_known, validate_model, validate_shape};
 use super::SceneError;
 use gsph_core::material::params::{self, Num, Rule};
 
@@ -310,10 +310,10 @@ fn check_materials(s: &Scene) -> R {
         }
         positive(&format!("{key}.rho0"), m.rho0)?;
         non_negative(&format!("{key}.shear_modulus"), m.shear_modulus)?;
-        validate_eos(&format!("{key}.eos"), &m.eos)?;
+        validate_model(&format!("{key}.eos"), m.eos.check())?;
         if let Some(t) = m.tensile_strength {
             positive(&format!("{key}.tensile_strength"), t)?;
-            if matches!(m.strength, Some(StrengthSpec::Jh1 { .. })) {
+            if matches!(m.strength, Some(Strength::Jh1(_))) {
                 return fail(
                     &format!("{key}.tensile_strength"),
                     "JH1 has its own tensile limit (strength.tensile_limit)",
@@ -321,30 +321,20 @@ fn check_materials(s: &Scene) -> R {
             }
         }
         match &m.strength {
-            Some(
-                StrengthSpec::Elastic {}
-                | StrengthSpec::VonMises { .. }
-                | StrengthSpec::JohnsonCook { .. }
-                | StrengthSpec::Jh1 { .. },
-            ) if m.shear_modulus <= 0.0 && m.poisson_ratio.is_none() => {
-                return fail(
-                    &format!("{key}.shear_modulus"),
-                    "must be positive for a material with strength",
-                );
-            }
-            Some(StrengthSpec::VonMises { yield_stress }) => {
-                positive(&format!("{key}.strength.yield_stress"), *yield_stress)?
-            }
-            Some(strength @ (StrengthSpec::JohnsonCook { .. } | StrengthSpec::Jh1 { .. })) => {
-                validate_strength(&format!("{key}.strength"), strength)?
-            }
-            Some(StrengthSpec::Fluid {}) if m.shear_modulus > 0.0 => {
+            Some(Strength::Fluid) if m.shear_modulus > 0.0 => {
                 return fail(
                     &format!("{key}.strength"),
                     "a fluid must have shear_modulus = 0",
                 );
             }
-            _ => {}
+            Some(Strength::Fluid) | None => {}
+            Some(_) if m.shear_modulus <= 0.0 && m.poisson_ratio.is_none() => {
+                return fail(
+                    &format!("{key}.shear_modulus"),
+                    "must be positive for a material with strength",
+                );
+            }
+            Some(strength) => validate_model(&format!("{key}.strength"), strength.check())?,
         }
     }
     Ok(())

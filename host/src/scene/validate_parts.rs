@@ -3,7 +3,7 @@
 
 use super::spec::*;
 use super::validate::{dims, fail, finite, non_negative, num, positive, R};
-use gsph_core::material::Strength;
+use gsph_core::material::params::ParamError;
 
 pub(super) fn material_known(s: &Scene, key: &str, name: &str) -> R {
     if s.materials.iter().any(|m| m.name == name) {
@@ -26,9 +26,10 @@ pub(super) fn material_known(s: &Scene, key: &str, name: &str) -> R {
     }
 }
 
-/// The EOS checks its own parameters ([`Eos::check`]); the message names the key's path.
-pub(super) fn validate_eos(key: &str, e: &Eos) -> R {
-    e.check().or_else(|p| fail(&format!("{key}.{}", p.key), p))
+/// A model's own check of its parameters, the key prefixed with the model's path
+/// (`materials[0].eos`).
+pub(super) fn validate_model(key: &str, checked: Result<(), ParamError>) -> R {
+    checked.or_else(|p| fail(&format!("{key}.{}", p.key), p))
 }
 
 pub(super) fn validate_shape(key: &str, sh: &ShapeSpec, dim: usize) -> R {
@@ -148,64 +149,8 @@ pub fn resolve_poisson(s: &mut Scene) -> R {
         m.shear_modulus = 3.0 * bulk * (1.0 - 2.0 * nu) / (2.0 * (1.0 + nu));
         m.poisson_ratio = None;
         if m.strength.is_none() {
-            m.strength = Some(StrengthSpec::Elastic {});
+            m.strength = Some(Strength::Elastic);
         }
-    }
-    Ok(())
-}
-
-/// The parameters of the Johnson–Cook and JH1 models (checked on the core structs they
-/// become, so the field lists are written once, in `materials::strength_of`).
-pub(super) fn validate_strength(key: &str, strength: &StrengthSpec) -> R {
-    let k = |name: &str| format!("{key}.{name}");
-    match super::materials::strength_of(strength) {
-        Strength::JohnsonCook(jc) => {
-            positive(&k("a"), jc.a)?;
-            non_negative(&k("b"), jc.b)?;
-            positive(&k("n"), jc.n)?;
-            non_negative(&k("c"), jc.c)?;
-            positive(&k("m"), jc.m)?;
-            positive(&k("eps_dot0"), jc.eps_dot0)?;
-            positive(&k("t_room"), jc.t_room)?;
-            positive(&k("specific_heat"), jc.specific_heat)?;
-            let (t_room, t_melt) = (jc.t_room, jc.t_melt);
-            if !t_melt.is_finite() || t_melt <= t_room {
-                return fail(
-                    &k("t_melt"),
-                    format!("must exceed t_room = {t_room} K (got {t_melt})"),
-                );
-            }
-            let chi = jc.taylor_quinney;
-            if !(0.0..=1.0).contains(&chi) {
-                return fail(
-                    &k("taylor_quinney"),
-                    format!("must lie in [0, 1] (got {chi})"),
-                );
-            }
-        }
-        Strength::Jh1(jh) => {
-            positive(&k("sigma_i1"), jh.sigma_i1)?;
-            positive(&k("p1"), jh.p1)?;
-            positive(&k("sigma_i2"), jh.sigma_i2)?;
-            let (p1, p2) = (jh.p1, jh.p2);
-            if !p2.is_finite() || p2 <= p1 {
-                return fail(&k("p2"), format!("must exceed p1 = {p1} Pa (got {p2})"));
-            }
-            non_negative(&k("sigma_f_max"), jh.sigma_f_max)?;
-            non_negative(&k("c_f"), jh.c_f)?;
-            let t = jh.tensile_limit;
-            if !t.is_finite() || t >= 0.0 {
-                return fail(
-                    &k("tensile_limit"),
-                    format!("must be negative (a hydrostatic tension; got {t})"),
-                );
-            }
-            positive(&k("eps_f_max"), jh.eps_f_max)?;
-            positive(&k("p_max"), jh.p_max)?;
-            non_negative(&k("c"), jh.c)?;
-            positive(&k("eps_dot0"), jh.eps_dot0)?;
-        }
-        _ => {}
     }
     Ok(())
 }

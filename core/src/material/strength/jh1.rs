@@ -27,12 +27,18 @@
 //! completes the damage happens within a step, the deviator is returned onto the failed
 //! curve in that same step (its extra plastic strain and work are reported).
 use super::radial_return;
+use crate::material::params::{check, exceeds, non_negative, positive, ParamError, Rule};
 use crate::math::real::{ln, max, min};
 use crate::math::{Real, Sym3};
 
 /// JH1 parameters (SI units). The shear modulus (SiC: 1.93 Mbar = 193 GPa) belongs to the
 /// material, not to this struct.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Deserialize, serde::Serialize),
+    serde(deny_unknown_fields)
+)]
 pub struct Jh1 {
     /// Intact strength at `p1`, Pa.
     pub sigma_i1: Real,
@@ -55,6 +61,7 @@ pub struct Jh1 {
     /// Strain-rate coefficient C (dimensionless).
     pub c: Real,
     /// Reference strain rate, 1/s (1 in JH1).
+    #[cfg_attr(feature = "serde", serde(default = "crate::material::params::one"))]
     pub eps_dot0: Real,
 }
 
@@ -74,6 +81,25 @@ pub struct Jh1Update {
 }
 
 impl Jh1 {
+    /// Checks the parameters: strengths, `p1`, `eps_f_max`, `p_max`, `eps_dot0` > 0;
+    /// `p2 > p1`; `sigma_f_max`, `c_f`, `c` >= 0; `tensile_limit` < 0.
+    pub fn check(&self) -> Result<(), ParamError> {
+        positive("sigma_i1", self.sigma_i1)?;
+        positive("p1", self.p1)?;
+        positive("sigma_i2", self.sigma_i2)?;
+        exceeds("p2", self.p2, "p1", self.p1, "Pa")?;
+        non_negative("sigma_f_max", self.sigma_f_max)?;
+        non_negative("c_f", self.c_f)?;
+        let tension = Rule::Negative {
+            meaning: "a hydrostatic tension",
+        };
+        check("tensile_limit", self.tensile_limit, tension)?;
+        positive("eps_f_max", self.eps_f_max)?;
+        positive("p_max", self.p_max)?;
+        non_negative("c", self.c)?;
+        positive("eps_dot0", self.eps_dot0)
+    }
+
     /// Silicon carbide of seed 000 Table 4: sigma_i1 7.1 GPa, P1 2.5 GPa, sigma_i2 12.2 GPa,
     /// P2 10.0 GPa, sigma_f_max 1.3 GPa, c_f 0.4, T -0.75 GPa, eps_f_max 0.8,
     /// P_max 99.75 GPa, C 0.009, rate0 1/s (shear modulus 1.93 Mbar = 193 GPa, on the material).

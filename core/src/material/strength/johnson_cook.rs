@@ -27,6 +27,7 @@
 //! [`MAX_ITERATIONS`] iterations. Then `S = s_trial sigma_y/sigma_tr`, and as in the von Mises
 //! module `W = sigma_y d` (J/m³) and `dT = chi W / (rho c_p)` (K).
 use super::{radial_return, ReturnMap};
+use crate::material::params::{check, exceeds, non_negative, positive, ParamError, Rule};
 use crate::math::real::{abs, ln, max, min, powf};
 use crate::math::{Real, Sym3};
 
@@ -35,6 +36,11 @@ pub const MAX_ITERATIONS: usize = 100;
 
 /// Johnson–Cook parameters (seed 000 eq 40, Table 4). SI units.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Deserialize, serde::Serialize),
+    serde(deny_unknown_fields)
+)]
 pub struct JohnsonCook {
     /// Initial yield stress A, Pa.
     pub a: Real,
@@ -47,6 +53,7 @@ pub struct JohnsonCook {
     /// Thermal softening exponent m (dimensionless).
     pub m: Real,
     /// Reference plastic strain rate rate0, 1/s (usually 1).
+    #[cfg_attr(feature = "serde", serde(default = "crate::material::params::one"))]
     pub eps_dot0: Real,
     /// Room (reference) temperature T0, K.
     pub t_room: Real,
@@ -84,6 +91,22 @@ impl JohnsonCookReturn {
 }
 
 impl JohnsonCook {
+    /// Checks the parameters: `a`, `n`, `m`, `eps_dot0`, `t_room`, `specific_heat` > 0;
+    /// `b`, `c` >= 0; `t_melt > t_room`; `taylor_quinney` in [0, 1].
+    pub fn check(&self) -> Result<(), ParamError> {
+        positive("a", self.a)?;
+        non_negative("b", self.b)?;
+        positive("n", self.n)?;
+        non_negative("c", self.c)?;
+        positive("m", self.m)?;
+        positive("eps_dot0", self.eps_dot0)?;
+        positive("t_room", self.t_room)?;
+        positive("specific_heat", self.specific_heat)?;
+        exceeds("t_melt", self.t_melt, "t_room", self.t_room, "K")?;
+        let fraction = Rule::Within { lo: 0.0, hi: 1.0 };
+        check("taylor_quinney", self.taylor_quinney, fraction)
+    }
+
     /// 4340-type steel of seed 000 Table 4: A 300 MPa, B 1000 MPa, C 0.07, m 1.0, n 0.65,
     /// T0 298 K, Tm 1673 K, c_p 440 J/(kg K), chi 0.9, rate0 1/s. (The shear modulus,
     /// 74.8 GPa, and the density, 7903 kg/m³, belong to the material, not to this struct.)
