@@ -271,10 +271,11 @@ fn every_scene_key_is_in_the_user_guide() {
     let core = repo.join("core/src");
     let mut files: Vec<std::path::PathBuf> = [
         "spec.rs",
+        "material_spec.rs",
         "walls.rs",
         "window.rs",
-        "periodic.rs",
-        "pores.rs",
+        "setup/periodic.rs",
+        "setup/pores.rs",
     ]
     .iter()
     .map(|f| src().join("scene").join(f))

@@ -6,25 +6,24 @@
 //! Every error is one line naming the file, the key and the cause.
 
 pub mod applies;
-mod build;
 mod de;
-pub mod import;
 pub mod library;
 mod material_spec;
 pub mod materials;
-mod periodic;
-pub mod pores;
+pub mod setup;
 mod spec;
-pub mod stl;
 mod validate;
 mod validate_parts;
 pub mod walls;
 mod window;
 
-pub use build::{build_particles, check_particles, InitialParticles, MAX_PARTICLES};
+pub use setup::build::{build_particles, check_particles, InitialParticles, MAX_PARTICLES};
+pub use setup::window::WindowGeometry;
+use setup::{build, periodic};
+pub use setup::{import, pores, stl};
 pub use spec::*;
 pub use walls::WallSpec;
-pub use window::{WindowGeometry, WindowSpec};
+pub use window::WindowSpec;
 
 use crate::output::safe::{excerpt, excerpt_to, shorten_quotes};
 use std::path::Path;

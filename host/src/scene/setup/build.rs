@@ -1,9 +1,9 @@
 //! Turns bodies into particles: lattices clipped to shapes, initial velocity and state.
 
 use super::import;
-use super::materials::material_of;
-use super::spec::*;
-use super::SceneError;
+use crate::scene::materials::material_of;
+use crate::scene::spec::*;
+use crate::scene::SceneError;
 use gsph_core::material::{Material, Strength};
 use gsph_core::math::Sym3;
 
@@ -190,21 +190,7 @@ pub fn build_particles(scene: &Scene) -> Result<InitialParticles, SceneError> {
                 (Source::Lattice, format!("{key}.spacing"))
             }
         };
-        if !at_most(total, limit as f64) {
-            let lim = limit as f64;
-            return Err(SceneError(match &source {
-                Source::File(src) => format!(
-                    "{count_key}: the file holds {} particles, about {total:.2e} with the bodies before it, more than the limit {lim:.0e} (`max_particles` raises it)",
-                    src.rows()
-                ),
-                _ => format!(
-                    "{key}.spacing: spacing {dx:e} m (spacing / resolution_scale) makes about {total:.2e} particles, more than the limit {lim:.0e} (`max_particles` raises it)"
-                ),
-            }));
-        }
-        let each = crate::memory::bytes_per_particle(scene.dim, scene.kernel, scene.h_factor);
-        crate::memory::check_fits(each, total, crate::memory::available(), &count_key)
-            .map_err(SceneError)?;
+        check_count(scene, &key, &count_key, &source, dx, total)?;
         let mut pts = match source {
             Source::File(src) => {
                 file_body(&mut out, scene, b, mi, &mat, src)?;
@@ -230,27 +216,74 @@ pub fn build_particles(scene: &Scene) -> Result<InitialParticles, SceneError> {
                 "{key}: the shape holds no particle at spacing {dx:e} m (spacing / resolution_scale); the shape must be at least half a spacing across"
             )));
         }
-        let (rho, e, s) = initial_state(&mat, body.initial.as_ref())
-            .map_err(|msg| SceneError(format!("{key}.initial: {msg}")))?;
-        for (x, vol) in pts {
-            let x = jittered(x, scene.dim, body.jitter * dx, out.x.len() as u64);
-            out.v.push(velocity(body.velocity.as_ref(), &x));
-            out.x0.push(x);
-            out.x.push(x);
-            out.m.push(rho * vol);
-            out.rho.push(rho);
-            out.e.push(e);
-            out.s.push(s);
-            out.mat.push(mi as u16);
-            out.body.push(b as u16);
-            out.spacing.push(dx);
-            out.eps_p.push(0.0);
-            out.damage.push(0.0);
-            out.temperature.push(mat.initial_temperature());
-        }
+        push_sites(&mut out, scene, b, mi, &mat, dx, pts)?;
     }
-    super::validate_parts::check_step_count(scene)?;
+    crate::scene::validate_parts::check_step_count(scene)?;
     Ok(out)
+}
+
+/// Appends the lattice sites `pts` (position, volume) of body `b` of material `mi`, in the
+/// body's initial state.
+fn push_sites(
+    out: &mut InitialParticles,
+    scene: &Scene,
+    b: usize,
+    mi: usize,
+    mat: &Material,
+    dx: f64,
+    pts: Vec<([f64; 3], f64)>,
+) -> Result<(), SceneError> {
+    let body = &scene.bodies[b];
+    let key = format!("bodies[{b}]");
+    let (rho, e, s) = initial_state(mat, body.initial.as_ref())
+        .map_err(|msg| SceneError(format!("{key}.initial: {msg}")))?;
+    for (x, vol) in pts {
+        let x = jittered(x, scene.dim, body.jitter * dx, out.x.len() as u64);
+        out.v.push(velocity(body.velocity.as_ref(), &x));
+        out.x0.push(x);
+        out.x.push(x);
+        out.m.push(rho * vol);
+        out.rho.push(rho);
+        out.e.push(e);
+        out.s.push(s);
+        out.mat.push(mi as u16);
+        out.body.push(b as u16);
+        out.spacing.push(dx);
+        out.eps_p.push(0.0);
+        out.damage.push(0.0);
+        out.temperature.push(mat.initial_temperature());
+    }
+    Ok(())
+}
+
+/// Refuses a scene whose particles up to and including this body (`total`, about) exceed
+/// the scene's particle limit or the memory of this machine, naming the key that sets the
+/// count (`count_key`: the body's spacing or its particle file).
+fn check_count(
+    scene: &Scene,
+    key: &str,
+    count_key: &str,
+    source: &Source,
+    dx: f64,
+    total: f64,
+) -> Result<(), SceneError> {
+    let limit = scene.particle_limit();
+    if !at_most(total, limit as f64) {
+        let lim = limit as f64;
+        return Err(SceneError(match source {
+            Source::File(src) => format!(
+                "{count_key}: the file holds {} particles, about {total:.2e} with the bodies before it, more than the limit {lim:.0e} (`max_particles` raises it)",
+                src.rows()
+            ),
+            _ => format!(
+                "{key}.spacing: spacing {dx:e} m (spacing / resolution_scale) makes about {total:.2e} particles, more than the limit {lim:.0e} (`max_particles` raises it)"
+            ),
+        }));
+    }
+    let each = crate::memory::bytes_per_particle(scene.dim, scene.kernel, scene.h_factor);
+    crate::memory::check_fits(each, total, crate::memory::available(), count_key)
+        .map_err(SceneError)?;
+    Ok(())
 }
 
 /// Where the particles of a body come from.

@@ -2,9 +2,9 @@
 //! copy, STL surfaces filled against boxes and spheres, and the one-line errors of bad
 //! files.
 
-use super::super::{build_particles, load, InitialParticles, Scene};
 use super::*;
 use crate::memory::MAX_PARTICLES;
+use crate::scene::{build_particles, load, InitialParticles, Scene};
 use std::collections::HashMap;
 
 type Tri = [[f32; 3]; 3];

@@ -190,35 +190,7 @@ pub(super) fn parse_csv(
                 slots.len()
             ));
         }
-        for (field, slot) in record.iter().zip(slots) {
-            let name = |s: &Slot| match s {
-                Slot::State(c) => STATE_COLUMNS[*c],
-                _ => "material",
-            };
-            let number = || {
-                field.parse::<f64>().map_err(|_| {
-                    format!(
-                        "line {lineno}, column `{}`: `{}` is not a number",
-                        name(slot),
-                        excerpt(field)
-                    )
-                })
-            };
-            match slot {
-                Slot::State(c) => cols[*c].as_mut().expect("column kept").push(number()?),
-                Slot::Material => {
-                    let v = number()?;
-                    if !(v >= 0.0 && v <= u32::MAX as f64 && v.fract() == 0.0) {
-                        return Err(format!(
-                            "line {lineno}, column `material`: `{}` is not a material index (0, 1, ...)",
-                            excerpt(field)
-                        ));
-                    }
-                    material.as_mut().expect("column kept").push(v as u32);
-                }
-                Slot::Ignored => {}
-            }
-        }
+        push_row(&record, slots, lineno, &mut cols, &mut material)?;
         lines.push(lineno as usize);
         if lines.len() > counted {
             return Err(format!(
@@ -238,4 +210,45 @@ pub(super) fn parse_csv(
         material,
         rows: Rows::Lines(lines),
     })
+}
+
+/// Appends the numbers of one row (`record`, at line `lineno`) to the columns its header's
+/// `slots` name.
+fn push_row(
+    record: &csv::StringRecord,
+    slots: &[Slot],
+    lineno: u64,
+    cols: &mut [Option<Vec<f64>>; STATE_COLUMNS.len()],
+    material: &mut Option<Vec<u32>>,
+) -> Result<(), String> {
+    for (field, slot) in record.iter().zip(slots) {
+        let name = |s: &Slot| match s {
+            Slot::State(c) => STATE_COLUMNS[*c],
+            _ => "material",
+        };
+        let number = || {
+            field.parse::<f64>().map_err(|_| {
+                format!(
+                    "line {lineno}, column `{}`: `{}` is not a number",
+                    name(slot),
+                    excerpt(field)
+                )
+            })
+        };
+        match slot {
+            Slot::State(c) => cols[*c].as_mut().expect("column kept").push(number()?),
+            Slot::Material => {
+                let v = number()?;
+                if !(v >= 0.0 && v <= u32::MAX as f64 && v.fract() == 0.0) {
+                    return Err(format!(
+                        "line {lineno}, column `material`: `{}` is not a material index (0, 1, ...)",
+                        excerpt(field)
+                    ));
+                }
+                material.as_mut().expect("column kept").push(v as u32);
+            }
+            Slot::Ignored => {}
+        }
+    }
+    Ok(())
 }

@@ -1,8 +1,8 @@
 //! Porous bodies: pores repeated on a periodic cell, cut out of a body's lattice
 //! (seed 004 §4: copper with circular pores, porosity m = rho_solid / rho_porous).
 
-use super::spec::PoresSpec;
-use super::SceneError;
+use crate::scene::spec::PoresSpec;
+use crate::scene::SceneError;
 
 /// Validates a body's pores (`key` is `bodies[k].pores`).
 pub fn validate(key: &str, p: &PoresSpec, dim: usize) -> Result<(), SceneError> {

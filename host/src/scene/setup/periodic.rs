@@ -7,13 +7,13 @@
 //! by round-off only (1e-9 relative) passes, so `L = 2R` written in the scene is accepted.
 
 use super::build::InitialParticles;
-use super::spec::Scene;
-use super::SceneError;
+use crate::scene::spec::Scene;
+use crate::scene::SceneError;
 
-/// Refuses a periodic length below `2 × support × h` (checked after [`super::validate`];
+/// Refuses a periodic length below `2 × support × h` (checked after [`crate::scene::validate`];
 /// bodies read from a file without a `spacing` are checked once built, by
 /// [`check_length_built`]).
-pub(super) fn check_length(s: &Scene) -> Result<(), SceneError> {
+pub(in crate::scene) fn check_length(s: &Scene) -> Result<(), SceneError> {
     check_with(s, |b| {
         let dx = s.bodies[b].spacing / s.resolution_scale;
         dx.is_finite().then_some(dx)
@@ -91,7 +91,7 @@ fn short(v: f64) -> String {
 mod tests {
     use crate::scene::parse;
 
-    const STRIP: &str = include_str!("../../../cases/sound_cu_2d.toml");
+    const STRIP: &str = include_str!("../../../../cases/sound_cu_2d.toml");
 
     #[test]
     fn periodic_length_below_twice_the_support_is_refused() {

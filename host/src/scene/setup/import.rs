@@ -61,8 +61,8 @@
 //! the facets by lattice column makes the rays cost about columns × facets per column
 //! (a winding-number sum over all facets per site would cost sites × facets).
 
-use super::spec::{BodySpec, Scene, ShapeSpec};
 use crate::output::{read_frame, read_snapshot_times, ParticleTable};
+use crate::scene::spec::{BodySpec, Scene, ShapeSpec};
 use std::io::{BufRead, BufReader, Read};
 use std::path::{Path, PathBuf};
 
@@ -82,7 +82,7 @@ pub(super) fn resolve_path(base: Option<&Path>, file: &str) -> PathBuf {
 }
 
 /// Rewrites the `file` of every `particles` and `stl` shape relative to `base`.
-pub(super) fn resolve_files(scene: &mut Scene, base: Option<&Path>) {
+pub(in crate::scene) fn resolve_files(scene: &mut Scene, base: Option<&Path>) {
     for b in &mut scene.bodies {
         if let ShapeSpec::Particles { file, .. } | ShapeSpec::Stl { file, .. } = &mut b.shape {
             if !file.is_empty() {
@@ -398,7 +398,7 @@ fn check_values(f: &FileParticles, dim: usize) -> Result<(), String> {
                 return Err(format!(
                     "{}, column `{name}`: {} {why}",
                     f.label(i),
-                    super::validate::num(v)
+                    crate::scene::validate::num(v)
                 ));
             }
         }
@@ -522,8 +522,8 @@ pub(super) fn file_body(
                 "{key}.file: {}: {}: the EOS of material `{mat_name}` has no state at density {} kg/m³, energy {} J/kg",
                 f.shown,
                 f.label(i),
-                super::validate::num(rho),
-                super::validate::num(e)
+                crate::scene::validate::num(rho),
+                crate::scene::validate::num(e)
             ));
         }
         out.push(FileParticle {
