@@ -67,6 +67,7 @@ macro_rules! serde_by_name {
 mod impls {
     use crate::kernel::Kernel;
     use crate::limiter::Limiter;
+    use crate::riemann::Dissipation;
     use crate::schemes::Scheme;
     use crate::state::{MusclTime, RiemannSolver};
 
@@ -78,5 +79,6 @@ mod impls {
         "minmod, superbee, mc, vanleer, sweby:BETA"
     );
     serde_by_name!(RiemannSolver, "Riemann solver", "acoustic, two_shock");
+    serde_by_name!(Dissipation, "dissipation", "compression, full");
     serde_by_name!(MusclTime, "value", "predictor, courant, none");
 }

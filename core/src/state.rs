@@ -464,6 +464,9 @@ pub struct SchemeOptions {
     pub limiter: Limiter,
     /// Riemann solver of `ts`.
     pub riemann: RiemannSolver,
+    /// Where the Riemann solver's dissipation acts (every Godunov scheme;
+    /// [`crate::riemann::low_dissipation`]).
+    pub dissipation: crate::riemann::Dissipation,
     /// How `ts2` accounts for the time step when it reconstructs the contact states (seed
     /// 000 eq 23; one choice for continuity, momentum and energy, see `schemes::ts`).
     pub muscl_time: MusclTime,
@@ -486,6 +489,7 @@ impl Default for SchemeOptions {
             av_beta: 1.0,
             limiter: Limiter::Superbee,
             riemann: RiemannSolver::Acoustic,
+            dissipation: crate::riemann::Dissipation::Full,
             muscl_time: MusclTime::None,
             surface_lambda: 0.75,
             det_epsilon: 0.05,

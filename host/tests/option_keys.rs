@@ -52,6 +52,10 @@ const KEYS: &[(&str, &[&str])] = &[
         "options.riemann=two_shock",
         &["pm", "pm+muscl", "pm+correction", "ts1", "ts2", "tkc"],
     ),
+    (
+        "options.dissipation=compression",
+        &["pm", "pm+muscl", "pm+correction", "ts1", "ts2", "tkc"],
+    ),
     ("options.muscl_time=courant", &["ts2"]),
     ("options.muscl_time=predictor", &["ts2"]),
     (

@@ -18,12 +18,16 @@
 //!   the contact family it solves the longitudinal wave ([`elastic_star_vector`] with the
 //!   longitudinal speed `c_l` as the intercept and the EOS's Hugoniot slope), the
 //!   transverse waves stay acoustic.
+//! * [`low_dissipation`]: the part of a star state that dissipates, and the weight
+//!   (`options.dissipation`) that keeps it to compressing pairs (Zhang, Hu & Adams 2017).
 
 pub mod acoustic;
+pub mod low_dissipation;
 pub mod two_shock;
 
 pub use acoustic::{
     acoustic_star, acoustic_star_vector, elastic_star_vector, pressure_star, AcousticSide,
     PressureSide,
 };
+pub use low_dissipation::Dissipation;
 pub use two_shock::{two_shock_star, ShockSide};

@@ -9,6 +9,7 @@
 //! | `av_alpha`, `av_beta` | `av` |
 //! | `limiter` | the schemes with MUSCL: `ts2`, `tkc`, `pm` with `muscl = true` |
 //! | `riemann` | every Godunov scheme: `pm`, `tkc` (longitudinal wave), `ts1`, `ts2` |
+//! | `dissipation` | every Godunov scheme: `pm`, `tkc`, `ts1`, `ts2` |
 //! | `muscl_time` | `ts2` |
 //! | `surface_lambda`, `det_epsilon` | `ts1`, `ts2` (free-surface divergence), `tkc`, `pm` with `correction = true` |
 //! | `correction`, `muscl` | `pm` (tkc always has both) |
@@ -18,6 +19,7 @@ use super::{av, pm, ts, Scheme};
 use crate::effects::EffectSet;
 use crate::limiter::Limiter;
 use crate::math::Real;
+use crate::riemann::Dissipation;
 use crate::state::{Family, MusclTime, RiemannSolver, SchemeOptions};
 use core::fmt;
 
@@ -32,6 +34,8 @@ pub enum OptionKey {
     Limiter,
     /// `riemann`.
     Riemann,
+    /// `dissipation`.
+    Dissipation,
     /// `muscl_time`.
     MusclTime,
     /// `surface_lambda`.
@@ -50,11 +54,12 @@ pub enum OptionKey {
 
 impl OptionKey {
     /// Every key, in the order a scene's keys are checked.
-    pub const ALL: [OptionKey; 11] = [
+    pub const ALL: [OptionKey; 12] = [
         OptionKey::AvAlpha,
         OptionKey::AvBeta,
         OptionKey::Limiter,
         OptionKey::Riemann,
+        OptionKey::Dissipation,
         OptionKey::MusclTime,
         OptionKey::SurfaceLambda,
         OptionKey::DetEpsilon,
@@ -71,6 +76,7 @@ impl OptionKey {
             OptionKey::AvBeta => "options.av_beta",
             OptionKey::Limiter => "options.limiter",
             OptionKey::Riemann => "options.riemann",
+            OptionKey::Dissipation => "options.dissipation",
             OptionKey::MusclTime => "options.muscl_time",
             OptionKey::SurfaceLambda => "options.surface_lambda",
             OptionKey::DetEpsilon => "options.det_epsilon",
@@ -159,6 +165,8 @@ pub struct SceneOptions {
     pub limiter: Option<Limiter>,
     /// Riemann solver.
     pub riemann: Option<RiemannSolver>,
+    /// Where the Riemann solver's dissipation acts.
+    pub dissipation: Option<Dissipation>,
     /// Time treatment of the ts2 reconstruction.
     pub muscl_time: Option<MusclTime>,
     /// Free-surface eigenvalue threshold.
@@ -183,6 +191,7 @@ impl SceneOptions {
             OptionKey::AvBeta => self.av_beta.is_some(),
             OptionKey::Limiter => self.limiter.is_some(),
             OptionKey::Riemann => self.riemann.is_some(),
+            OptionKey::Dissipation => self.dissipation.is_some(),
             OptionKey::MusclTime => self.muscl_time.is_some(),
             OptionKey::SurfaceLambda => self.surface_lambda.is_some(),
             OptionKey::DetEpsilon => self.det_epsilon.is_some(),
@@ -200,6 +209,7 @@ impl SceneOptions {
             OptionKey::AvBeta => self.av_beta = None,
             OptionKey::Limiter => self.limiter = None,
             OptionKey::Riemann => self.riemann = None,
+            OptionKey::Dissipation => self.dissipation = None,
             OptionKey::MusclTime => self.muscl_time = None,
             OptionKey::SurfaceLambda => self.surface_lambda = None,
             OptionKey::DetEpsilon => self.det_epsilon = None,
@@ -242,6 +252,7 @@ impl SceneOptions {
         o.av_beta = self.av_beta.unwrap_or(d.av_beta);
         o.limiter = self.limiter.unwrap_or(d.limiter);
         o.riemann = self.riemann.unwrap_or(d.riemann);
+        o.dissipation = self.dissipation.unwrap_or(d.dissipation);
         o.muscl_time = self.muscl_time.unwrap_or(d.muscl_time);
         o.surface_lambda = self.surface_lambda.unwrap_or(d.surface_lambda);
         o.det_epsilon = self.det_epsilon.unwrap_or(d.det_epsilon);

@@ -17,8 +17,16 @@ pub struct Elastic {
     body_of: Option<Vec<u16>>,
     /// Number of bodies.
     bodies: usize,
-    /// Reference bulk and shear moduli of each material (`strain_energy`).
-    moduli: Option<Vec<(f64, f64)>>,
+    /// Reference bulk and shear moduli of each material (`strain_energy`,
+    /// `mechanical_energy`).
+    moduli: Vec<(f64, f64)>,
+    /// Record the strain energy (`strain_energy`).
+    strain: bool,
+    /// The initial kinetic plus strain energy, J (`mechanical_energy`).
+    mechanical: Option<f64>,
+    /// The initial angular momentum about the z axis through the origin, kg m²/s
+    /// (`angular_momentum`).
+    angular: Option<f64>,
     /// Lattice spacing of each particle id and the fraction (`close_pairs`).
     close: Option<(Vec<f64>, f64)>,
     /// Largest close fraction and smallest distance over the samples so far.
@@ -35,9 +43,33 @@ impl Elastic {
         parts: &InitialParticles,
         materials: &[Material],
     ) -> Option<Elastic> {
-        if !spec.bodies && !spec.strain_energy && spec.close_pairs.is_none() {
+        if !spec.bodies
+            && !spec.strain_energy
+            && !spec.mechanical_energy
+            && !spec.angular_momentum
+            && spec.close_pairs.is_none()
+        {
             return None;
         }
+        let moduli: Vec<(f64, f64)> = materials
+            .iter()
+            .map(|m| {
+                let k = m.rho0 * m.eos(m.rho0, 0.0).c2.max(0.0);
+                (k, m.shear_modulus)
+            })
+            .collect();
+        let mechanical = spec.mechanical_energy.then(|| {
+            let mut e0 = 0.0;
+            for i in 0..parts.x.len() {
+                let mat = &materials[parts.mat[i] as usize];
+                let p = mat.eos(parts.rho[i], parts.e[i]).p;
+                let v = parts.v[i];
+                e0 += 0.5 * parts.m[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+                let (k, g) = moduli[parts.mat[i] as usize];
+                e0 += parts.m[i] / parts.rho[i] * strain_density(p, &parts.s[i], k, g);
+            }
+            e0
+        });
         let bodies = parts
             .body
             .iter()
@@ -48,14 +80,15 @@ impl Elastic {
             dim,
             body_of: spec.bodies.then(|| parts.body.clone()),
             bodies,
-            moduli: spec.strain_energy.then(|| {
-                materials
-                    .iter()
-                    .map(|m| {
-                        let k = m.rho0 * m.eos(m.rho0, 0.0).c2.max(0.0);
-                        (k, m.shear_modulus)
+            moduli,
+            strain: spec.strain_energy,
+            mechanical,
+            angular: spec.angular_momentum.then(|| {
+                (0..parts.x.len())
+                    .map(|i| {
+                        parts.m[i] * (parts.x[i][0] * parts.v[i][1] - parts.x[i][1] * parts.v[i][0])
                     })
-                    .collect()
+                    .sum()
             }),
             close: spec.close_pairs.map(|f| (parts.spacing.clone(), f)),
             worst: (0.0, f64::INFINITY),
@@ -72,8 +105,16 @@ impl Elastic {
                 }
             }
         }
-        if self.moduli.is_some() {
+        if self.strain {
             out.push("strain_energy".into());
+        }
+        if self.mechanical.is_some() {
+            out.push("mechanical_energy".into());
+            out.push("mechanical_energy_ratio".into());
+        }
+        if self.angular.is_some() {
+            out.push("angular_momentum_z".into());
+            out.push("angular_momentum_change".into());
         }
         if self.close.is_some() {
             out.push("close_fraction".into());
@@ -99,18 +140,28 @@ impl Elastic {
                 out.extend(m.iter().take(self.dim).map(|p| p / mass));
             }
         }
-        if let Some(moduli) = &self.moduli {
-            let mut se = 0.0;
-            for i in 0..t.len() {
-                let (k, g) = moduli[t.material[i] as usize];
-                let s = Sym3::new(t.sxx[i], t.syy[i], t.szz[i], t.sxy[i], t.sxz[i], t.syz[i]);
-                let mut w = t.p[i] * t.p[i] / (2.0 * k);
-                if g > 0.0 {
-                    w += s.ddot(&s) / (4.0 * g);
-                }
-                se += t.m[i] / t.rho[i] * w;
+        if self.strain || self.mechanical.is_some() {
+            let se = self.strain_energy(t);
+            if self.strain {
+                out.push(se);
             }
-            out.push(se);
+            if let Some(e0) = self.mechanical {
+                let mut ke = 0.0;
+                for i in 0..t.len() {
+                    ke +=
+                        0.5 * t.m[i] * (t.vx[i] * t.vx[i] + t.vy[i] * t.vy[i] + t.vz[i] * t.vz[i]);
+                }
+                out.push(ke + se);
+                out.push((ke + se) / e0);
+            }
+        }
+        if let Some(l0) = self.angular {
+            let mut l = 0.0;
+            for i in 0..t.len() {
+                l += t.m[i] * (t.x[i] * t.vy[i] - t.y[i] * t.vx[i]);
+            }
+            out.push(l);
+            out.push((l - l0) / l0.abs());
         }
         if let Some((spacing, f)) = &self.close {
             let x: Vec<Vector<3>> = (0..t.len())
@@ -130,6 +181,17 @@ impl Elastic {
             out.push(min);
         }
         out
+    }
+
+    /// The elastic strain energy `sum V (p²/(2K) + S:S/(4G))`, J.
+    fn strain_energy(&self, t: &ParticleTable) -> f64 {
+        let mut se = 0.0;
+        for i in 0..t.len() {
+            let (k, g) = self.moduli[t.material[i] as usize];
+            let s = Sym3::new(t.sxx[i], t.syy[i], t.szz[i], t.sxy[i], t.sxz[i], t.syz[i]);
+            se += t.m[i] / t.rho[i] * strain_density(t.p[i], &s, k, g);
+        }
+        se
     }
 
     /// Summary keys: the values at the end, and the extremes of the close pairs over the
@@ -166,4 +228,14 @@ impl Elastic {
             _ => Err("monitor state: the close-pair extremes are missing".into()),
         }
     }
+}
+
+/// Strain energy per unit volume, J/m³: `p²/(2K) + S:S/(4G)` (the shear part only where
+/// `G > 0`).
+fn strain_density(p: f64, s: &Sym3, k: f64, g: f64) -> f64 {
+    let mut w = p * p / (2.0 * k);
+    if g > 0.0 {
+        w += s.ddot(s) / (4.0 * g);
+    }
+    w
 }

@@ -131,6 +131,17 @@ pub struct MonitorSpec {
     /// material at its reference state): series column and summary key `strain_energy`.
     #[serde(default)]
     pub strain_energy: bool,
+    /// Kinetic plus elastic strain energy against its initial value (a freely vibrating or
+    /// spinning elastic body keeps it; what a scheme dissipates is lost from it): series
+    /// columns and summary keys `mechanical_energy` (J) and `mechanical_energy_ratio`.
+    #[serde(default)]
+    pub mechanical_energy: bool,
+    /// Angular momentum about the z axis through the origin, `sum m (x v_y - y v_x)`
+    /// (kg m²/s; per unit length in 2D): series column and summary key
+    /// `angular_momentum_z`, and its change over the initial value `angular_momentum_change`
+    /// ((L - L0)/|L0|).
+    #[serde(default)]
+    pub angular_momentum: bool,
     /// Pairs nearer than this fraction of the lattice spacing (the clumping of the tensile
     /// instability; 0 < f < 1): series columns `close_fraction` (the fraction of particles
     /// with such a neighbour) and `min_distance` (the nearest pair over the spacing);
@@ -423,6 +434,14 @@ pub enum VelocitySpec {
         /// Reference radius, m.
         r_ref: f64,
         /// Centre, m.
+        center: Vec<f64>,
+    },
+    /// Rigid rotation about the z axis through `center`: `v = omega e_z × (x - center)`
+    /// (2D and 3D).
+    Rotation {
+        /// Angular velocity, rad/s (positive: counter-clockwise seen from +z).
+        omega: f64,
+        /// A point of the axis, m (its x and y; a third component is ignored).
         center: Vec<f64>,
     },
     /// Gaussian pulse along an axis: `v_axis = amplitude exp(-k (x - center)²)`.

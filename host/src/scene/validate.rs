@@ -579,6 +579,16 @@ fn check_motion(s: &Scene, key: &str, b: &BodySpec) -> R {
             positive(&format!("{key}.velocity.r_ref"), *r_ref)?;
             dims(&format!("{key}.velocity.center"), center, s.dim)?;
         }
+        Some(VelocitySpec::Rotation { omega, center }) => {
+            if s.dim == 1 {
+                return fail(
+                    &format!("{key}.velocity"),
+                    "a rotation needs a plane: use it in 2D or 3D",
+                );
+            }
+            finite(&format!("{key}.velocity.omega"), *omega)?;
+            dims(&format!("{key}.velocity.center"), center, s.dim)?;
+        }
         Some(VelocitySpec::Pulse {
             amplitude,
             k: kk,

@@ -15,7 +15,7 @@ pub(crate) fn reads(scheme: Scheme, key: OptionKey, effects: EffectSet) -> Resul
     match key {
         AvAlpha | AvBeta => read_if(false, scheme, why::AV_ONLY),
         Limiter => read_if(effects.contains(EffectSet::MUSCL), scheme, why::NO_MUSCL),
-        Riemann | ArtificialStress | ArtificialStressExponent => Ok(()),
+        Riemann | Dissipation | ArtificialStress | ArtificialStressExponent => Ok(()),
         MusclTime => read_if(false, scheme, why::NO_MUSCL_TIME),
         SurfaceLambda | DetEpsilon => read_if(
             effects.contains(EffectSet::CORRECTION),

@@ -5,6 +5,7 @@ use crate::effects::{EffectSet, Effects};
 use crate::exec::Executor;
 use crate::limiter::{bounded_extrapolation, Limiter};
 use crate::math::{Matrix, Real, Sym3, Vector};
+use crate::riemann::low_dissipation::central_vector;
 use crate::riemann::{acoustic_star_vector, elastic_star_vector, two_shock_star, ShockSide};
 use crate::schemes::artificial_stress::pair_acceleration;
 use crate::schemes::common::{cauchy, failed, for_each_pair, outer, solve_pairs, Pair};
@@ -174,17 +175,11 @@ pub(super) fn pair_star<const D: usize, E: Effects>(
     };
     let t_l = s_l.dot_vec(&axis);
     let t_r = s_r.dot_vec(&axis);
-    let (vs, mut ts) = match params.options.riemann {
+    let (zl_long, zl_trans) = (rho_l * cl_l, rho_l * ct_l);
+    let (zr_long, zr_trans) = (rho_r * cl_r, rho_r * ct_r);
+    let (mut vs, mut ts) = match params.options.riemann {
         RiemannSolver::Acoustic => acoustic_star_vector(
-            &pr.n,
-            &v_l,
-            &t_l,
-            rho_l * cl_l,
-            rho_l * ct_l,
-            &v_r,
-            &t_r,
-            rho_r * cl_r,
-            rho_r * ct_r,
+            &pr.n, &v_l, &t_l, zl_long, zl_trans, &v_r, &t_r, zr_long, zr_trans,
         ),
         // the longitudinal wave as a shock or expansion with Us = c_l + s up (the
         // EOS's Hugoniot slope), the transverse waves acoustic
@@ -192,10 +187,10 @@ pub(super) fn pair_star<const D: usize, E: Effects>(
             &pr.n,
             &v_l,
             &t_l,
-            rho_l * ct_l,
+            zl_trans,
             &v_r,
             &t_r,
-            rho_r * ct_r,
+            zr_trans,
             |ul, sl, ur, sr| {
                 let side = |u: Real, s: Real, rho: Real, c: Real, m: usize| ShockSide {
                     u,
@@ -210,6 +205,20 @@ pub(super) fn pair_star<const D: usize, E: Effects>(
             },
         ),
     };
+    // every channel's dissipative part only where the pair compresses along its axis
+    // (`options.dissipation`): the transverse jumps of a sliding or rotating pair too
+    let beta =
+        params
+            .options
+            .dissipation
+            .weight(v_l.dot(&pr.n), v_r.dot(&pr.n), 0.5 * (cl_l + cl_r));
+    if beta != 1.0 {
+        let (vc, tc) = central_vector(
+            &pr.n, &v_l, &t_l, zl_long, zl_trans, &v_r, &t_r, zr_long, zr_trans,
+        );
+        vs = vc + (vs - vc) * beta;
+        ts = tc + (ts - tc) * beta;
+    }
     if failed_pair {
         // seed 000 Algorithm 1, in the full-stress Riemann problem: no tension across
         // the contact of a failed particle

@@ -13,9 +13,12 @@ pub(crate) fn reads(scheme: Scheme, key: OptionKey) -> Result<(), NotRead> {
         AvAlpha | AvBeta => read_if(false, scheme, why::AV_ONLY),
         Limiter => read_if(muscl, scheme, why::NO_MUSCL),
         MusclTime => read_if(muscl, scheme, why::NO_MUSCL_TIME),
-        Riemann | SurfaceLambda | DetEpsilon | ArtificialStress | ArtificialStressExponent => {
-            Ok(())
-        }
+        Riemann
+        | Dissipation
+        | SurfaceLambda
+        | DetEpsilon
+        | ArtificialStress
+        | ArtificialStressExponent => Ok(()),
         Correction | Muscl => Err(NotRead::OnlyPm { scheme }),
     }
 }

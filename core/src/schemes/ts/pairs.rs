@@ -5,6 +5,7 @@ use crate::effects::{EffectSet, Effects};
 use crate::exec::Executor;
 use crate::limiter::bounded_extrapolation;
 use crate::math::{inverse, real, Matrix, Real, Sym3, Vector};
+use crate::riemann::low_dissipation::{blend, central};
 use crate::riemann::{pressure_star, two_shock_star, PressureSide, ShockSide};
 use crate::schemes::artificial_stress::pair_acceleration;
 use crate::schemes::common::{failed, for_each_pair, outer, pair_pressure, solve_pairs};
@@ -98,7 +99,7 @@ pub(super) fn star<const D: usize, E: Effects>(
     r: Real,
 ) -> (Real, Real) {
     let ([ul, pl, rl], [ur, pr_, rr]) = riemann_states::<D, E>(sys, grad, params, i, j, n, r);
-    let (us, ps) = match params.options.riemann {
+    let solved = match params.options.riemann {
         RiemannSolver::Acoustic => pressure_star(
             PressureSide {
                 u: ul,
@@ -130,6 +131,17 @@ pub(super) fn star<const D: usize, E: Effects>(
                 },
             )
         }
+    };
+    // the dissipative part only where the pair compresses (`options.dissipation`)
+    let beta = params
+        .options
+        .dissipation
+        .weight(ul, ur, 0.5 * (sys.c[i] + sys.c[j]));
+    let (us, ps) = if beta == 1.0 {
+        solved
+    } else {
+        let (zl, zr) = (rl * sys.c[i], rr * sys.c[j]);
+        blend(solved, central(ul, pl, zl, ur, pr_, zr), beta)
     };
     // seed 000 Algorithm 1: no tension across a pair with a failed particle
     if failed::<D, E>(sys, i) || failed::<D, E>(sys, j) {

@@ -624,6 +624,10 @@ fn velocity(spec: Option<&VelocitySpec>, x: &[f64; 3]) -> [f64; 3] {
                 }
             }
         }
+        Some(VelocitySpec::Rotation { omega, center }) => {
+            v[0] = -omega * (x[1] - center[1]);
+            v[1] = omega * (x[0] - center[0]);
+        }
         Some(VelocitySpec::Pulse {
             amplitude,
             k,

@@ -1,0 +1,126 @@
+#!/usr/bin/env bash
+# Smooth elastic motion and large strain, every scheme (issue 27): what each scheme keeps
+# of a freely breathing ring's and a rigidly spinning ring's energy, the spin's angular
+# momentum, the colliding rings and the Taylor test, with the Godunov schemes'
+# dissipation as the seeds have it (`options.dissipation = "full"`) and only on
+# compression (`"compression"`, Zhang, Hu & Adams 2017). One Markdown table:
+# out/elastic/table.md (rows also as out/elastic/rows.csv).
+#
+#   scripts/elastic.sh [--quick] [--parts breathing,spin,rings,taylor] [--gsph BINARY]
+#
+# --quick: the breathing ring at dx = 1e-3 only (no refinement), the spin, no colliding
+#          rings at dx = 5e-4 and no Taylor test (about 3 minutes on 2 cores).
+# Full: the breathing ring at dx = 2e-3, 1e-3, 5e-4 (its loss must fall on refinement),
+#       the spin, the colliding rings to 2.5e-4 s at dx = 1e-3 and 5e-4 (vx of the left
+#       ring over u0, and (KE+SE)/KE0 at 5e-5 s), the Taylor rod at D0/10 and D0/20.
+#       The peers' colliding-rings figures (scripts/peers.sh, out/peers/) stand beside
+#       the rings rows when that table exists.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+GSPH=${GSPH:-target/release/gsph}
+QUICK=0
+PARTS=breathing,spin,rings,taylor
+while [[ $# -gt 0 ]]; do
+  case $1 in
+    --quick) QUICK=1 ;;
+    --parts) PARTS=$2; shift ;;
+    --gsph) GSPH=$2; shift ;;
+    *) echo "usage: scripts/elastic.sh [--quick] [--parts LIST] [--gsph BINARY]" >&2; exit 2 ;;
+  esac
+  shift
+done
+[[ -x $GSPH ]] || cargo build --release -p gsph
+OUT=out/elastic
+mkdir -p "$OUT"
+ROWS=$OUT/rows.csv
+echo "case,dx,scheme,dissipation,metric,value,wall_s" > "$ROWS"
+SCHEMES="av ts1 ts2 tkc pm"
+
+# run NAME SCENE SCHEME DISSIPATION ARGS... : one run into $OUT/runs/NAME
+run() {
+  local name=$1 scene=$2 scheme=$3 diss=$4; shift 4
+  local set=(--set "scheme=$scheme")
+  [[ $scheme != av ]] && set+=(--set "options.dissipation=$diss")
+  echo "== $name" >&2
+  if ! "$GSPH" run "$scene" "${set[@]}" "$@" --out "$OUT/runs/$name" --quiet >&2; then
+    echo "$name: failed" >&2
+    return 0
+  fi
+}
+
+# row CASE DX SCHEME DISS NAME KEY... : the summary keys of run NAME as rows
+row() {
+  local case=$1 dx=$2 scheme=$3 diss=$4 name=$5; shift 5
+  python3 - "$OUT/runs/$name/summary.json" "$case" "$dx" "$scheme" "$diss" "$@" >> "$ROWS" <<'PY'
+import json, sys
+path, case, dx, scheme, diss, *keys = sys.argv[1:]
+try:
+    d = json.load(open(path))
+except OSError:
+    d = {}
+for k in keys:
+    v = d.get(k, float("nan"))
+    print(f"{case},{dx},{scheme},{diss},{k},{v},{d.get('wall_s', float('nan'))}")
+PY
+}
+
+dissipations() { if [[ $1 == av ]]; then echo none; else echo full compression; fi; }
+has() { [[ ,$PARTS, == *,$1,* ]]; }
+
+if has breathing; then
+  if [[ $QUICK == 1 ]]; then DXS="1e-3"; else DXS="2e-3 1e-3 5e-4"; fi
+  for dx in $DXS; do
+    for s in $SCHEMES; do
+      for d in $(dissipations $s); do
+        n=breathing-$dx-$s-$d
+        run "$n" cases/ring_breathing.toml "$s" "$d" --set "bodies.0.spacing=$dx"
+        row breathing "$dx" "$s" "$d" "$n" mechanical_energy_ratio min_distance_min
+      done
+    done
+  done
+fi
+if has spin; then
+  for s in $SCHEMES; do
+    for d in $(dissipations $s); do
+      n=spin-$s-$d
+      run "$n" cases/ring_spin.toml "$s" "$d"
+      row spin 1e-3 "$s" "$d" "$n" mechanical_energy_ratio angular_momentum_change min_distance_min
+    done
+  done
+fi
+if has rings; then
+  if [[ $QUICK == 1 ]]; then DXS="1e-3"; else DXS="1e-3 5e-4"; fi
+  for dx in $DXS; do
+    for s in $SCHEMES; do
+      for d in $(dissipations $s); do
+        n=rings-$dx-$s-$d
+        run "$n" cases/rings.toml "$s" "$d" --set t_end=2.5e-4 \
+          --set "bodies.0.spacing=$dx" --set "bodies.1.spacing=$dx" \
+          --set monitor.mechanical_energy=true
+        row rings "$dx" "$s" "$d" "$n" body0_vx mechanical_energy_ratio min_distance_min
+      done
+    done
+  done
+fi
+if has taylor && [[ $QUICK == 0 ]]; then
+  for scale in 1 2; do
+    for s in av ts2 tkc; do
+      for d in $(dissipations $s); do
+        n=taylor-$scale-$s-$d
+        run "$n" cases/taylor_copper.toml "$s" "$d" --set "resolution_scale=$scale"
+        row taylor "D0/$((10 * scale))" "$s" "$d" "$n" rod_length rod_impact_diameter
+      done
+    done
+  done
+fi
+
+python3 - "$ROWS" > "$OUT/table.md" <<'PY'
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+print("| case | dx | scheme | dissipation | quantity | value | wall s |")
+print("| --- | --- | --- | --- | --- | ---: | ---: |")
+for r in rows:
+    v = float(r["value"])
+    print(f"| {r['case']} | {r['dx']} | {r['scheme']} | {r['dissipation']} | {r['metric']} | {v:.4g} | {float(r['wall_s']):.1f} |")
+PY
+cat "$OUT/table.md"
