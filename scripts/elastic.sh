@@ -3,7 +3,8 @@
 # of a freely breathing ring's and a rigidly spinning ring's energy, the spin's angular
 # momentum, the colliding rings and the Taylor test, with the Godunov schemes'
 # dissipation as the seeds have it (`options.dissipation = "full"`) and only on
-# compression (`"compression"`, Zhang, Hu & Adams 2017). One Markdown table:
+# compression (`"compression"`, Zhang, Hu & Adams 2017), and for pm and tkc with only the
+# transverse channels on compression (`options.transverse_dissipation`). One Markdown table:
 # out/elastic/table.md (rows also as out/elastic/rows.csv).
 #
 #   scripts/elastic.sh [--quick] [--parts breathing,spin,rings,taylor] [--gsph BINARY]
@@ -40,7 +41,10 @@ SCHEMES="av ts1 ts2 tkc pm"
 run() {
   local name=$1 scene=$2 scheme=$3 diss=$4; shift 4
   local set=(--set "scheme=$scheme")
-  [[ $scheme != av ]] && set+=(--set "options.dissipation=$diss")
+  case $diss in
+    full | compression) set+=(--set "options.dissipation=$diss") ;;
+    transverse) set+=(--set "options.transverse_dissipation=compression") ;;
+  esac
   echo "== $name" >&2
   if ! "$GSPH" run "$scene" "${set[@]}" "$@" --out "$OUT/runs/$name" --quiet >&2; then
     echo "$name: failed" >&2
@@ -64,7 +68,15 @@ for k in keys:
 PY
 }
 
-dissipations() { if [[ $1 == av ]]; then echo none; else echo full compression; fi; }
+# av: no Riemann solver; ts1/ts2: every channel full or on compression; pm/tkc also with
+# only the transverse channels on compression (`transverse`)
+dissipations() {
+  case $1 in
+    av) echo none ;;
+    ts1 | ts2) echo full compression ;;
+    *) echo full compression transverse ;;
+  esac
+}
 has() { [[ ,$PARTS, == *,$1,* ]]; }
 
 if has breathing; then

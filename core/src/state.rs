@@ -467,6 +467,9 @@ pub struct SchemeOptions {
     /// Where the Riemann solver's dissipation acts (every Godunov scheme;
     /// [`crate::riemann::low_dissipation`]).
     pub dissipation: crate::riemann::Dissipation,
+    /// Where the transverse Riemann problems' dissipation acts (`pm`, `tkc`), on top of
+    /// `dissipation`.
+    pub transverse_dissipation: crate::riemann::Dissipation,
     /// How `ts2` accounts for the time step when it reconstructs the contact states (seed
     /// 000 eq 23; one choice for continuity, momentum and energy, see `schemes::ts`).
     pub muscl_time: MusclTime,
@@ -490,6 +493,7 @@ impl Default for SchemeOptions {
             limiter: Limiter::Superbee,
             riemann: RiemannSolver::Acoustic,
             dissipation: crate::riemann::Dissipation::Full,
+            transverse_dissipation: crate::riemann::Dissipation::Full,
             muscl_time: MusclTime::None,
             surface_lambda: 0.75,
             det_epsilon: 0.05,

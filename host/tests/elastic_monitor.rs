@@ -57,3 +57,35 @@ fn the_measure_sees_pm_dissipate_a_rotation() {
     let ratio = measure(&sc, "mechanical_energy_ratio");
     assert!(ratio < 0.99, "{ratio}");
 }
+
+/// `options.transverse_dissipation = "compression"` (pm, tkc): the transverse channels
+/// dissipate only where the pair approaches, so a rigid rotation loses far less; scheme
+/// ts2 has no transverse Riemann problem and refuses the key, as 1D does.
+#[test]
+fn transverse_dissipation_on_compression_spares_a_rotation_and_is_refused_where_unread() {
+    let full = measure(
+        &ring_spin(&["max_steps=400", "scheme=pm"]),
+        "mechanical_energy_ratio",
+    );
+    let spared = measure(
+        &ring_spin(&[
+            "max_steps=400",
+            "scheme=pm",
+            "options.transverse_dissipation=compression",
+        ]),
+        "mechanical_energy_ratio",
+    );
+    assert!(1.0 - spared < 0.25 * (1.0 - full), "{full} {spared}");
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../cases/ring_spin.toml");
+    let set = |s: &[&str]| s.iter().map(|x| x.to_string()).collect::<Vec<_>>();
+    let err = load(
+        &path,
+        &set(&["scheme=ts2", "options.transverse_dissipation=compression"]),
+    )
+    .unwrap_err();
+    assert!(
+        err.0
+            .contains("options.transverse_dissipation: not read by scheme ts2"),
+        "{err}"
+    );
+}

@@ -56,6 +56,8 @@ const KEYS: &[(&str, &[&str])] = &[
         "options.dissipation=compression",
         &["pm", "pm+muscl", "pm+correction", "ts1", "ts2", "tkc"],
     ),
+    // (options.transverse_dissipation: 1D has no transverse waves, so it is refused on
+    // this scene; host/tests/elastic_monitor.rs shows it acting in 2D)
     ("options.muscl_time=courant", &["ts2"]),
     ("options.muscl_time=predictor", &["ts2"]),
     (

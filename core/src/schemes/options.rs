@@ -10,6 +10,7 @@
 //! | `limiter` | the schemes with MUSCL: `ts2`, `tkc`, `pm` with `muscl = true` |
 //! | `riemann` | every Godunov scheme: `pm`, `tkc` (longitudinal wave), `ts1`, `ts2` |
 //! | `dissipation` | every Godunov scheme: `pm`, `tkc`, `ts1`, `ts2` |
+//! | `transverse_dissipation` | the schemes with transverse Riemann problems: `pm`, `tkc` |
 //! | `muscl_time` | `ts2` |
 //! | `surface_lambda`, `det_epsilon` | `ts1`, `ts2` (free-surface divergence), `tkc`, `pm` with `correction = true` |
 //! | `correction`, `muscl` | `pm` (tkc always has both) |
@@ -36,6 +37,8 @@ pub enum OptionKey {
     Riemann,
     /// `dissipation`.
     Dissipation,
+    /// `transverse_dissipation`.
+    TransverseDissipation,
     /// `muscl_time`.
     MusclTime,
     /// `surface_lambda`.
@@ -54,12 +57,13 @@ pub enum OptionKey {
 
 impl OptionKey {
     /// Every key, in the order a scene's keys are checked.
-    pub const ALL: [OptionKey; 12] = [
+    pub const ALL: [OptionKey; 13] = [
         OptionKey::AvAlpha,
         OptionKey::AvBeta,
         OptionKey::Limiter,
         OptionKey::Riemann,
         OptionKey::Dissipation,
+        OptionKey::TransverseDissipation,
         OptionKey::MusclTime,
         OptionKey::SurfaceLambda,
         OptionKey::DetEpsilon,
@@ -77,6 +81,7 @@ impl OptionKey {
             OptionKey::Limiter => "options.limiter",
             OptionKey::Riemann => "options.riemann",
             OptionKey::Dissipation => "options.dissipation",
+            OptionKey::TransverseDissipation => "options.transverse_dissipation",
             OptionKey::MusclTime => "options.muscl_time",
             OptionKey::SurfaceLambda => "options.surface_lambda",
             OptionKey::DetEpsilon => "options.det_epsilon",
@@ -132,6 +137,8 @@ pub(crate) mod why {
     pub const NO_MUSCL: &str =
         "it has no MUSCL reconstruction; ts2, tkc and pm with options.muscl have";
     pub const NO_RIEMANN: &str = "it solves no Riemann problem";
+    pub const NO_TRANSVERSE: &str =
+        "it solves no transverse Riemann problem; pm and tkc do (its deviatoric step has no dissipation)";
     pub const NO_MUSCL_TIME: &str = "only ts2's reconstruction has a time treatment";
     pub const NO_SURFACE: &str =
         "it has no free-surface rule; ts1, ts2, tkc and pm with options.correction have";
@@ -167,6 +174,8 @@ pub struct SceneOptions {
     pub riemann: Option<RiemannSolver>,
     /// Where the Riemann solver's dissipation acts.
     pub dissipation: Option<Dissipation>,
+    /// Where the transverse Riemann problems' dissipation acts (pm, tkc).
+    pub transverse_dissipation: Option<Dissipation>,
     /// Time treatment of the ts2 reconstruction.
     pub muscl_time: Option<MusclTime>,
     /// Free-surface eigenvalue threshold.
@@ -192,6 +201,7 @@ impl SceneOptions {
             OptionKey::Limiter => self.limiter.is_some(),
             OptionKey::Riemann => self.riemann.is_some(),
             OptionKey::Dissipation => self.dissipation.is_some(),
+            OptionKey::TransverseDissipation => self.transverse_dissipation.is_some(),
             OptionKey::MusclTime => self.muscl_time.is_some(),
             OptionKey::SurfaceLambda => self.surface_lambda.is_some(),
             OptionKey::DetEpsilon => self.det_epsilon.is_some(),
@@ -210,6 +220,7 @@ impl SceneOptions {
             OptionKey::Limiter => self.limiter = None,
             OptionKey::Riemann => self.riemann = None,
             OptionKey::Dissipation => self.dissipation = None,
+            OptionKey::TransverseDissipation => self.transverse_dissipation = None,
             OptionKey::MusclTime => self.muscl_time = None,
             OptionKey::SurfaceLambda => self.surface_lambda = None,
             OptionKey::DetEpsilon => self.det_epsilon = None,
@@ -253,6 +264,9 @@ impl SceneOptions {
         o.limiter = self.limiter.unwrap_or(d.limiter);
         o.riemann = self.riemann.unwrap_or(d.riemann);
         o.dissipation = self.dissipation.unwrap_or(d.dissipation);
+        o.transverse_dissipation = self
+            .transverse_dissipation
+            .unwrap_or(d.transverse_dissipation);
         o.muscl_time = self.muscl_time.unwrap_or(d.muscl_time);
         o.surface_lambda = self.surface_lambda.unwrap_or(d.surface_lambda);
         o.det_epsilon = self.det_epsilon.unwrap_or(d.det_epsilon);

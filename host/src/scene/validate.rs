@@ -250,6 +250,12 @@ fn check_options(s: &Scene) -> R {
     if let Some((key, why)) = super::applies::inapplicable(o, s.scheme).into_iter().next() {
         return fail(key, why);
     }
+    if o.transverse_dissipation.is_some() && s.dim == 1 {
+        return fail(
+            "options.transverse_dissipation",
+            "not read in 1D (uniaxial strain has no transverse waves)",
+        );
+    }
     if let Some(v) = o.av_alpha {
         non_negative("options.av_alpha", v)?;
     }

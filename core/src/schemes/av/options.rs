@@ -9,7 +9,7 @@ pub(crate) fn reads(scheme: Scheme, key: OptionKey) -> Result<(), NotRead> {
     match key {
         AvAlpha | AvBeta | ArtificialStress | ArtificialStressExponent => Ok(()),
         Limiter => read_if(false, scheme, why::NO_MUSCL),
-        Riemann | Dissipation => read_if(false, scheme, why::NO_RIEMANN),
+        Riemann | Dissipation | TransverseDissipation => read_if(false, scheme, why::NO_RIEMANN),
         MusclTime => read_if(false, scheme, why::NO_MUSCL_TIME),
         SurfaceLambda | DetEpsilon => read_if(false, scheme, why::NO_SURFACE),
         Correction | Muscl => Err(NotRead::OnlyPm { scheme }),

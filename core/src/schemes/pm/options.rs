@@ -15,7 +15,11 @@ pub(crate) fn reads(scheme: Scheme, key: OptionKey, effects: EffectSet) -> Resul
     match key {
         AvAlpha | AvBeta => read_if(false, scheme, why::AV_ONLY),
         Limiter => read_if(effects.contains(EffectSet::MUSCL), scheme, why::NO_MUSCL),
-        Riemann | Dissipation | ArtificialStress | ArtificialStressExponent => Ok(()),
+        Riemann
+        | Dissipation
+        | TransverseDissipation
+        | ArtificialStress
+        | ArtificialStressExponent => Ok(()),
         MusclTime => read_if(false, scheme, why::NO_MUSCL_TIME),
         SurfaceLambda | DetEpsilon => read_if(
             effects.contains(EffectSet::CORRECTION),

@@ -205,19 +205,25 @@ pub(super) fn pair_star<const D: usize, E: Effects>(
             },
         ),
     };
-    // every channel's dissipative part only where the pair compresses along its axis
-    // (`options.dissipation`): the transverse jumps of a sliding or rotating pair too
-    let beta =
-        params
+    // the dissipative parts only where the pair compresses along its axis: every
+    // channel's with `options.dissipation`, the transverse channels' with
+    // `options.transverse_dissipation` (a sliding or rotating pair's tangential jumps)
+    let (u_l, u_r) = (v_l.dot(&pr.n), v_r.dot(&pr.n));
+    let c_pair = 0.5 * (cl_l + cl_r);
+    let beta = params.options.dissipation.weight(u_l, u_r, c_pair);
+    let beta_t = beta
+        * params
             .options
-            .dissipation
-            .weight(v_l.dot(&pr.n), v_r.dot(&pr.n), 0.5 * (cl_l + cl_r));
-    if beta != 1.0 {
+            .transverse_dissipation
+            .weight(u_l, u_r, c_pair);
+    if beta != 1.0 || beta_t != 1.0 {
         let (vc, tc) = central_vector(
             &pr.n, &v_l, &t_l, zl_long, zl_trans, &v_r, &t_r, zr_long, zr_trans,
         );
-        vs = vc + (vs - vc) * beta;
-        ts = tc + (ts - tc) * beta;
+        let (dv, dt) = (vs - vc, ts - tc);
+        let (dvn, dtn) = (pr.n * dv.dot(&pr.n), pr.n * dt.dot(&pr.n));
+        vs = vc + dvn * beta + (dv - dvn) * beta_t;
+        ts = tc + dtn * beta + (dt - dtn) * beta_t;
     }
     if failed_pair {
         // seed 000 Algorithm 1, in the full-stress Riemann problem: no tension across
