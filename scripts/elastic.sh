@@ -4,10 +4,14 @@
 # momentum, the colliding rings and the Taylor test, with the Godunov schemes'
 # dissipation as the seeds have it (`options.dissipation = "full"`) and only on
 # compression (`"compression"`, Zhang, Hu & Adams 2017), and for pm and tkc with only the
-# transverse channels on compression (`options.transverse_dissipation`). One Markdown table:
-# out/elastic/table.md (rows also as out/elastic/rows.csv).
+# transverse channels on compression (`options.transverse_dissipation`), as the seeds have
+# the transverse problems (`seed`: `options.objective = false`) and, for tkc, with the
+# MUSCL slopes corrected at free surfaces (`slopes`: `options.corrected_slopes = true`).
+# The breathing ring runs on the rings' clipped square lattice and on a polar lattice
+# (smooth surfaces: `breathing_polar`). One Markdown table: out/elastic/table.md (rows
+# also as out/elastic/rows.csv).
 #
-#   scripts/elastic.sh [--quick] [--parts breathing,spin,rings,taylor] [--gsph BINARY]
+#   scripts/elastic.sh [--quick] [--parts breathing,breathing_polar,spin,rings,taylor] [--gsph BINARY]
 #
 # --quick: the breathing ring at dx = 1e-3 only (no refinement), the spin, no colliding
 #          rings at dx = 5e-4 and no Taylor test (about 3 minutes on 2 cores).
@@ -20,7 +24,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 GSPH=${GSPH:-target/release/gsph}
 QUICK=0
-PARTS=breathing,spin,rings,taylor
+PARTS=breathing,breathing_polar,spin,rings,taylor
 while [[ $# -gt 0 ]]; do
   case $1 in
     --quick) QUICK=1 ;;
@@ -34,7 +38,7 @@ done
 OUT=out/elastic
 mkdir -p "$OUT"
 ROWS=$OUT/rows.csv
-echo "case,dx,scheme,dissipation,metric,value,wall_s" > "$ROWS"
+echo "case,dx,scheme,variant,metric,value,wall_s" > "$ROWS"
 SCHEMES="av ts1 ts2 tkc pm"
 
 # run NAME SCENE SCHEME DISSIPATION ARGS... : one run into $OUT/runs/NAME
@@ -44,6 +48,8 @@ run() {
   case $diss in
     full | compression) set+=(--set "options.dissipation=$diss") ;;
     transverse) set+=(--set "options.transverse_dissipation=compression") ;;
+    seed) set+=(--set "options.objective=false") ;;
+    slopes) set+=(--set "options.corrected_slopes=true") ;;
   esac
   echo "== $name" >&2
   if ! "$GSPH" run "$scene" "${set[@]}" "$@" --out "$OUT/runs/$name" --quiet >&2; then
@@ -74,7 +80,8 @@ dissipations() {
   case $1 in
     av) echo none ;;
     ts1 | ts2) echo full compression ;;
-    *) echo full compression transverse ;;
+    pm) echo full compression transverse seed ;;
+    *) echo full compression transverse seed slopes ;;
   esac
 }
 has() { [[ ,$PARTS, == *,$1,* ]]; }
@@ -87,6 +94,20 @@ if has breathing; then
         n=breathing-$dx-$s-$d
         run "$n" cases/ring_breathing.toml "$s" "$d" --set "bodies.0.spacing=$dx"
         row breathing "$dx" "$s" "$d" "$n" mechanical_energy_ratio min_distance_min
+      done
+    done
+  done
+fi
+if has breathing_polar; then
+  if [[ $QUICK == 1 ]]; then DXS="1e-3"; else DXS="2e-3 1e-3 5e-4"; fi
+  for dx in $DXS; do
+    for s in $SCHEMES; do
+      for d in $(dissipations $s); do
+        [[ $d == compression ]] && continue
+        n=breathing_polar-$dx-$s-$d
+        run "$n" cases/ring_breathing.toml "$s" "$d" --set "bodies.0.spacing=$dx" \
+          --set bodies.0.lattice=polar --unset bodies.0.lattice_origin
+        row breathing_polar "$dx" "$s" "$d" "$n" mechanical_energy_ratio min_distance_min
       done
     done
   done
@@ -129,10 +150,10 @@ fi
 python3 - "$ROWS" > "$OUT/table.md" <<'PY'
 import csv, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
-print("| case | dx | scheme | dissipation | quantity | value | wall s |")
+print("| case | dx | scheme | variant | quantity | value | wall s |")
 print("| --- | --- | --- | --- | --- | ---: | ---: |")
 for r in rows:
     v = float(r["value"])
-    print(f"| {r['case']} | {r['dx']} | {r['scheme']} | {r['dissipation']} | {r['metric']} | {v:.4g} | {float(r['wall_s']):.1f} |")
+    print(f"| {r['case']} | {r['dx']} | {r['scheme']} | {r['variant']} | {r['metric']} | {v:.4g} | {float(r['wall_s']):.1f} |")
 PY
 cat "$OUT/table.md"

@@ -195,6 +195,11 @@ pub struct Gradients<const D: usize> {
     pub cl: Vector<D>,
     /// grad c_t (tkc).
     pub ct: Vector<D>,
+    /// The spin `W = (G - G^T)/2` of the velocity gradient `G` corrected with the full
+    /// `L^-1` (no free-surface switch; exact for an affine velocity field wherever `L` is
+    /// invertible): the rigid rotation the contact family's transverse Riemann problems
+    /// leave out with `options.objective` (`pm`, `tkc`).
+    pub w: Matrix<D>,
 }
 
 impl<const D: usize> Default for Gradients<D> {
@@ -205,6 +210,7 @@ impl<const D: usize> Default for Gradients<D> {
             v: Matrix::<D>::zeros(),
             cl: Vector::<D>::zeros(),
             ct: Vector::<D>::zeros(),
+            w: Matrix::<D>::zeros(),
         }
     }
 }
@@ -470,6 +476,15 @@ pub struct SchemeOptions {
     /// Where the transverse Riemann problems' dissipation acts (`pm`, `tkc`), on top of
     /// `dissipation`.
     pub transverse_dissipation: crate::riemann::Dissipation,
+    /// The transverse Riemann problems of `pm` and `tkc` see the velocity jump of a pair
+    /// less its rigid rotation (the pair's mean spin times its separation): a rigid
+    /// rotation is not dissipated (`schemes::pm`).
+    pub objective: bool,
+    /// The MUSCL slopes of a free-surface particle (`L = I` there) corrected with its full
+    /// `L^-1` where `L` is invertible, so that they are exact for linear fields at the
+    /// surface as inside (`tkc`, `pm` with correction and MUSCL); the forces keep the
+    /// surface rule. Off: seed 004's `L = I` for the slopes too.
+    pub corrected_slopes: bool,
     /// How `ts2` accounts for the time step when it reconstructs the contact states (seed
     /// 000 eq 23; one choice for continuity, momentum and energy, see `schemes::ts`).
     pub muscl_time: MusclTime,
@@ -494,6 +509,8 @@ impl Default for SchemeOptions {
             riemann: RiemannSolver::Acoustic,
             dissipation: crate::riemann::Dissipation::Full,
             transverse_dissipation: crate::riemann::Dissipation::Full,
+            objective: true,
+            corrected_slopes: false,
             muscl_time: MusclTime::None,
             surface_lambda: 0.75,
             det_epsilon: 0.05,

@@ -56,8 +56,10 @@ const KEYS: &[(&str, &[&str])] = &[
         "options.dissipation=compression",
         &["pm", "pm+muscl", "pm+correction", "ts1", "ts2", "tkc"],
     ),
-    // (options.transverse_dissipation: 1D has no transverse waves, so it is refused on
-    // this scene; host/tests/elastic_monitor.rs shows it acting in 2D)
+    // (options.transverse_dissipation and options.objective: 1D has no transverse waves,
+    // so they are refused on this scene; host/tests/elastic_monitor.rs shows them acting
+    // in 2D)
+    ("options.corrected_slopes=true", &["tkc"]),
     ("options.muscl_time=courant", &["ts2"]),
     ("options.muscl_time=predictor", &["ts2"]),
     (

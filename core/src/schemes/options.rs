@@ -10,7 +10,8 @@
 //! | `limiter` | the schemes with MUSCL: `ts2`, `tkc`, `pm` with `muscl = true` |
 //! | `riemann` | every Godunov scheme: `pm`, `tkc` (longitudinal wave), `ts1`, `ts2` |
 //! | `dissipation` | every Godunov scheme: `pm`, `tkc`, `ts1`, `ts2` |
-//! | `transverse_dissipation` | the schemes with transverse Riemann problems: `pm`, `tkc` |
+//! | `transverse_dissipation`, `objective` | the schemes with transverse Riemann problems: `pm`, `tkc` |
+//! | `corrected_slopes` | the schemes with corrected MUSCL slopes: `tkc`, `pm` with `correction` and `muscl` |
 //! | `muscl_time` | `ts2` |
 //! | `surface_lambda`, `det_epsilon` | `ts1`, `ts2` (free-surface divergence), `tkc`, `pm` with `correction = true` |
 //! | `correction`, `muscl` | `pm` (tkc always has both) |
@@ -39,6 +40,10 @@ pub enum OptionKey {
     Dissipation,
     /// `transverse_dissipation`.
     TransverseDissipation,
+    /// `objective`.
+    Objective,
+    /// `corrected_slopes`.
+    CorrectedSlopes,
     /// `muscl_time`.
     MusclTime,
     /// `surface_lambda`.
@@ -57,13 +62,15 @@ pub enum OptionKey {
 
 impl OptionKey {
     /// Every key, in the order a scene's keys are checked.
-    pub const ALL: [OptionKey; 13] = [
+    pub const ALL: [OptionKey; 15] = [
         OptionKey::AvAlpha,
         OptionKey::AvBeta,
         OptionKey::Limiter,
         OptionKey::Riemann,
         OptionKey::Dissipation,
         OptionKey::TransverseDissipation,
+        OptionKey::Objective,
+        OptionKey::CorrectedSlopes,
         OptionKey::MusclTime,
         OptionKey::SurfaceLambda,
         OptionKey::DetEpsilon,
@@ -82,6 +89,8 @@ impl OptionKey {
             OptionKey::Riemann => "options.riemann",
             OptionKey::Dissipation => "options.dissipation",
             OptionKey::TransverseDissipation => "options.transverse_dissipation",
+            OptionKey::Objective => "options.objective",
+            OptionKey::CorrectedSlopes => "options.corrected_slopes",
             OptionKey::MusclTime => "options.muscl_time",
             OptionKey::SurfaceLambda => "options.surface_lambda",
             OptionKey::DetEpsilon => "options.det_epsilon",
@@ -139,6 +148,8 @@ pub(crate) mod why {
     pub const NO_RIEMANN: &str = "it solves no Riemann problem";
     pub const NO_TRANSVERSE: &str =
         "it solves no transverse Riemann problem; pm and tkc do (its deviatoric step has no dissipation)";
+    pub const NO_CORRECTED_SLOPES: &str =
+        "it has no kernel-corrected MUSCL slopes; tkc and pm with options.correction and options.muscl have";
     pub const NO_MUSCL_TIME: &str = "only ts2's reconstruction has a time treatment";
     pub const NO_SURFACE: &str =
         "it has no free-surface rule; ts1, ts2, tkc and pm with options.correction have";
@@ -176,6 +187,10 @@ pub struct SceneOptions {
     pub dissipation: Option<Dissipation>,
     /// Where the transverse Riemann problems' dissipation acts (pm, tkc).
     pub transverse_dissipation: Option<Dissipation>,
+    /// The transverse Riemann problems leave out the pairs' rigid rotation (pm, tkc).
+    pub objective: Option<bool>,
+    /// MUSCL slopes corrected at free surfaces too (tkc, pm with correction and MUSCL).
+    pub corrected_slopes: Option<bool>,
     /// Time treatment of the ts2 reconstruction.
     pub muscl_time: Option<MusclTime>,
     /// Free-surface eigenvalue threshold.
@@ -202,6 +217,8 @@ impl SceneOptions {
             OptionKey::Riemann => self.riemann.is_some(),
             OptionKey::Dissipation => self.dissipation.is_some(),
             OptionKey::TransverseDissipation => self.transverse_dissipation.is_some(),
+            OptionKey::Objective => self.objective.is_some(),
+            OptionKey::CorrectedSlopes => self.corrected_slopes.is_some(),
             OptionKey::MusclTime => self.muscl_time.is_some(),
             OptionKey::SurfaceLambda => self.surface_lambda.is_some(),
             OptionKey::DetEpsilon => self.det_epsilon.is_some(),
@@ -221,6 +238,8 @@ impl SceneOptions {
             OptionKey::Riemann => self.riemann = None,
             OptionKey::Dissipation => self.dissipation = None,
             OptionKey::TransverseDissipation => self.transverse_dissipation = None,
+            OptionKey::Objective => self.objective = None,
+            OptionKey::CorrectedSlopes => self.corrected_slopes = None,
             OptionKey::MusclTime => self.muscl_time = None,
             OptionKey::SurfaceLambda => self.surface_lambda = None,
             OptionKey::DetEpsilon => self.det_epsilon = None,
@@ -267,6 +286,8 @@ impl SceneOptions {
         o.transverse_dissipation = self
             .transverse_dissipation
             .unwrap_or(d.transverse_dissipation);
+        o.objective = self.objective.unwrap_or(d.objective);
+        o.corrected_slopes = self.corrected_slopes.unwrap_or(d.corrected_slopes);
         o.muscl_time = self.muscl_time.unwrap_or(d.muscl_time);
         o.surface_lambda = self.surface_lambda.unwrap_or(d.surface_lambda);
         o.det_epsilon = self.det_epsilon.unwrap_or(d.det_epsilon);

@@ -250,11 +250,27 @@ fn check_options(s: &Scene) -> R {
     if let Some((key, why)) = super::applies::inapplicable(o, s.scheme).into_iter().next() {
         return fail(key, why);
     }
-    if o.transverse_dissipation.is_some() && s.dim == 1 {
-        return fail(
+    // the keys of the transverse Riemann problems: there are none in 1D or without strength
+    let no_strength = !s.materials.is_empty() && s.materials.iter().all(|m| m.strength.is_none());
+    for (key, set) in [
+        (
             "options.transverse_dissipation",
-            "not read in 1D (uniaxial strain has no transverse waves)",
-        );
+            o.transverse_dissipation.is_some(),
+        ),
+        ("options.objective", o.objective.is_some()),
+    ] {
+        if set && s.dim == 1 {
+            return fail(
+                key,
+                "not read in 1D (uniaxial strain has no transverse waves)",
+            );
+        }
+        if set && no_strength {
+            return fail(
+                key,
+                "not read without strength (no material has a strength model, so no transverse waves)",
+            );
+        }
     }
     if let Some(v) = o.av_alpha {
         non_negative("options.av_alpha", v)?;

@@ -9,8 +9,11 @@ pub(crate) fn reads(scheme: Scheme, key: OptionKey) -> Result<(), NotRead> {
     match key {
         AvAlpha | AvBeta | ArtificialStress | ArtificialStressExponent => Ok(()),
         Limiter => read_if(false, scheme, why::NO_MUSCL),
-        Riemann | Dissipation | TransverseDissipation => read_if(false, scheme, why::NO_RIEMANN),
+        Riemann | Dissipation | TransverseDissipation | Objective => {
+            read_if(false, scheme, why::NO_RIEMANN)
+        }
         MusclTime => read_if(false, scheme, why::NO_MUSCL_TIME),
+        CorrectedSlopes => read_if(false, scheme, why::NO_CORRECTED_SLOPES),
         SurfaceLambda | DetEpsilon => read_if(false, scheme, why::NO_SURFACE),
         Correction | Muscl => Err(NotRead::OnlyPm { scheme }),
     }

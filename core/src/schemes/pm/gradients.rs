@@ -4,7 +4,7 @@
 use crate::effects::Effects;
 use crate::exec::Executor;
 use crate::math::{det, inverse, Matrix, Real, Vector};
-use crate::schemes::common::{cauchy, for_each_pair, min_sym_eigenvalue, outer};
+use crate::schemes::common::{cauchy, for_each_pair, min_sym_eigenvalue, outer, Pair};
 use crate::state::{Aux, Correction, Gradients, PairGeom, PairSums, StepParams, System};
 
 /// Relative tolerance of the near-surface test: a boundary particle at `r <= h (1 + tol)`
@@ -81,7 +81,71 @@ pub(crate) fn correction_pass<const D: usize, X: Executor>(
     });
 }
 
-/// Gradients of the reconstructed quantities (corrected when `E::CORRECTION`).
+/// The sums behind a particle's spin ([`Gradients::w`]): `G = sum V_j (v_j - v_i) ⊗ grad W`
+/// and `L = sum V_j grad W ⊗ (x_j - x_i)`, uncorrected.
+#[derive(Clone, Copy)]
+pub(super) struct SpinSums<const D: usize> {
+    g: Matrix<D>,
+    l: Matrix<D>,
+}
+
+impl<const D: usize> SpinSums<D> {
+    pub(super) fn new() -> Self {
+        SpinSums {
+            g: Matrix::<D>::zeros(),
+            l: Matrix::<D>::zeros(),
+        }
+    }
+
+    /// Adds neighbour `pr.j` of volume `vol` whose velocity differs by `dv`.
+    #[inline(always)]
+    pub(super) fn add(&mut self, pr: &Pair<D>, vol: Real, dv: &Vector<D>) {
+        let gw = pr.grad * vol;
+        self.g += outer(dv, &gw);
+        self.l += outer(&gw, &(pr.n * pr.r));
+    }
+
+    /// The spin `W = (G L^-T - (G L^-T)^T)/2`: an affine velocity field `v = v0 + A x` has
+    /// `G = A L^T`, so `G L^-T = A` whatever the neighbourhood (a free surface included)
+    /// as long as `det L >= eps`; below that (a particle with too few neighbours to span
+    /// the plane) no spin is known and zero is returned, so its pairs' transverse
+    /// problems see the whole velocity jump, as without `options.objective`.
+    pub(super) fn spin(&self, eps: Real) -> Matrix<D> {
+        match inverse(&self.l) {
+            Some(inv) if det(&self.l) >= eps => {
+                let a = self.g * inv.transpose();
+                (a - a.transpose()) * 0.5
+            }
+            _ => Matrix::<D>::zeros(),
+        }
+    }
+}
+
+/// The spin of every particle into [`Gradients::w`], for `pm` without MUSCL (with MUSCL
+/// [`gradient_pass`] computes it with the other gradients).
+pub(super) fn spin_pass<const D: usize, X: Executor>(
+    sys: &System<'_, D>,
+    geom: &[PairGeom<D>],
+    aux: &[Aux],
+    grad: &mut [Gradients<D>],
+    params: &StepParams<'_, D>,
+    exec: &X,
+) {
+    let eps = params.options.det_epsilon;
+    exec.run(grad, |off, chunk: &mut [Gradients<D>]| {
+        for (k, out) in chunk.iter_mut().enumerate() {
+            let i = off + k;
+            let mut acc = SpinSums::<D>::new();
+            for_each_pair(params, geom, i, |pr, _| {
+                acc.add(pr, aux[pr.j].vol, &(sys.v[pr.j] - sys.v[i]));
+            });
+            out.w = acc.spin(eps);
+        }
+    });
+}
+
+/// Gradients of the reconstructed quantities (corrected when `E::CORRECTION`), and the
+/// spin with `options.objective`.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn gradient_pass<const D: usize, E: Effects, X: Executor>(
     sys: &System<'_, D>,
@@ -93,6 +157,8 @@ pub(super) fn gradient_pass<const D: usize, E: Effects, X: Executor>(
     params: &StepParams<'_, D>,
     exec: &X,
 ) {
+    let objective = objective::<D, E>(params);
+    let eps = params.options.det_epsilon;
     exec.run(
         (grad, grad_stress),
         |off, (g, gs): (&mut [Gradients<D>], &mut [[Vector<D>; 6]])| {
@@ -102,19 +168,25 @@ pub(super) fn gradient_pass<const D: usize, E: Effects, X: Executor>(
                 let mut acc_s = [Vector::<D>::zeros(); 6];
                 let si = cauchy::<D, E>(sys, i).to_array();
                 let cti = aux[i].ct;
+                let mut spin = SpinSums::<D>::new();
+                let m = if E::CORRECTION {
+                    slope_correction(&corr[i], i, aux, geom, params)
+                } else {
+                    Matrix::<D>::identity()
+                };
                 for_each_pair(params, geom, i, |pr, _| {
                     let j = pr.j;
                     let vol = aux[j].vol;
-                    let gw = if E::CORRECTION {
-                        corr[i].l_inv * pr.grad
-                    } else {
-                        pr.grad
-                    } * vol;
+                    let gw = if E::CORRECTION { m * pr.grad } else { pr.grad } * vol;
                     acc.rho += gw * (sys.rho[j] - sys.rho[i]);
                     acc.p += gw * (sys.p[j] - sys.p[i]);
                     acc.cl += gw * (sys.cl[j] - sys.cl[i]);
                     acc.ct += gw * (aux[j].ct - cti);
-                    acc.v += outer(&(sys.v[j] - sys.v[i]), &gw);
+                    let dv = sys.v[j] - sys.v[i];
+                    acc.v += outer(&dv, &gw);
+                    if objective {
+                        spin.add(pr, vol, &dv);
+                    }
                     if E::STRENGTH {
                         let sj = cauchy::<D, E>(sys, j).to_array();
                         for c in 0..6 {
@@ -122,6 +194,9 @@ pub(super) fn gradient_pass<const D: usize, E: Effects, X: Executor>(
                         }
                     }
                 });
+                if objective {
+                    acc.w = spin.spin(eps);
+                }
                 *out = acc;
                 if E::STRENGTH {
                     gs[k] = acc_s;
@@ -129,4 +204,86 @@ pub(super) fn gradient_pass<const D: usize, E: Effects, X: Executor>(
             }
         },
     );
+}
+
+/// The matrix that corrects particle i's MUSCL slopes: its `L^-1` (the identity near a
+/// free surface, seed 004), or with `options.corrected_slopes` the inverse of its full `L`
+/// there too, where `det L >= det_epsilon` (a slope of a linear field is then exact at the
+/// surface as inside; the forces keep the surface rule).
+fn slope_correction<const D: usize>(
+    c: &Correction<D>,
+    i: usize,
+    aux: &[Aux],
+    geom: &[PairGeom<D>],
+    params: &StepParams<'_, D>,
+) -> Matrix<D> {
+    if !params.options.corrected_slopes || c.boundary == 0 {
+        return c.l_inv;
+    }
+    let mut l = Matrix::<D>::zeros();
+    for_each_pair(params, geom, i, |pr, _| {
+        l += outer(&pr.grad, &(pr.n * pr.r)) * aux[pr.j].vol;
+    });
+    match inverse(&l) {
+        Some(inv) if det(&l) >= params.options.det_epsilon => inv,
+        _ => c.l_inv,
+    }
+}
+
+/// Whether the step removes the pairs' rigid rotation from the transverse Riemann problems
+/// (`options.objective`; there are transverse problems only with strength and in 2D/3D).
+#[inline(always)]
+pub(crate) fn objective<const D: usize, E: Effects>(params: &StepParams<'_, D>) -> bool {
+    D > 1 && E::STRENGTH && params.options.objective
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The spin of an affine velocity field `v = A x` is `(A - A^T)/2` to round-off, inside
+    /// and on a free surface (neighbours on one side only), and zero where the neighbours
+    /// cannot span the plane (one row).
+    #[test]
+    fn the_spin_of_an_affine_field_is_exact_on_a_free_surface_too() {
+        let a = Matrix::<2>::new(0.1, -2.0, 3.0, 0.4);
+        let want = (a - a.transpose()) * 0.5;
+        let spin_of = |offsets: &[(Real, Real)]| {
+            let mut s = SpinSums::<2>::new();
+            for (k, &(dx, dy)) in offsets.iter().enumerate() {
+                let d = Vector::<2>::new(dx, dy);
+                let r = d.norm();
+                let n = d / r;
+                // any kernel slope: W'(r) < 0
+                let dw = -crate::math::real::exp(-r);
+                let pr = Pair {
+                    j: k,
+                    r,
+                    n,
+                    dw,
+                    grad: n * -dw,
+                };
+                s.add(&pr, 0.7, &(a * d));
+            }
+            s.spin(1e-12)
+        };
+        let (mut inside, mut surface) = ([(0.0, 0.0); 20], [(0.0, 0.0); 20]);
+        let (mut ni, mut ns) = (0, 0);
+        for p in -2i32..=2 {
+            for q in -2i32..=2 {
+                if (p, q) != (0, 0) && p * p + q * q <= 5 {
+                    inside[ni] = (p as Real, q as Real);
+                    ni += 1;
+                    if q >= 0 {
+                        surface[ns] = (p as Real, q as Real);
+                        ns += 1;
+                    }
+                }
+            }
+        }
+        assert!((spin_of(&inside[..ni]) - want).norm() < 1e-13);
+        assert!((spin_of(&surface[..ns]) - want).norm() < 1e-13);
+        let row = [(-2.0, 0.0), (-1.0, 0.0), (1.0, 0.0), (2.0, 0.0)];
+        assert_eq!(spin_of(&row), Matrix::<2>::zeros());
+    }
 }

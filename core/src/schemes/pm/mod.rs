@@ -20,9 +20,22 @@
 //!
 //! With correction, the traction of each side is `sigma . (L_i^-1 + L_j^-1)/2 . n`
 //! (symmetric in i, j, so momentum stays conserved). With MUSCL, every reconstructed
-//! quantity Phi (stress components, rho, c_l, c_t, velocity) is extrapolated to the
-//! contact with `Phi_l = Phi_i + minmod(Phi_j - Phi_i, grad Phi_i . r_ji)/2` and
+//! quantity Phi (rho, c_l, c_t, and the components of the velocity and of the traction
+//! in the pair's frame) is extrapolated to the contact with
+//! `Phi_l = Phi_i + minmod(Phi_j - Phi_i, grad Phi_i . r_ji)/2` and
 //! `Phi_r = Phi_j - minmod(grad Phi_j . r_ji, Phi_j - Phi_i)/2` (004 eqs 13–15).
+//! Seed 004 reconstructs the Cartesian stress and velocity components; limiting them in
+//! the scene's axes makes the result depend on how the scene is oriented, so the vectors
+//! are limited in the frame `(n, t1, t2)` of the pair instead (the traction from the
+//! reconstructed stress slopes, `D` reconstructions instead of six).
+//!
+//! `options.objective` (the default; 2D/3D with strength): the velocities enter the
+//! Riemann problem less the pair's mean rigid rotation, `v_i + W r_ji/2` and
+//! `v_j - W r_ji/2` with `W` the mean of the two particles' spins (the antisymmetric part
+//! of the velocity gradient corrected with the full `L^-1`, [`gradients`]); the MUSCL
+//! slopes are taken less `W` too. A rigid rotation then has no jump, so the transverse
+//! problems do not dissipate it; `W r_ji` is normal to `n`, so the longitudinal problem
+//! is unchanged.
 
 mod gradients;
 mod options;
@@ -31,7 +44,7 @@ mod particles;
 mod records;
 
 pub(crate) use gradients::correction_pass;
-use gradients::gradient_pass;
+use gradients::{gradient_pass, objective, spin_pass};
 pub(crate) use options::{defaults, reads};
 use pairs::pair_pass;
 use particles::{dynamic_update, kinematic_update};
@@ -52,8 +65,9 @@ pub use records::PmStar;
 /// 1. At the start: x, h (pair geometry); v, rho, p, c_l, S, damage (the kernel
 ///    correction, the gradients, the Riemann problems; aux and c_t are recomputed locally
 ///    from rho).
-/// 2. Before the pair pass, with correction or MUSCL: the corrections and gradients of
-///    both sides of every pair.
+/// 2. Before the pair pass, with correction, MUSCL or strength: the corrections and
+///    gradients of both sides of every pair (with strength the spin of
+///    `options.objective`).
 /// 3. With MUSCL, after the kinematic update (rho, S, p, c_l, damage changed) and before
 ///    the dynamic pair pass.
 pub const EXCHANGES: [Exchange; 3] = [
@@ -67,7 +81,9 @@ pub const EXCHANGES: [Exchange; 3] = [
         before: "pair",
         fields: Fields::CORR.with(Fields::GRAD).with(Fields::GRAD_STRESS),
         needs: EffectSet::HYDRO,
-        needs_any: EffectSet::CORRECTION.union(EffectSet::MUSCL),
+        needs_any: EffectSet::CORRECTION
+            .union(EffectSet::MUSCL)
+            .union(EffectSet::STRENGTH),
     },
     Exchange {
         before: "dynamic pair",
@@ -101,6 +117,8 @@ impl SchemeFamily for Pm {
         Layout {
             grad_stress: effects.contains(EffectSet::MUSCL)
                 && effects.contains(EffectSet::STRENGTH),
+            // the spin of `options.objective` lives in the gradients
+            grad: effects.contains(EffectSet::MUSCL) || effects.contains(EffectSet::STRENGTH),
             pm_star: true,
             ..Layout::base(effects)
         }
@@ -123,6 +141,9 @@ impl SchemeFamily for Pm {
             let geom: &[PairGeom<D>] = ws.geom;
             if E::CORRECTION {
                 correction_pass::<D, X>(sysr, geom, ws.aux, ws.corr, ws.sums, params, exec);
+            }
+            if !E::MUSCL && objective::<D, E>(params) {
+                spin_pass::<D, X>(sysr, geom, ws.aux, ws.grad, params, exec);
             }
             if E::MUSCL {
                 gradient_pass::<D, E, X>(

@@ -18,9 +18,15 @@ pub(crate) fn reads(scheme: Scheme, key: OptionKey, effects: EffectSet) -> Resul
         Riemann
         | Dissipation
         | TransverseDissipation
+        | Objective
         | ArtificialStress
         | ArtificialStressExponent => Ok(()),
         MusclTime => read_if(false, scheme, why::NO_MUSCL_TIME),
+        CorrectedSlopes => read_if(
+            effects.contains(EffectSet::CORRECTION) && effects.contains(EffectSet::MUSCL),
+            scheme,
+            why::NO_CORRECTED_SLOPES,
+        ),
         SurfaceLambda | DetEpsilon => read_if(
             effects.contains(EffectSet::CORRECTION),
             scheme,

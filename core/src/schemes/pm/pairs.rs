@@ -44,6 +44,64 @@ pub(super) fn muscl_pair(
     )
 }
 
+/// The traction axis of pair (i, j): `n`, or with correction `(L_i^-1 + L_j^-1)/2 n`.
+#[inline(always)]
+fn traction_axis<const D: usize, E: Effects>(
+    corr: &[Correction<D>],
+    i: usize,
+    j: usize,
+    pr: &Pair<D>,
+) -> Vector<D> {
+    if E::CORRECTION {
+        (corr[i].l_inv + corr[j].l_inv) * pr.n * 0.5
+    } else {
+        pr.n
+    }
+}
+
+/// An orthonormal basis whose first vector is the unit vector `n` (Duff et al. 2017 in
+/// 3D).
+#[inline(always)]
+fn pair_basis<const D: usize>(n: &Vector<D>) -> [Vector<D>; D] {
+    let mut b = [Vector::<D>::zeros(); D];
+    b[0] = *n;
+    if D == 2 {
+        b[1][0] = -n[1];
+        b[1][1] = n[0];
+    } else if D == 3 {
+        let sign = if n[2] >= 0.0 { 1.0 } else { -1.0 };
+        let a = -1.0 / (sign + n[2]);
+        let bb = n[0] * n[1] * a;
+        b[1][0] = 1.0 + sign * n[0] * n[0] * a;
+        b[1][1] = sign * bb;
+        b[1][2] = -sign * n[0];
+        b[2][0] = bb;
+        b[2][1] = sign + n[1] * n[1] * a;
+        b[2][2] = -n[1];
+    }
+    b
+}
+
+/// MUSCL of a vector quantity component by component in the pair's frame ([`pair_basis`]):
+/// the limiter sees the normal and tangential parts, whatever the axes of the scene.
+#[inline(always)]
+fn muscl_frame<const D: usize>(
+    lim: Limiter,
+    basis: &[Vector<D>; D],
+    wi: &Vector<D>,
+    wj: &Vector<D>,
+    di: &Vector<D>,
+    dj: &Vector<D>,
+) -> (Vector<D>, Vector<D>) {
+    let (mut l, mut r) = (Vector::<D>::zeros(), Vector::<D>::zeros());
+    for e in basis {
+        let (a, b) = muscl_pair(lim, wi.dot(e), wj.dot(e), di.dot(e), dj.dot(e));
+        l += e * a;
+        r += e * b;
+    }
+    (l, r)
+}
+
 /// One pass over the pairs: every pair's star state solved once on its owner's side
 /// ([`pair_star`]), then the sums of each particle gathered in canonical order
 /// ([`gather`]).
@@ -136,45 +194,58 @@ pub(super) fn pair_star<const D: usize, E: Effects>(
     let (mut cl_l, mut cl_r) = (sys.cl[i], sys.cl[j]);
     let (mut ct_l, mut ct_r) = (ct_i, ct_j);
     let (mut v_l, mut v_r) = (vi, sys.v[j]);
-    let (mut s_l, mut s_r) = (sig_i, sig_j);
     let failed_pair = failed::<D, E>(sys, i) || failed::<D, E>(sys, j);
+    let rji = pr.n * pr.r;
+    // options.objective: both velocities taken to the pair's midpoint along the pair's
+    // mean rigid rotation W, v_i + W r_ji/2 and v_j - W r_ji/2 (the MUSCL slopes less W),
+    // so that a rigid rotation leaves no jump. W r_ji is normal to n: only the transverse
+    // problems change.
+    let spin = if super::gradients::objective::<D, E>(params) {
+        (grad[i].w + grad[j].w) * 0.5
+    } else {
+        Matrix::<D>::zeros()
+    };
+    if super::gradients::objective::<D, E>(params) {
+        let half = spin * rji * 0.5;
+        v_l += half;
+        v_r -= half;
+    }
+    let axis = traction_axis::<D, E>(corr, i, j, pr);
+    let (mut t_l, mut t_r) = (sig_i.dot_vec(&axis), sig_j.dot_vec(&axis));
     if E::MUSCL && !failed_pair {
+        let basis = pair_basis(&pr.n);
         let lim = params.options.limiter;
-        let rji = pr.n * pr.r;
         let (gi, gj) = (&grad[i], &grad[j]);
         (rho_l, rho_r) = muscl_pair(lim, rhoi, rhoj, gi.rho.dot(&rji), gj.rho.dot(&rji));
         (cl_l, cl_r) = muscl_pair(lim, cl_l, cl_r, gi.cl.dot(&rji), gj.cl.dot(&rji));
         (ct_l, ct_r) = muscl_pair(lim, ct_l, ct_r, gi.ct.dot(&rji), gj.ct.dot(&rji));
-        let dvi = gi.v * rji;
-        let dvj = gj.v * rji;
-        for a in 0..D {
-            (v_l[a], v_r[a]) = muscl_pair(lim, vi[a], sys.v[j][a], dvi[a], dvj[a]);
-        }
+        let dvi = (gi.v - spin) * rji;
+        let dvj = (gj.v - spin) * rji;
+        let (wi, wj) = (v_l, v_r);
+        (v_l, v_r) = muscl_frame(lim, &basis, &wi, &wj, &dvi, &dvj);
         if E::STRENGTH {
-            let (si, sj) = (sig_i.to_array(), sig_j.to_array());
-            let (mut al, mut ar) = ([0.0; 6], [0.0; 6]);
-            for c in 0..6 {
-                (al[c], ar[c]) = muscl_pair(
-                    lim,
-                    si[c],
-                    sj[c],
-                    grad_s[i][c].dot(&rji),
-                    grad_s[j][c].dot(&rji),
-                );
-            }
-            (s_l, s_r) = (Sym3::from_array(al), Sym3::from_array(ar));
+            // the tractions on the axis, reconstructed in the pair's frame like the
+            // velocity: D reconstructions instead of the six stress components'
+            let slope = |g: &[Vector<D>; 6]| {
+                let mut a = [0.0; 6];
+                for c in 0..6 {
+                    a[c] = g[c].dot(&rji);
+                }
+                Sym3::from_array(a).dot_vec(&axis)
+            };
+            (t_l, t_r) = muscl_frame(
+                lim,
+                &basis,
+                &t_l,
+                &t_r,
+                &slope(&grad_s[i]),
+                &slope(&grad_s[j]),
+            );
         } else {
             let (pl, pr_) = muscl_pair(lim, sys.p[i], sys.p[j], gi.p.dot(&rji), gj.p.dot(&rji));
-            (s_l, s_r) = (Sym3::isotropic(-pl), Sym3::isotropic(-pr_));
+            (t_l, t_r) = (axis * -pl, axis * -pr_);
         }
     }
-    let axis = if E::CORRECTION {
-        (corr[i].l_inv + corr[j].l_inv) * pr.n * 0.5
-    } else {
-        pr.n
-    };
-    let t_l = s_l.dot_vec(&axis);
-    let t_r = s_r.dot_vec(&axis);
     let (zl_long, zl_trans) = (rho_l * cl_l, rho_l * ct_l);
     let (zr_long, zr_trans) = (rho_r * cl_r, rho_r * ct_r);
     let (mut vs, mut ts) = match params.options.riemann {
@@ -299,4 +370,76 @@ pub(super) fn gather<
         }
     });
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn rotate(a: Real, v: &Vector<2>) -> Vector<2> {
+        let (s, c) = (crate::math::real::sin(a), crate::math::real::cos(a));
+        Vector::<2>::new(c * v[0] - s * v[1], s * v[0] + c * v[1])
+    }
+
+    /// The reconstruction in the pair's frame does not depend on the scene's axes: rotating
+    /// the pair, both states and both slopes rotates the reconstructed states, for every
+    /// limiter (to round-off). In the scene's axes, component by component, it does not.
+    #[test]
+    fn muscl_in_the_pair_frame_is_indifferent_to_the_axes() {
+        let n = Vector::<2>::new(0.6, 0.8);
+        let (wi, wj) = (Vector::<2>::new(1.0, -2.0), Vector::<2>::new(1.5, -0.5));
+        let (di, dj) = (Vector::<2>::new(0.2, 2.5), Vector::<2>::new(0.9, 0.1));
+        for lim in [
+            Limiter::Minmod,
+            Limiter::Superbee,
+            Limiter::MonotonizedCentral,
+            Limiter::VanLeer,
+        ] {
+            let (l, r) = muscl_frame(lim, &pair_basis(&n), &wi, &wj, &di, &dj);
+            let mut axes_differ = false;
+            for a in [0.3, 1.1, 2.9] {
+                let rot = |v: &Vector<2>| rotate(a, v);
+                let (lr, rr) = muscl_frame(
+                    lim,
+                    &pair_basis(&rot(&n)),
+                    &rot(&wi),
+                    &rot(&wj),
+                    &rot(&di),
+                    &rot(&dj),
+                );
+                assert!((lr - rot(&l)).norm() < 1e-13, "{lim} {a}");
+                assert!((rr - rot(&r)).norm() < 1e-13, "{lim} {a}");
+                // component by component in the scene's axes
+                let (mut lc, mut rc) = (Vector::<2>::zeros(), Vector::<2>::zeros());
+                let (wir, wjr, dir, djr) = (rot(&wi), rot(&wj), rot(&di), rot(&dj));
+                for c in 0..2 {
+                    (lc[c], rc[c]) = muscl_pair(lim, wir[c], wjr[c], dir[c], djr[c]);
+                }
+                axes_differ |= (lc - rot(&l)).norm() > 1e-6 || (rc - rot(&r)).norm() > 1e-6;
+            }
+            assert!(axes_differ, "{lim}: the test cannot tell the frames apart");
+        }
+    }
+
+    /// The basis is orthonormal and starts with `n`, in 2D and 3D (both signs of n_z).
+    #[test]
+    fn the_pair_basis_is_orthonormal() {
+        let b2 = pair_basis(&Vector::<2>::new(0.6, -0.8));
+        assert_eq!(b2[0], Vector::<2>::new(0.6, -0.8));
+        assert!(b2[0].dot(&b2[1]).abs() < 1e-15 && (b2[1].norm() - 1.0).abs() < 1e-15);
+        for n in [
+            Vector::<3>::new(0.48, 0.6, 0.64),
+            Vector::<3>::new(0.48, -0.6, -0.64),
+            Vector::<3>::new(0.0, 0.0, -1.0),
+        ] {
+            let b = pair_basis(&n);
+            assert_eq!(b[0], n);
+            for p in 0..3 {
+                for q in 0..3 {
+                    let want = if p == q { 1.0 } else { 0.0 };
+                    assert!((b[p].dot(&b[q]) - want).abs() < 1e-15, "{n:?} {p} {q}");
+                }
+            }
+        }
+    }
 }

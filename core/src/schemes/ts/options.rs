@@ -11,9 +11,10 @@ pub(crate) fn reads(scheme: Scheme, key: OptionKey) -> Result<(), NotRead> {
     let muscl = scheme.effects().contains(EffectSet::MUSCL);
     match key {
         AvAlpha | AvBeta => read_if(false, scheme, why::AV_ONLY),
-        TransverseDissipation => read_if(false, scheme, why::NO_TRANSVERSE),
+        TransverseDissipation | Objective => read_if(false, scheme, why::NO_TRANSVERSE),
         Limiter => read_if(muscl, scheme, why::NO_MUSCL),
         MusclTime => read_if(muscl, scheme, why::NO_MUSCL_TIME),
+        CorrectedSlopes => read_if(false, scheme, why::NO_CORRECTED_SLOPES),
         Riemann
         | Dissipation
         | SurfaceLambda

@@ -136,6 +136,7 @@ impl<const D: usize> Halo<D> for Mirrors<D> {
                 t.v = pl.reflect_matrix(&s.v);
                 t.cl = pl.reflect(&s.cl);
                 t.ct = pl.reflect(&s.ct);
+                t.w = pl.reflect_matrix(&s.w);
                 ws.grad[g] = t;
             }
             if f.contains(Fields::GRAD_STRESS) && !ws.grad_stress.is_empty() {
