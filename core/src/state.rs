@@ -459,6 +459,48 @@ impl MusclTime {
     }
 }
 
+/// How the contact family (`pm`, `tkc`) advances in time (`options.integrator`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Integrator {
+    /// The seeds': every rate from the state at the start of the step (pm, explicit
+    /// Euler), or with MUSCL density and deviator first and the forces from the new
+    /// stresses (tkc, symplectic Euler). First order in time.
+    Euler,
+    /// The predictor–corrector leap-frog of `av` (kick, drift, predict, one rate
+    /// evaluation at the predicted end state, kick): second order in time, one pair
+    /// pass per step; with tkc's total-energy equation, energy stays exact.
+    Leapfrog,
+}
+
+impl Integrator {
+    /// The scene names, in the order messages list them.
+    pub const NAMES: [&'static str; 2] = ["euler", "leapfrog"];
+
+    /// The scene name.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Integrator::Euler => "euler",
+            Integrator::Leapfrog => "leapfrog",
+        }
+    }
+
+    /// The integrator of a scene name.
+    pub fn from_name(name: &str) -> Option<Integrator> {
+        match name {
+            "euler" => Some(Integrator::Euler),
+            "leapfrog" => Some(Integrator::Leapfrog),
+            _ => None,
+        }
+    }
+}
+
+/// The scene name.
+impl core::fmt::Display for Integrator {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
 /// Scheme options (with the defaults of the seeds).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SchemeOptions {
@@ -485,6 +527,8 @@ pub struct SchemeOptions {
     /// surface as inside (`tkc`, `pm` with correction and MUSCL); the forces keep the
     /// surface rule. Off: seed 004's `L = I` for the slopes too.
     pub corrected_slopes: bool,
+    /// The time integration of `pm` and `tkc`.
+    pub integrator: Integrator,
     /// How `ts2` accounts for the time step when it reconstructs the contact states (seed
     /// 000 eq 23; one choice for continuity, momentum and energy, see `schemes::ts`).
     pub muscl_time: MusclTime,
@@ -511,6 +555,7 @@ impl Default for SchemeOptions {
             transverse_dissipation: crate::riemann::Dissipation::Full,
             objective: true,
             corrected_slopes: false,
+            integrator: Integrator::Euler,
             muscl_time: MusclTime::None,
             surface_lambda: 0.75,
             det_epsilon: 0.05,

@@ -60,6 +60,7 @@ const KEYS: &[(&str, &[&str])] = &[
     // so they are refused on this scene; host/tests/elastic_monitor.rs shows them acting
     // in 2D)
     ("options.corrected_slopes=true", &["tkc"]),
+    ("options.integrator=leapfrog", &["pm+muscl", "tkc"]),
     ("options.muscl_time=courant", &["ts2"]),
     ("options.muscl_time=predictor", &["ts2"]),
     (

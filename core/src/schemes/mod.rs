@@ -23,7 +23,7 @@ pub mod ts;
 use crate::effects::{EffectSet, Effects};
 use crate::exec::Executor;
 use crate::halo::{Exchange, Halo};
-use crate::state::{Family, Layout, StepError, StepParams, System, Workspace};
+use crate::state::{Family, Layout, SchemeOptions, StepError, StepParams, System, Workspace};
 
 /// One scheme family: advances the particles by one step of `params.dt`. What the rest
 /// of the code needs to know of a family is here, declared by the family's module: the
@@ -36,8 +36,8 @@ pub trait SchemeFamily {
     const SUPPORTED: EffectSet;
     /// The halo exchanges a step makes, in order (see [`crate::halo`]).
     const EXCHANGES: &'static [Exchange];
-    /// The workspace arrays a step with `effects` reads and writes.
-    fn layout(effects: EffectSet) -> Layout;
+    /// The workspace arrays a step with `effects` and `options` reads and writes.
+    fn layout(effects: EffectSet, options: &SchemeOptions) -> Layout;
     /// [`SchemeFamily::step`] after checking the particle and workspace arrays have the
     /// lengths `params.effects` and [`SchemeFamily::layout`] give them (the one storage
     /// check of every family).
@@ -50,7 +50,7 @@ pub trait SchemeFamily {
         halo: &mut dyn Halo<D>,
     ) -> Result<(), StepError> {
         sys.check_storage(params.effects)?;
-        let layout = Self::layout(params.effects);
+        let layout = Self::layout(params.effects, &params.options);
         ws.check(&layout, sys.len(), params.nbrs.unordered_pairs())?;
         Self::step::<D, E, X>(sys, ws, params, exec, halo)
     }
@@ -159,12 +159,13 @@ impl Family {
         }
     }
 
-    /// The workspace arrays a step with `effects` needs ([`SchemeFamily::layout`]).
-    pub fn layout(self, effects: EffectSet) -> Layout {
+    /// The workspace arrays a step with `effects` and `options` needs
+    /// ([`SchemeFamily::layout`]).
+    pub fn layout(self, effects: EffectSet, options: &SchemeOptions) -> Layout {
         match self {
-            Family::Av => av::Av::layout(effects),
-            Family::Pm => pm::Pm::layout(effects),
-            Family::Ts => ts::Ts::layout(effects),
+            Family::Av => av::Av::layout(effects, options),
+            Family::Pm => pm::Pm::layout(effects, options),
+            Family::Ts => ts::Ts::layout(effects, options),
         }
     }
 }

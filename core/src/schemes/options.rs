@@ -11,6 +11,7 @@
 //! | `riemann` | every Godunov scheme: `pm`, `tkc` (longitudinal wave), `ts1`, `ts2` |
 //! | `dissipation` | every Godunov scheme: `pm`, `tkc`, `ts1`, `ts2` |
 //! | `transverse_dissipation`, `objective` | the schemes with transverse Riemann problems: `pm`, `tkc` |
+//! | `integrator` | the contact family with MUSCL: `tkc`, `pm` with `muscl` |
 //! | `corrected_slopes` | the schemes with corrected MUSCL slopes: `tkc`, `pm` with `correction` and `muscl` |
 //! | `muscl_time` | `ts2` |
 //! | `surface_lambda`, `det_epsilon` | `ts1`, `ts2` (free-surface divergence), `tkc`, `pm` with `correction = true` |
@@ -44,6 +45,8 @@ pub enum OptionKey {
     Objective,
     /// `corrected_slopes`.
     CorrectedSlopes,
+    /// `integrator`.
+    Integrator,
     /// `muscl_time`.
     MusclTime,
     /// `surface_lambda`.
@@ -62,7 +65,7 @@ pub enum OptionKey {
 
 impl OptionKey {
     /// Every key, in the order a scene's keys are checked.
-    pub const ALL: [OptionKey; 15] = [
+    pub const ALL: [OptionKey; 16] = [
         OptionKey::AvAlpha,
         OptionKey::AvBeta,
         OptionKey::Limiter,
@@ -71,6 +74,7 @@ impl OptionKey {
         OptionKey::TransverseDissipation,
         OptionKey::Objective,
         OptionKey::CorrectedSlopes,
+        OptionKey::Integrator,
         OptionKey::MusclTime,
         OptionKey::SurfaceLambda,
         OptionKey::DetEpsilon,
@@ -91,6 +95,7 @@ impl OptionKey {
             OptionKey::TransverseDissipation => "options.transverse_dissipation",
             OptionKey::Objective => "options.objective",
             OptionKey::CorrectedSlopes => "options.corrected_slopes",
+            OptionKey::Integrator => "options.integrator",
             OptionKey::MusclTime => "options.muscl_time",
             OptionKey::SurfaceLambda => "options.surface_lambda",
             OptionKey::DetEpsilon => "options.det_epsilon",
@@ -150,6 +155,10 @@ pub(crate) mod why {
         "it solves no transverse Riemann problem; pm and tkc do (its deviatoric step has no dissipation)";
     pub const NO_CORRECTED_SLOPES: &str =
         "it has no kernel-corrected MUSCL slopes; tkc and pm with options.correction and options.muscl have";
+    pub const OWN_INTEGRATOR: &str =
+        "its time integration is its own (av: leap-frog; ts1, ts2: time-split); pm and tkc choose";
+    pub const FIRST_ORDER_EULER: &str =
+        "its first-order Riemann states step with explicit Euler only (with the leap-frog pm's Verney cylinder went unstable); tkc and pm with options.muscl choose";
     pub const NO_MUSCL_TIME: &str = "only ts2's reconstruction has a time treatment";
     pub const NO_SURFACE: &str =
         "it has no free-surface rule; ts1, ts2, tkc and pm with options.correction have";
@@ -191,6 +200,8 @@ pub struct SceneOptions {
     pub objective: Option<bool>,
     /// MUSCL slopes corrected at free surfaces too (tkc, pm with correction and MUSCL).
     pub corrected_slopes: Option<bool>,
+    /// Time integration of pm and tkc.
+    pub integrator: Option<crate::state::Integrator>,
     /// Time treatment of the ts2 reconstruction.
     pub muscl_time: Option<MusclTime>,
     /// Free-surface eigenvalue threshold.
@@ -219,6 +230,7 @@ impl SceneOptions {
             OptionKey::TransverseDissipation => self.transverse_dissipation.is_some(),
             OptionKey::Objective => self.objective.is_some(),
             OptionKey::CorrectedSlopes => self.corrected_slopes.is_some(),
+            OptionKey::Integrator => self.integrator.is_some(),
             OptionKey::MusclTime => self.muscl_time.is_some(),
             OptionKey::SurfaceLambda => self.surface_lambda.is_some(),
             OptionKey::DetEpsilon => self.det_epsilon.is_some(),
@@ -240,6 +252,7 @@ impl SceneOptions {
             OptionKey::TransverseDissipation => self.transverse_dissipation = None,
             OptionKey::Objective => self.objective = None,
             OptionKey::CorrectedSlopes => self.corrected_slopes = None,
+            OptionKey::Integrator => self.integrator = None,
             OptionKey::MusclTime => self.muscl_time = None,
             OptionKey::SurfaceLambda => self.surface_lambda = None,
             OptionKey::DetEpsilon => self.det_epsilon = None,
@@ -288,6 +301,7 @@ impl SceneOptions {
             .unwrap_or(d.transverse_dissipation);
         o.objective = self.objective.unwrap_or(d.objective);
         o.corrected_slopes = self.corrected_slopes.unwrap_or(d.corrected_slopes);
+        o.integrator = self.integrator.unwrap_or(d.integrator);
         o.muscl_time = self.muscl_time.unwrap_or(d.muscl_time);
         o.surface_lambda = self.surface_lambda.unwrap_or(d.surface_lambda);
         o.det_epsilon = self.det_epsilon.unwrap_or(d.det_epsilon);

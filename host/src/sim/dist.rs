@@ -57,7 +57,7 @@ impl<const D: usize> Sim<D> {
 
     /// Whether the run keeps `av`'s rates (they carry over from step to step).
     fn stores_av(&self) -> bool {
-        self.scheme.family().layout(self.effects).av
+        self.scheme.family().layout(self.effects, &self.options).av
     }
 
     /// Appends the record of local particle `i` (`driven`: its prescribed velocity).
@@ -96,7 +96,7 @@ impl<const D: usize> Sim<D> {
         }
         self.ids.push(next(1)[0] as u32);
         gsph_core::particle_fields!(each_state_field { stored_mut self, get, &mut next });
-        let layout = self.scheme.family().layout(self.effects);
+        let layout = self.scheme.family().layout(self.effects, &self.options);
         if layout.av {
             self.av
                 .push(AvRates::<D>::from_words(next(AvRates::<D>::words())));

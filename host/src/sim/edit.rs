@@ -62,7 +62,7 @@ impl<const D: usize> Sim<D> {
     pub fn append(&mut self, parts: &InitialParticles) -> u32 {
         self.drop_mirrors();
         let first = self.ids.iter().max().map_or(0, |&m| m + 1);
-        let layout = self.scheme.family().layout(self.effects);
+        let layout = self.scheme.family().layout(self.effects, &self.options);
         for i in 0..parts.len() {
             let mat = self.materials[parts.mat[i] as usize];
             let st = mat.eos(parts.rho[i], parts.e[i]);

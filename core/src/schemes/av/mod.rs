@@ -29,7 +29,7 @@ use crate::exec::Executor;
 use crate::halo::{Exchange, Fields, Halo};
 use crate::schemes::common::{halo_exchange, refresh_eos, return_deviator};
 use crate::schemes::SchemeFamily;
-use crate::state::{Family, Layout, StepError, StepParams, System, Workspace};
+use crate::state::{Family, Layout, SchemeOptions, StepError, StepParams, System, Workspace};
 pub use records::AvRates;
 
 /// The halo exchanges of an `av` step (see [`crate::halo`]). The step is: kick and drift
@@ -58,7 +58,7 @@ impl SchemeFamily for Av {
         .union(EffectSet::ARTIFICIAL_STRESS);
     const EXCHANGES: &'static [Exchange] = &EXCHANGES;
 
-    fn layout(effects: EffectSet) -> Layout {
+    fn layout(effects: EffectSet, _options: &SchemeOptions) -> Layout {
         Layout {
             av: true,
             ..Layout::base(effects)

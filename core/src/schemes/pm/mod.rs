@@ -38,6 +38,7 @@
 //! is unchanged.
 
 mod gradients;
+mod leapfrog;
 mod options;
 mod pairs;
 mod particles;
@@ -57,7 +58,10 @@ use crate::schemes::common::{
     refresh_pressure,
 };
 use crate::schemes::SchemeFamily;
-use crate::state::{Family, Layout, PairGeom, PairSums, StepError, StepParams, System, Workspace};
+use crate::state::{
+    Family, Integrator, Layout, PairGeom, PairSums, SchemeOptions, StepError, StepParams, System,
+    Workspace,
+};
 pub use records::PmStar;
 
 /// The halo exchanges of a `pm`/`tkc` step, in order (see [`crate::halo`]).
@@ -113,13 +117,15 @@ impl SchemeFamily for Pm {
         .union(EffectSet::ARTIFICIAL_STRESS);
     const EXCHANGES: &'static [Exchange] = &EXCHANGES;
 
-    fn layout(effects: EffectSet) -> Layout {
+    fn layout(effects: EffectSet, options: &SchemeOptions) -> Layout {
         Layout {
             grad_stress: effects.contains(EffectSet::MUSCL)
                 && effects.contains(EffectSet::STRENGTH),
             // the spin of `options.objective` lives in the gradients
             grad: effects.contains(EffectSet::MUSCL) || effects.contains(EffectSet::STRENGTH),
             pm_star: true,
+            // the leap-frog's rates and half-step state
+            av: options.integrator == Integrator::Leapfrog,
             ..Layout::base(effects)
         }
     }
@@ -131,34 +137,12 @@ impl SchemeFamily for Pm {
         exec: &X,
         halo: &mut dyn Halo<D>,
     ) -> Result<(), StepError> {
-        let dt = params.dt;
-        let [start, pair, dynamic] = &EXCHANGES;
-        halo_exchange!(params, halo, start, sys, ws);
-        geometry_pass::<D, E, X>(sys.x, sys.h, params, ws.geom, ws.fac, exec);
-        refresh_aux::<D, true, X>(sys, ws.aux, params, exec);
-        {
-            let sysr: &System<'_, D> = sys;
-            let geom: &[PairGeom<D>] = ws.geom;
-            if E::CORRECTION {
-                correction_pass::<D, X>(sysr, geom, ws.aux, ws.corr, ws.sums, params, exec);
-            }
-            if !E::MUSCL && objective::<D, E>(params) {
-                spin_pass::<D, X>(sysr, geom, ws.aux, ws.grad, params, exec);
-            }
-            if E::MUSCL {
-                gradient_pass::<D, E, X>(
-                    sysr,
-                    geom,
-                    ws.aux,
-                    ws.corr,
-                    ws.grad,
-                    ws.grad_stress,
-                    params,
-                    exec,
-                );
-            }
+        if params.options.integrator == Integrator::Leapfrog {
+            return leapfrog::step::<D, E, X>(sys, ws, params, exec, halo);
         }
-        halo_exchange!(params, halo, pair, sys, ws);
+        let dt = params.dt;
+        let [_, _, dynamic] = &EXCHANGES;
+        prepare::<D, E, X>(sys, ws, params, exec, halo);
         if E::MUSCL {
             // With MUSCL the Riemann dissipation nearly vanishes in smooth flow, and the
             // explicit Euler of the seed (forces and strain rates from the same old state)
@@ -213,4 +197,43 @@ impl SchemeFamily for Pm {
         }
         Ok(())
     }
+}
+
+/// What every pair pass of a step reads besides the particles: the start exchange, the
+/// pair geometry, the per-particle aux, the kernel correction, the spin and the MUSCL
+/// gradients, and their exchange.
+fn prepare<const D: usize, E: Effects, X: Executor>(
+    sys: &mut System<'_, D>,
+    ws: &mut Workspace<'_, D>,
+    params: &StepParams<'_, D>,
+    exec: &X,
+    halo: &mut dyn Halo<D>,
+) {
+    let [start, pair, _] = &EXCHANGES;
+    halo_exchange!(params, halo, start, sys, ws);
+    geometry_pass::<D, E, X>(sys.x, sys.h, params, ws.geom, ws.fac, exec);
+    refresh_aux::<D, true, X>(sys, ws.aux, params, exec);
+    {
+        let sysr: &System<'_, D> = sys;
+        let geom: &[PairGeom<D>] = ws.geom;
+        if E::CORRECTION {
+            correction_pass::<D, X>(sysr, geom, ws.aux, ws.corr, ws.sums, params, exec);
+        }
+        if !E::MUSCL && objective::<D, E>(params) {
+            spin_pass::<D, X>(sysr, geom, ws.aux, ws.grad, params, exec);
+        }
+        if E::MUSCL {
+            gradient_pass::<D, E, X>(
+                sysr,
+                geom,
+                ws.aux,
+                ws.corr,
+                ws.grad,
+                ws.grad_stress,
+                params,
+                exec,
+            );
+        }
+    }
+    halo_exchange!(params, halo, pair, sys, ws);
 }

@@ -22,6 +22,11 @@ pub(crate) fn reads(scheme: Scheme, key: OptionKey, effects: EffectSet) -> Resul
         | ArtificialStress
         | ArtificialStressExponent => Ok(()),
         MusclTime => read_if(false, scheme, why::NO_MUSCL_TIME),
+        Integrator => read_if(
+            effects.contains(EffectSet::MUSCL),
+            scheme,
+            why::FIRST_ORDER_EULER,
+        ),
         CorrectedSlopes => read_if(
             effects.contains(EffectSet::CORRECTION) && effects.contains(EffectSet::MUSCL),
             scheme,

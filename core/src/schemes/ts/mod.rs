@@ -65,7 +65,9 @@ use crate::schemes::common::{
     refresh_eos, refresh_pressure,
 };
 use crate::schemes::SchemeFamily;
-use crate::state::{Family, Layout, PairGeom, PairSums, StepError, StepParams, System, Workspace};
+use crate::state::{
+    Family, Layout, PairGeom, PairSums, SchemeOptions, StepError, StepParams, System, Workspace,
+};
 pub use records::TsStar;
 
 /// The halo exchanges of a `ts` step, in order (see [`crate::halo`]).
@@ -131,7 +133,7 @@ impl SchemeFamily for Ts {
         .union(EffectSet::ARTIFICIAL_STRESS);
     const EXCHANGES: &'static [Exchange] = &EXCHANGES;
 
-    fn layout(effects: EffectSet) -> Layout {
+    fn layout(effects: EffectSet, _options: &SchemeOptions) -> Layout {
         Layout {
             ts_star: true,
             ..Layout::base(effects)

@@ -15,6 +15,7 @@ pub(crate) fn reads(scheme: Scheme, key: OptionKey) -> Result<(), NotRead> {
         Limiter => read_if(muscl, scheme, why::NO_MUSCL),
         MusclTime => read_if(muscl, scheme, why::NO_MUSCL_TIME),
         CorrectedSlopes => read_if(false, scheme, why::NO_CORRECTED_SLOPES),
+        Integrator => read_if(false, scheme, why::OWN_INTEGRATOR),
         Riemann
         | Dissipation
         | SurfaceLambda
