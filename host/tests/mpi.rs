@@ -199,6 +199,28 @@ fn walls_are_rank_count_independent() {
     restarts_on_other_rank_counts("taylor_restart", "taylor_copper.toml", &["t_end=5.0e-6"]);
 }
 
+/// tkc with `options.integrator = "leapfrog"` (issue 27): its rates carry from step to
+/// step, through the halo and the checkpoint; the result is the same on any rank count, and
+/// a restart on another rank count ends with the serial run's bytes (walls included).
+#[test]
+fn the_leapfrog_is_rank_count_independent() {
+    same_everywhere(
+        "riemann2d_leapfrog",
+        "riemann_al_2d.toml",
+        &[
+            "resolution_scale=0.5",
+            "t_end=1.0e-6",
+            "scheme=tkc",
+            "options.integrator=leapfrog",
+        ],
+    );
+    restarts_on_other_rank_counts(
+        "taylor_leapfrog",
+        "taylor_copper.toml",
+        &["t_end=5.0e-6", "options.integrator=leapfrog"],
+    );
+}
+
 /// A checkpoint written on 2 ranks restarts on 3 ranks and in one process, and both end
 /// with the bytes of the uninterrupted serial run.
 #[test]
