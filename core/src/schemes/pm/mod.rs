@@ -25,9 +25,10 @@
 //! `Phi_l = Phi_i + minmod(Phi_j - Phi_i, grad Phi_i . r_ji)/2` and
 //! `Phi_r = Phi_j - minmod(grad Phi_j . r_ji, Phi_j - Phi_i)/2` (004 eqs 13–15).
 //! Seed 004 reconstructs the Cartesian stress and velocity components; limiting them in
-//! the scene's axes makes the result depend on how the scene is oriented, so the vectors
-//! are limited in the frame `(n, t1, t2)` of the pair instead (the traction from the
-//! reconstructed stress slopes, `D` reconstructions instead of six).
+//! the scene's axes makes the result depend on how the scene is oriented, so in 2D the
+//! vectors are limited in the frame `(n, t)` of the pair instead (the traction from the
+//! reconstructed stress slopes, two reconstructions instead of six); in 3D in the scene's
+//! axes (see `pairs::pair_basis`).
 //!
 //! `options.objective` (the default; 2D/3D with strength): the velocities enter the
 //! Riemann problem less the pair's mean rigid rotation, `v_i + W r_ji/2` and
