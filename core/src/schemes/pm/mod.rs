@@ -33,7 +33,7 @@
 //! `options.objective` (the default; 2D/3D with strength): the velocities enter the
 //! Riemann problem less the pair's mean rigid rotation, `v_i + W r_ji/2` and
 //! `v_j - W r_ji/2` with `W` the mean of the two particles' spins (the antisymmetric part
-//! of the velocity gradient corrected with the full `L^-1`, [`gradients`]); the MUSCL
+//! of the velocity gradient corrected with the full `L^-1`, `gradients.rs`); the MUSCL
 //! slopes are taken less `W` too. A rigid rotation then has no jump, so the transverse
 //! problems do not dissipate it; `W r_ji` is normal to `n`, so the longitudinal problem
 //! is unchanged.
