@@ -199,12 +199,9 @@ pub(super) fn pair_star<const D: usize, E: Effects>(
     // mean rigid rotation W, v_i + W r_ji/2 and v_j - W r_ji/2 (the MUSCL slopes less W),
     // so that a rigid rotation leaves no jump. W r_ji is normal to n: only the transverse
     // problems change.
-    let spin = if super::gradients::objective::<D, E>(params) {
-        (grad[i].w + grad[j].w) * 0.5
-    } else {
-        Matrix::<D>::zeros()
-    };
+    let mut spin = Matrix::<D>::zeros();
     if super::gradients::objective::<D, E>(params) {
+        spin = (grad[i].w + grad[j].w) * 0.5;
         let half = spin * rji * 0.5;
         v_l += half;
         v_r -= half;
