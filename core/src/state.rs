@@ -535,6 +535,10 @@ pub struct SchemeOptions {
     /// Threshold on the smallest eigenvalue of L below which a particle is a free-surface
     /// particle (`tkc`: L = I there; `ts`: consistent divergence there).
     pub surface_lambda: Real,
+    /// A particle below `surface_lambda` is a free-surface particle only if its
+    /// neighbourhood is open by the umbrella scan (`tkc`, `pm` with correction; see
+    /// `open_neighbourhood` in the schemes' common module); `false`: seed 004's eigenvalue test alone.
+    pub surface_scan: bool,
     /// L is not inverted where det L is below this (`tkc`, `ts`).
     pub det_epsilon: Real,
     /// Artificial stress (read with the effect `artificial_stress`).
@@ -558,6 +562,7 @@ impl Default for SchemeOptions {
             integrator: Integrator::Euler,
             muscl_time: MusclTime::None,
             surface_lambda: 0.75,
+            surface_scan: true,
             det_epsilon: 0.05,
             artificial_stress: ArtificialStress::default(),
             constant_h: false,

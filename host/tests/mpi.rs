@@ -199,9 +199,10 @@ fn walls_are_rank_count_independent() {
     restarts_on_other_rank_counts("taylor_restart", "taylor_copper.toml", &["t_end=5.0e-6"]);
 }
 
-/// tkc with `options.integrator = "leapfrog"` (issue 27): its rates carry from step to
-/// step, through the halo and the checkpoint; the result is the same on any rank count, and
-/// a restart on another rank count ends with the serial run's bytes (walls included).
+/// tkc and ts2 with `options.integrator = "leapfrog"` (issue 27): their rates carry from
+/// step to step, through the halo and the checkpoint; the result is the same on any rank
+/// count, and a restart on another rank count ends with the serial run's bytes (walls
+/// included).
 #[test]
 fn the_leapfrog_is_rank_count_independent() {
     same_everywhere(
@@ -211,6 +212,16 @@ fn the_leapfrog_is_rank_count_independent() {
             "resolution_scale=0.5",
             "t_end=1.0e-6",
             "scheme=tkc",
+            "options.integrator=leapfrog",
+        ],
+    );
+    restarts_on_other_rank_counts(
+        "rings_ts2_leapfrog",
+        "rings.toml",
+        &[
+            "resolution_scale=0.5",
+            "max_steps=60",
+            "scheme=ts2",
             "options.integrator=leapfrog",
         ],
     );

@@ -28,6 +28,26 @@ pub fn run_case(name: &str, overrides: &[&str]) -> serde_json::Map<String, serde
         .to_map()
 }
 
+/// Runs a bundled scene with overrides, in memory, and returns its final particle table
+/// (rows in id order) and its summary.
+pub fn run_case_table(
+    name: &str,
+    overrides: &[&str],
+) -> (
+    gsph::output::ParticleTable,
+    serde_json::Map<String, serde_json::Value>,
+) {
+    let path = case(name);
+    let set: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
+    let scene = gsph::scene::load(&path, &set).unwrap_or_else(|e| panic!("{e}"));
+    let opts = RunOptions {
+        out: None,
+        progress: false,
+    };
+    let r = run(&scene, name, &opts).unwrap_or_else(|e| panic!("{name} {overrides:?}: {e}"));
+    (r.table, r.summary.to_map())
+}
+
 /// A number from a summary.
 pub fn num(s: &serde_json::Map<String, serde_json::Value>, key: &str) -> f64 {
     s.get(key)

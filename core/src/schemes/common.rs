@@ -397,6 +397,53 @@ pub(crate) fn cauchy<const D: usize, E: Effects>(sys: &System<'_, D>, i: usize) 
     }
 }
 
+/// Relative margin of the umbrella scan ([`open_neighbourhood`]): a neighbour on the
+/// region's boundary (a corner's edge neighbours lie at exactly 45 degrees from its
+/// diagonal normal) is outside it whatever the round-off.
+pub(crate) const SCAN_TOLERANCE: Real = 1e-9;
+
+/// Whether particle `i`'s neighbourhood is open on one side (a free surface), by the
+/// umbrella scan of Marrone et al. (2010, Comput. Methods Appl. Mech. Engrg. 199, 1526):
+/// with the outward normal `n` of `-sum V_j grad_i W_ij`, the neighbourhood is closed if
+/// some neighbour lies in the cone of half-angle 45 degrees about `n` (those nearer than
+/// `sqrt 2 h`) or within `h` of `x_i + h n` (the others). Purely geometric: a neighbourhood
+/// stretched or compressed (the Taylor rod's face, whose radial neighbours leave the
+/// kernel while the axial ones crowd in) or closed by wall mirrors is not open, whatever
+/// `L`'s eigenvalues say. A neighbourhood whose normal sum vanishes exactly is closed.
+pub(crate) fn open_neighbourhood<const D: usize>(
+    params: &StepParams<'_, D>,
+    geom: &[PairGeom<D>],
+    aux: &[Aux],
+    i: usize,
+    h: Real,
+) -> bool {
+    let mut nu = Vector::<D>::zeros();
+    for_each_pair(params, geom, i, |pr, _| {
+        if pr.r > 0.0 {
+            nu -= pr.grad * aux[pr.j].vol;
+        }
+    });
+    let len = nu.norm();
+    if len <= 0.0 || !len.is_finite() {
+        return false;
+    }
+    let n = nu / len;
+    let cone = core::f64::consts::FRAC_1_SQRT_2 as Real + SCAN_TOLERANCE;
+    let far = core::f64::consts::SQRT_2 as Real * h;
+    let disk = h * (1.0 - SCAN_TOLERANCE);
+    let mut closed = false;
+    for_each_pair(params, geom, i, |pr, _| {
+        if pr.r > 0.0 && !closed {
+            closed = if pr.r >= far {
+                (pr.n * pr.r - n * h).norm() < disk
+            } else {
+                n.dot(&pr.n) > cone
+            };
+        }
+    });
+    !closed
+}
+
 /// Smallest eigenvalue of the symmetric part of a `D x D` matrix (closed forms).
 pub(crate) fn min_sym_eigenvalue<const D: usize>(m: &Matrix<D>) -> Real {
     let a = |i: usize, j: usize| 0.5 * (m[(i, j)] + m[(j, i)]);

@@ -16,6 +16,7 @@
 pub mod artificial_stress;
 pub mod av;
 pub(crate) mod common;
+pub(crate) mod leapfrog;
 pub mod options;
 pub mod pm;
 pub mod ts;

@@ -11,10 +11,11 @@
 //! | `riemann` | every Godunov scheme: `pm`, `tkc` (longitudinal wave), `ts1`, `ts2` |
 //! | `dissipation` | every Godunov scheme: `pm`, `tkc`, `ts1`, `ts2` |
 //! | `transverse_dissipation`, `objective` | the schemes with transverse Riemann problems: `pm`, `tkc` |
-//! | `integrator` | the contact family with MUSCL: `tkc`, `pm` with `muscl` |
+//! | `integrator` | `tkc`, `pm` with `muscl`, `ts1`, `ts2` |
 //! | `corrected_slopes` | the schemes with corrected MUSCL slopes: `tkc`, `pm` with `correction` and `muscl` |
 //! | `muscl_time` | `ts2` |
 //! | `surface_lambda`, `det_epsilon` | `ts1`, `ts2` (free-surface divergence), `tkc`, `pm` with `correction = true` |
+//! | `surface_scan` | `tkc`, `pm` with `correction = true` |
 //! | `correction`, `muscl` | `pm` (tkc always has both) |
 //! | `artificial_stress`, `artificial_stress_exponent` | every scheme |
 
@@ -51,6 +52,8 @@ pub enum OptionKey {
     MusclTime,
     /// `surface_lambda`.
     SurfaceLambda,
+    /// `surface_scan`.
+    SurfaceScan,
     /// `det_epsilon`.
     DetEpsilon,
     /// `correction`.
@@ -65,7 +68,7 @@ pub enum OptionKey {
 
 impl OptionKey {
     /// Every key, in the order a scene's keys are checked.
-    pub const ALL: [OptionKey; 16] = [
+    pub const ALL: [OptionKey; 17] = [
         OptionKey::AvAlpha,
         OptionKey::AvBeta,
         OptionKey::Limiter,
@@ -77,6 +80,7 @@ impl OptionKey {
         OptionKey::Integrator,
         OptionKey::MusclTime,
         OptionKey::SurfaceLambda,
+        OptionKey::SurfaceScan,
         OptionKey::DetEpsilon,
         OptionKey::Correction,
         OptionKey::Muscl,
@@ -98,6 +102,7 @@ impl OptionKey {
             OptionKey::Integrator => "options.integrator",
             OptionKey::MusclTime => "options.muscl_time",
             OptionKey::SurfaceLambda => "options.surface_lambda",
+            OptionKey::SurfaceScan => "options.surface_scan",
             OptionKey::DetEpsilon => "options.det_epsilon",
             OptionKey::Correction => "options.correction",
             OptionKey::Muscl => "options.muscl",
@@ -156,10 +161,12 @@ pub(crate) mod why {
     pub const NO_CORRECTED_SLOPES: &str =
         "it has no kernel-corrected MUSCL slopes; tkc and pm with options.correction and options.muscl have";
     pub const OWN_INTEGRATOR: &str =
-        "its time integration is its own (av: leap-frog; ts1, ts2: time-split); pm and tkc choose";
+        "its time integration is its own leap-frog; pm, tkc, ts1 and ts2 choose";
     pub const FIRST_ORDER_EULER: &str =
-        "its first-order Riemann states step with explicit Euler only (with the leap-frog pm's Verney cylinder went unstable); tkc and pm with options.muscl choose";
+        "its first-order Riemann states step with explicit Euler only (with the leap-frog pm's Verney cylinder went unstable); tkc, ts1, ts2 and pm with options.muscl choose";
     pub const NO_MUSCL_TIME: &str = "only ts2's reconstruction has a time treatment";
+    pub const NO_SCAN: &str =
+        "its kernel is not corrected, so no particle is switched to L = I; tkc and pm with options.correction scan";
     pub const NO_SURFACE: &str =
         "it has no free-surface rule; ts1, ts2, tkc and pm with options.correction have";
 }
@@ -206,6 +213,8 @@ pub struct SceneOptions {
     pub muscl_time: Option<MusclTime>,
     /// Free-surface eigenvalue threshold.
     pub surface_lambda: Option<Real>,
+    /// The umbrella scan confirms each free-surface particle (tkc, pm with correction).
+    pub surface_scan: Option<bool>,
     /// det L threshold below which L is not inverted.
     pub det_epsilon: Option<Real>,
     /// Kernel gradient correction for scheme pm.
@@ -233,6 +242,7 @@ impl SceneOptions {
             OptionKey::Integrator => self.integrator.is_some(),
             OptionKey::MusclTime => self.muscl_time.is_some(),
             OptionKey::SurfaceLambda => self.surface_lambda.is_some(),
+            OptionKey::SurfaceScan => self.surface_scan.is_some(),
             OptionKey::DetEpsilon => self.det_epsilon.is_some(),
             OptionKey::Correction => self.correction.is_some(),
             OptionKey::Muscl => self.muscl.is_some(),
@@ -255,6 +265,7 @@ impl SceneOptions {
             OptionKey::Integrator => self.integrator = None,
             OptionKey::MusclTime => self.muscl_time = None,
             OptionKey::SurfaceLambda => self.surface_lambda = None,
+            OptionKey::SurfaceScan => self.surface_scan = None,
             OptionKey::DetEpsilon => self.det_epsilon = None,
             OptionKey::Correction => self.correction = None,
             OptionKey::Muscl => self.muscl = None,
@@ -304,6 +315,7 @@ impl SceneOptions {
         o.integrator = self.integrator.unwrap_or(d.integrator);
         o.muscl_time = self.muscl_time.unwrap_or(d.muscl_time);
         o.surface_lambda = self.surface_lambda.unwrap_or(d.surface_lambda);
+        o.surface_scan = self.surface_scan.unwrap_or(d.surface_scan);
         o.det_epsilon = self.det_epsilon.unwrap_or(d.det_epsilon);
         if let Some(eps) = self.artificial_stress {
             o.artificial_stress.epsilon = eps;

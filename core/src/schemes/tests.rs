@@ -304,29 +304,18 @@ fn every_family_conserves_momentum_and_stays_finite() {
     }
 }
 
-/// Free-surface detection of `tkc` (seed 004 §2): on a 10 x 10 block, edge particles
-/// have a small eigenvalue of L (about 0.5 across the surface) and are flagged; their
-/// neighbours within h use L = I; interior particles keep L^-1 ~ I. The seed's literal
-/// criterion, the smallest eigenvalue of L^-1 below 0.75, would flag nothing: truncating
-/// the kernel shrinks L, so L^-1 grows (its smallest eigenvalue stays near 1).
-#[test]
-fn tkc_free_surface_detection_uses_the_eigenvalues_of_l() {
-    use crate::math::{inverse, Matrix};
-    use crate::schemes::common::min_sym_eigenvalue;
+/// The kernel corrections of the 100 particles `x` (unit mass and density, h = 1.2,
+/// Wendland C2) with `options`, and the neighbour-list-free uncorrected L of particle `i`.
+fn corrections(x: &mut [Vector<2>; 100], options: SchemeOptions) -> [Correction<2>; 100] {
     const M: usize = 100;
-    let dx = 1.0;
-    let mut x = [Vector::<2>::zeros(); M];
-    for k in 0..M {
-        x[k] = Vector::<2>::new((k % 10) as Real * dx, (k / 10) as Real * dx);
-    }
     let (mut v, m, mat) = ([Vector::<2>::zeros(); M], [1.0; M], [0u16; M]);
     let (mut rho, mut e, mut p, mut c, mut cl, mut h) =
         ([1.0; M], [0.0; M], [0.0; M], [1.0; M], [1.0; M], [1.2; M]);
-    let mut storage = [0u32; NeighborList::storage_len(M, 32)];
-    let mut list = NeighborList::new(32, M, &mut storage).unwrap();
+    let mut storage = [0u32; NeighborList::storage_len(M, 64)];
+    let mut list = NeighborList::new(64, M, &mut storage).unwrap();
     build_naive(&x[..], &Periodic::none(), |_, _| 2.4, &mut list).unwrap();
     let sys = System {
-        x: &mut x,
+        x,
         v: &mut v,
         m: &m,
         mat: &mat,
@@ -349,12 +338,12 @@ fn tkc_free_surface_detection_uses_the_eigenvalues_of_l() {
         h_factor: 1.2,
         periodic: Periodic::none(),
         nbrs: list.view(),
-        options: SchemeOptions::default(),
+        options,
         effects: EffectSet::HYDRO,
     };
     let mut corr = [Correction::<2>::default(); M];
     let mut sums = [PairSums::<2>::default(); M];
-    let mut geom = [PairGeom::<2>::default(); M * 32];
+    let mut geom = [PairGeom::<2>::default(); M * 64];
     let geom = &mut geom[..params.nbrs.unordered_pairs()];
     super::common::geometry_pass::<2, PlasticTkc2, Serial>(
         sys.x,
@@ -369,29 +358,100 @@ fn tkc_free_surface_detection_uses_the_eigenvalues_of_l() {
     super::pm::correction_pass::<2, Serial>(
         &sys, geom, &aux, &mut corr, &mut sums, &params, &Serial,
     );
+    corr
+}
+
+/// A 10 x 10 block with spacings `dx`, `dy`.
+fn block(dx: Real, dy: Real) -> [Vector<2>; 100] {
+    core::array::from_fn(|k| Vector::<2>::new((k % 10) as Real * dx, (k / 10) as Real * dy))
+}
+
+/// Free-surface detection of `tkc` (seed 004 §2): on a 10 x 10 block, edge particles
+/// have a small eigenvalue of L (about 0.5 across the surface) and are flagged; their
+/// neighbours within h use L = I; interior particles keep L^-1 ~ I. The seed's literal
+/// criterion, the smallest eigenvalue of L^-1 below 0.75, would flag nothing: truncating
+/// the kernel shrinks L, so L^-1 grows (its smallest eigenvalue stays near 1). The same
+/// with and without the umbrella scan (`options.surface_scan`).
+#[test]
+fn tkc_free_surface_detection_uses_the_eigenvalues_of_l() {
+    use crate::math::{inverse, Matrix};
+    use crate::schemes::common::min_sym_eigenvalue;
     let at = |i: usize, j: usize| i + 10 * j;
     // an edge particle, its inner neighbour, and a centre particle
     let (edge, second, centre) = (at(0, 5), at(1, 5), at(5, 5));
-    assert_eq!(
-        corr[edge].boundary, 2,
-        "edge lambda_min {}",
-        corr[edge].lambda_min
-    );
-    assert!(corr[edge].lambda_min < 0.75);
-    assert_eq!(corr[second].boundary, 1);
-    assert_eq!(corr[second].l_inv, Matrix::<2>::identity());
-    assert_eq!(corr[centre].boundary, 0);
-    assert!((corr[centre].l_inv - Matrix::<2>::identity()).norm() < 0.1);
-    // the literal criterion on L^-1 of the edge particle: its smallest eigenvalue is >= 1
-    let mut l = Matrix::<2>::zeros();
-    for &j in list.view().of(edge) {
-        let j = j as usize;
-        let rij = sys.x[edge] - sys.x[j];
-        let r = rij.norm();
-        let grad = rij * (params.kernel.dw::<2>(r, 1.2) / r);
-        l += grad * (sys.x[j] - sys.x[edge]).transpose();
+    for scan in [true, false] {
+        let mut x = block(1.0, 1.0);
+        let options = SchemeOptions {
+            surface_scan: scan,
+            ..SchemeOptions::default()
+        };
+        let corr = corrections(&mut x, options);
+        assert_eq!(
+            corr[edge].boundary, 2,
+            "edge lambda_min {}",
+            corr[edge].lambda_min
+        );
+        assert!(corr[edge].lambda_min < 0.75);
+        assert_eq!(corr[second].boundary, 1);
+        assert_eq!(corr[second].l_inv, Matrix::<2>::identity());
+        assert_eq!(corr[centre].boundary, 0);
+        assert!((corr[centre].l_inv - Matrix::<2>::identity()).norm() < 0.1);
+        // every particle of the outer ring is a boundary particle, and only those
+        for k in 0..100 {
+            let ring = [k % 10, k / 10].iter().any(|&q| q == 0 || q == 9);
+            assert_eq!(corr[k].boundary == 2, ring, "particle {k}, scan {scan}");
+        }
+        // the literal criterion on L^-1 of the edge particle: its smallest eigenvalue is >= 1
+        let mut l = Matrix::<2>::zeros();
+        for j in 0..100 {
+            let rij = x[edge] - x[j];
+            let r = rij.norm();
+            if r > 0.0 && r < 2.4 {
+                let grad = rij * (Kernel::WendlandC2.dw::<2>(r, 1.2) / r);
+                l += grad * (x[j] - x[edge]).transpose();
+            }
+        }
+        assert!(min_sym_eigenvalue(&inverse(&l).unwrap()) > 0.9);
     }
-    assert!(min_sym_eigenvalue(&inverse(&l).unwrap()) > 0.9);
+}
+
+/// Issue 27 part 4: a block stretched 1.8x along x and compressed to 0.55 along y (the
+/// Taylor rod's face: radial neighbours leave the kernel, axial ones crowd in) has an
+/// interior whose L has its smallest eigenvalue far below 0.75 although nothing of it is
+/// a surface. Seed 004's eigenvalue test flags it and switches its correction off; the
+/// umbrella scan (`options.surface_scan`, default) keeps the interior corrected and flags
+/// only particles of the block's outer ring.
+#[test]
+fn a_stretched_interior_is_not_a_free_surface_with_the_scan() {
+    let centre = 5 + 10 * 5;
+    let mut x = block(1.8, 0.55);
+    let seed = corrections(
+        &mut x,
+        SchemeOptions {
+            surface_scan: false,
+            ..SchemeOptions::default()
+        },
+    );
+    assert!(
+        seed[centre].lambda_min < 0.6,
+        "lambda_min {}",
+        seed[centre].lambda_min
+    );
+    assert_eq!(seed[centre].boundary, 2);
+    let mut x = block(1.8, 0.55);
+    let scan = corrections(&mut x, SchemeOptions::default());
+    for k in 0..100 {
+        // a ring particle is flagged, or near one (the scan's one normal points to the
+        // nearer surface: next to a corner, the other surface's particle is flag 1)
+        let ring = [k % 10, k / 10].iter().any(|&q| q == 0 || q == 9);
+        assert!(!ring || scan[k].boundary > 0, "ring particle {k}");
+        assert!(
+            scan[k].boundary < 2 || ring,
+            "interior particle {k} flagged"
+        );
+    }
+    assert_eq!(scan[centre].boundary, 0);
+    assert_ne!(scan[centre].l_inv, crate::math::Matrix::<2>::identity());
 }
 
 #[derive(Clone, Copy, Debug)]

@@ -1,5 +1,6 @@
 //! `av`: standard SPH with Monaghan artificial viscosity (seed 000 §4; Monaghan & Gingold
-//! 1983), integrated with the leap-frog (kick–drift–kick with a predictor for the rates).
+//! 1983), integrated with the leap-frog (kick–drift–kick with a predictor for the rates;
+//! [`crate::schemes::leapfrog`]).
 //!
 //! Rates of particle i (`sigma = S - P I`, `grad_i W_ij = (x_i - x_j)/r dW/dr`):
 //!
@@ -27,7 +28,8 @@ use pairs::rates;
 use crate::effects::{EffectSet, Effects};
 use crate::exec::Executor;
 use crate::halo::{Exchange, Fields, Halo};
-use crate::schemes::common::{halo_exchange, refresh_eos, return_deviator};
+use crate::schemes::common::halo_exchange;
+use crate::schemes::leapfrog;
 use crate::schemes::SchemeFamily;
 use crate::state::{Family, Layout, SchemeOptions, StepError, StepParams, System, Workspace};
 pub use records::AvRates;
@@ -72,59 +74,9 @@ impl SchemeFamily for Av {
         exec: &X,
         halo: &mut dyn Halo<D>,
     ) -> Result<(), StepError> {
-        let dt = params.dt;
-        let hdt = 0.5 * dt;
-        if !ws.primed {
+        leapfrog::step::<D, E, X, false, false>(sys, ws, params, exec, |sys, ws| {
             halo_exchange!(params, halo, &EXCHANGES[0], sys, ws);
             rates::<D, E, X>(sys, ws, params, exec);
-            ws.primed = true;
-        }
-        // Kick, drift, and predict the state at the end of the step.
-        exec.run(
-            (sys.reborrow(), &mut ws.av[..]),
-            |_, (mut s, av): (System<'_, D>, &mut [AvRates<D>])| {
-                for k in 0..s.len() {
-                    let mat = &params.materials[s.mat[k] as usize];
-                    let a = &mut av[k];
-                    a.v_half = s.v[k] + a.acc * hdt;
-                    a.e_half = s.e[k] + a.de * hdt;
-                    a.rho_half = s.rho[k] + a.drho * hdt;
-                    s.x[k] += a.v_half * dt;
-                    s.v[k] = a.v_half + a.acc * hdt;
-                    s.e[k] = a.e_half + a.de * hdt;
-                    s.rho[k] = a.rho_half + a.drho * hdt;
-                    if E::STRENGTH {
-                        a.s_half = s.s[k] + a.ds * hdt;
-                        let (trial, rate) = (a.s_half + a.ds * hdt, a.rate);
-                        return_deviator::<D, E>(&mut s, k, mat, trial, rate, dt, false);
-                    }
-                    if params.has::<E>(EffectSet::PERIODIC) {
-                        s.x[k] = params.periodic.wrap(s.x[k]);
-                    }
-                    refresh_eos(&mut s, k, mat, params);
-                }
-            },
-        );
-        halo_exchange!(params, halo, &EXCHANGES[0], sys, ws);
-        rates::<D, E, X>(sys, ws, params, exec);
-        // Second kick with the rates of the predicted state.
-        exec.run(
-            (sys.reborrow(), &ws.av[..]),
-            |_, (mut s, av): (System<'_, D>, &[AvRates<D>])| {
-                for k in 0..s.len() {
-                    let mat = &params.materials[s.mat[k] as usize];
-                    let a = &av[k];
-                    s.v[k] = a.v_half + a.acc * hdt;
-                    s.e[k] = a.e_half + a.de * hdt;
-                    s.rho[k] = a.rho_half + a.drho * hdt;
-                    if E::STRENGTH {
-                        let trial = a.s_half + a.ds * hdt;
-                        return_deviator::<D, E>(&mut s, k, mat, trial, a.rate, dt, true);
-                    }
-                    refresh_eos(&mut s, k, mat, params);
-                }
-            },
-        );
-        Ok(())
+        })
     }
 }

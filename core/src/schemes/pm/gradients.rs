@@ -4,7 +4,9 @@
 use crate::effects::Effects;
 use crate::exec::Executor;
 use crate::math::{det, inverse, Matrix, Real, Vector};
-use crate::schemes::common::{cauchy, for_each_pair, min_sym_eigenvalue, outer, Pair};
+use crate::schemes::common::{
+    cauchy, for_each_pair, min_sym_eigenvalue, open_neighbourhood, outer, Pair,
+};
 use crate::state::{Aux, Correction, Gradients, PairGeom, PairSums, StepParams, System};
 
 /// Relative tolerance of the near-surface test: a boundary particle at `r <= h (1 + tol)`
@@ -44,7 +46,10 @@ pub(crate) fn correction_pass<const D: usize, X: Executor>(
             });
             let lam_min = min_sym_eigenvalue(&l);
             out.lambda_min = lam_min;
-            out.boundary = if lam_min < lam { 2 } else { 0 };
+            let open = lam_min < lam
+                && (!params.options.surface_scan
+                    || open_neighbourhood(params, geom, aux, i, sys.h[i]));
+            out.boundary = if open { 2 } else { 0 };
             out.l_inv = match inverse(&l) {
                 Some(inv) if det(&l) >= eps => inv,
                 _ => Matrix::<D>::identity(),

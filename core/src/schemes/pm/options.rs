@@ -32,7 +32,7 @@ pub(crate) fn reads(scheme: Scheme, key: OptionKey, effects: EffectSet) -> Resul
             scheme,
             why::NO_CORRECTED_SLOPES,
         ),
-        SurfaceLambda | DetEpsilon => read_if(
+        SurfaceLambda | SurfaceScan | DetEpsilon => read_if(
             effects.contains(EffectSet::CORRECTION),
             scheme,
             why::NO_SURFACE,

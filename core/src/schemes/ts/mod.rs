@@ -48,6 +48,7 @@
 //! `riemann_states`: the place where first order is forced and tension is cut.
 
 mod gradients;
+mod leapfrog;
 mod options;
 mod pairs;
 mod records;
@@ -66,7 +67,8 @@ use crate::schemes::common::{
 };
 use crate::schemes::SchemeFamily;
 use crate::state::{
-    Family, Layout, PairGeom, PairSums, SchemeOptions, StepError, StepParams, System, Workspace,
+    Family, Integrator, Layout, PairGeom, PairSums, SchemeOptions, StepError, StepParams, System,
+    Workspace,
 };
 pub use records::TsStar;
 
@@ -133,9 +135,10 @@ impl SchemeFamily for Ts {
         .union(EffectSet::ARTIFICIAL_STRESS);
     const EXCHANGES: &'static [Exchange] = &EXCHANGES;
 
-    fn layout(effects: EffectSet, _options: &SchemeOptions) -> Layout {
+    fn layout(effects: EffectSet, options: &SchemeOptions) -> Layout {
         Layout {
             ts_star: true,
+            av: options.integrator == Integrator::Leapfrog,
             ..Layout::base(effects)
         }
     }
@@ -147,6 +150,9 @@ impl SchemeFamily for Ts {
         exec: &X,
         halo: &mut dyn Halo<D>,
     ) -> Result<(), StepError> {
+        if params.options.integrator == Integrator::Leapfrog {
+            return leapfrog::step::<D, E, X>(sys, ws, params, exec, halo);
+        }
         let dt = params.dt;
         // 1. Kinematics at the start of the step: gradients, then density from the contact
         //    velocities (seed 000 eq 22) and the deviator from the velocity gradient.

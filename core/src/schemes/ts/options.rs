@@ -15,8 +15,9 @@ pub(crate) fn reads(scheme: Scheme, key: OptionKey) -> Result<(), NotRead> {
         Limiter => read_if(muscl, scheme, why::NO_MUSCL),
         MusclTime => read_if(muscl, scheme, why::NO_MUSCL_TIME),
         CorrectedSlopes => read_if(false, scheme, why::NO_CORRECTED_SLOPES),
-        Integrator => read_if(false, scheme, why::OWN_INTEGRATOR),
-        Riemann
+        SurfaceScan => read_if(false, scheme, why::NO_SCAN),
+        Integrator
+        | Riemann
         | Dissipation
         | SurfaceLambda
         | DetEpsilon
