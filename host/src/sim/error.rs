@@ -52,6 +52,19 @@ pub enum SimError {
         /// The particle (id) that sets the limit.
         particle: u32,
     },
+    /// The CFL step fell below [`super::DT_COLLAPSE`] times the first one.
+    Collapsed {
+        /// Step number (1-based).
+        step: u64,
+        /// Time at the start of the step, s.
+        t: f64,
+        /// The step, s.
+        dt: f64,
+        /// The first step at the same CFL, s.
+        first: f64,
+        /// The particle (id) that sets the step.
+        particle: u32,
+    },
     /// The specialisation for this scene is not compiled into this build.
     NotCompiled {
         /// Dimension.
@@ -95,6 +108,11 @@ impl std::fmt::Display for SimError {
             SimError::TimeStep { step, t, dt, limit, particle } => write!(
                 f,
                 "step {step} (t = {t:.6e} s): the fixed time step dt = {dt:.4e} s exceeds the stability limit h/(c_l + |v|) = {limit:.4e} s of particle {particle} (lower `dt`, or remove it for the CFL step)"
+            ),
+            SimError::Collapsed { step, t, dt, first, particle } => write!(
+                f,
+                "step {step} (t = {t:.6e} s): the time step collapsed to {dt:.4e} s, {:.1e} of the first step {first:.4e} s, set by particle {particle} (the run has gone unstable: lower `cfl`, or see docs/stability.md)",
+                dt / first
             ),
             SimError::NotCompiled { dim, scheme, effects } => {
                 // One line: what is missing, and the features that compile it (docs/performance.md
