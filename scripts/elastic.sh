@@ -6,7 +6,11 @@
 # compression (`"compression"`, Zhang, Hu & Adams 2017), and for pm and tkc with only the
 # transverse channels on compression (`options.transverse_dissipation`), as the seeds have
 # the transverse problems (`seed`: `options.objective = false`) and, for tkc, with the
-# MUSCL slopes corrected at free surfaces (`slopes`: `options.corrected_slopes = true`).
+# MUSCL slopes corrected at free surfaces (`slopes`: `options.corrected_slopes = true`)
+# and with the paper's free-surface test alone (`eigen`: `options.surface_scan = false`);
+# ts1, ts2 and tkc also with the second-order leap-frog (`leapfrog`:
+# `options.integrator = "leapfrog"`, at each scene's CFL; ts2 needs CFL <= 0.25 on
+# converging cases, so on the Taylor rod (0.3) its row may fail).
 # The breathing ring runs on the rings' clipped square lattice and on a polar lattice
 # (smooth surfaces: `breathing_polar`). One Markdown table: out/elastic/table.md (rows
 # also as out/elastic/rows.csv).
@@ -50,6 +54,8 @@ run() {
     transverse) set+=(--set "options.transverse_dissipation=compression") ;;
     seed) set+=(--set "options.objective=false") ;;
     slopes) set+=(--set "options.corrected_slopes=true") ;;
+    eigen) set+=(--set "options.surface_scan=false") ;;
+    leapfrog) set+=(--set "options.integrator=leapfrog") ;;
   esac
   echo "== $name" >&2
   if ! "$GSPH" run "$scene" "${set[@]}" "$@" --out "$OUT/runs/$name" --quiet >&2; then
@@ -79,9 +85,9 @@ PY
 dissipations() {
   case $1 in
     av) echo none ;;
-    ts1 | ts2) echo full compression ;;
+    ts1 | ts2) echo full compression leapfrog ;;
     pm) echo full compression transverse seed ;;
-    *) echo full compression transverse seed slopes ;;
+    *) echo full compression transverse seed slopes eigen leapfrog ;;
   esac
 }
 has() { [[ ,$PARTS, == *,$1,* ]]; }

@@ -71,7 +71,7 @@ const KEYS: &[(&str, &[&str])] = &[
     ("options.muscl_time=courant", &["ts2"]),
     ("options.muscl_time=predictor", &["ts2"]),
     (
-        "options.surface_lambda=1.5",
+        "options.surface_lambda=0.3",
         &["pm+correction", "ts1", "ts2", "tkc"],
     ),
     (
