@@ -537,7 +537,9 @@ pub struct SchemeOptions {
     pub surface_lambda: Real,
     /// A particle below `surface_lambda` is a free-surface particle only if its
     /// neighbourhood is open by the umbrella scan (`tkc`, `pm` with correction; see
-    /// `open_neighbourhood` in the schemes' common module); `false`: seed 004's eigenvalue test alone.
+    /// `open_neighbourhood` in the schemes' common module); `false` (default): seed 004's
+    /// eigenvalue test alone. Off by default: the particles it keeps corrected at
+    /// compacting pore surfaces break momentum conservation (docs/elastic.md).
     pub surface_scan: bool,
     /// L is not inverted where det L is below this (`tkc`, `ts`).
     pub det_epsilon: Real,
@@ -562,7 +564,7 @@ impl Default for SchemeOptions {
             integrator: Integrator::Euler,
             muscl_time: MusclTime::None,
             surface_lambda: 0.75,
-            surface_scan: true,
+            surface_scan: false,
             det_epsilon: 0.05,
             artificial_stress: ArtificialStress::default(),
             constant_h: false,

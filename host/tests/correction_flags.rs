@@ -137,7 +137,7 @@ fn the_taylor_face_on_the_wall_is_not_a_free_surface() {
         (on_face.len(), inner)
     };
     let (n_seed, seed) = face(&["options.surface_scan=false".to_string()]);
-    let (n_scan, scan) = face(&[]);
+    let (n_scan, scan) = face(&["options.surface_scan=true".to_string()]);
     println!("face particles {n_seed} / {n_scan}; inner flags seed {seed:?}, scan {scan:?}");
     assert!(seed.len() >= 10 && scan.len() >= 10);
     assert!(

@@ -149,13 +149,13 @@ fn every_option_key_changes_the_result_or_is_refused_naming_key_and_scheme() {
 #[test]
 fn surface_scan_is_refused_where_not_read() {
     for (config, extra) in [("av", &[][..]), ("pm", &[]), ("ts1", &[]), ("ts2", &[])] {
-        let e = final_state(config, extra, Some("options.surface_scan=false")).unwrap_err();
+        let e = final_state(config, extra, Some("options.surface_scan=true")).unwrap_err();
         assert!(
             e.contains("options.surface_scan") && e.contains(config) && !e.contains('\n'),
             "{config}: {e}"
         );
     }
     for (config, extra) in [("tkc", &[][..]), ("pm", &["options.correction=true"][..])] {
-        assert!(final_state(config, extra, Some("options.surface_scan=false")).is_ok());
+        assert!(final_state(config, extra, Some("options.surface_scan=true")).is_ok());
     }
 }

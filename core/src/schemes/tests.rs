@@ -419,7 +419,7 @@ fn tkc_free_surface_detection_uses_the_eigenvalues_of_l() {
 /// Taylor rod's face: radial neighbours leave the kernel, axial ones crowd in) has an
 /// interior whose L has its smallest eigenvalue far below 0.75 although nothing of it is
 /// a surface. Seed 004's eigenvalue test flags it and switches its correction off; the
-/// umbrella scan (`options.surface_scan`, default) keeps the interior corrected and flags
+/// umbrella scan (`options.surface_scan = true`) keeps the interior corrected and flags
 /// only particles of the block's outer ring.
 #[test]
 fn a_stretched_interior_is_not_a_free_surface_with_the_scan() {
@@ -439,7 +439,13 @@ fn a_stretched_interior_is_not_a_free_surface_with_the_scan() {
     );
     assert_eq!(seed[centre].boundary, 2);
     let mut x = block(1.8, 0.55);
-    let scan = corrections(&mut x, SchemeOptions::default());
+    let scan = corrections(
+        &mut x,
+        SchemeOptions {
+            surface_scan: true,
+            ..SchemeOptions::default()
+        },
+    );
     for k in 0..100 {
         // a ring particle is flagged, or near one (the scan's one normal points to the
         // nearer surface: next to a corner, the other surface's particle is flag 1)
