@@ -1,6 +1,6 @@
 //! `av`: standard SPH with Monaghan artificial viscosity (seed 000 §4; Monaghan & Gingold
 //! 1983), integrated with the leap-frog (kick–drift–kick with a predictor for the rates;
-//! [`crate::schemes::leapfrog`]).
+//! `core/src/schemes/leapfrog.rs`).
 //!
 //! Rates of particle i (`sigma = S - P I`, `grad_i W_ij = (x_i - x_j)/r dW/dr`):
 //!

@@ -1,5 +1,5 @@
 //! `options.integrator = "leapfrog"` for the contact family: the shared leap-frog
-//! ([`crate::schemes::leapfrog`]) with one pair pass per step. With correction (tkc) the
+//! (`core/src/schemes/leapfrog.rs`) with one pair pass per step. With correction (tkc) the
 //! energy advanced is the total energy `E = e + v²/2` with rate `sum f.V*`, whose pair
 //! terms cancel, so total energy is conserved to round-off at every step; without (pm) it
 //! is the internal energy with rate `sum f.(V* - v_i)`. Density follows
@@ -14,7 +14,7 @@ use crate::schemes::common::{artificial_stress_tensors, deviator_rate, equivalen
 use crate::schemes::leapfrog;
 use crate::state::{AvRates, PairSums, StepError, StepParams, System, Workspace};
 
-/// One leap-frog step of `pm`/`tkc` ([`crate::schemes::leapfrog`]): density by its
+/// One leap-frog step of `pm`/`tkc` (`core/src/schemes/leapfrog.rs`): density by its
 /// exponential, the total energy with correction (tkc), the internal energy without (pm).
 pub(super) fn step<const D: usize, E: Effects, X: Executor>(
     sys: &mut System<'_, D>,

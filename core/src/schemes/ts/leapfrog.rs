@@ -1,6 +1,6 @@
 //! `options.integrator = "leapfrog"` for the time-split family: instead of the
 //! Lie–Trotter split of symplectic-Euler sub-steps (first order in time), the shared
-//! leap-frog ([`crate::schemes::leapfrog`]) with every rate of the split evaluated at once
+//! leap-frog (`core/src/schemes/leapfrog.rs`) with every rate of the split evaluated at once
 //! at the predicted state: the contact velocities of the continuity equation, the
 //! deviator's rate, the deviatoric forces `F_ij` and the hydrodynamic forces `G_ij` of the
 //! same Riemann states. The energy advanced is the total energy `E = e + v²/2` with rate
