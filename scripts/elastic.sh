@@ -7,7 +7,7 @@
 # transverse channels on compression (`options.transverse_dissipation`), as the seeds have
 # the transverse problems (`seed`: `options.objective = false`) and, for tkc, with the
 # MUSCL slopes corrected at free surfaces (`slopes`: `options.corrected_slopes = true`)
-# and with the paper's free-surface test alone (`eigen`: `options.surface_scan = false`);
+# and with the umbrella scan confirming its free surfaces (`scan`: `options.surface_scan = true`);
 # ts1, ts2 and tkc also with the second-order leap-frog (`leapfrog`:
 # `options.integrator = "leapfrog"`, at each scene's CFL; ts2 needs CFL <= 0.25 on
 # converging cases, so on the Taylor rod (0.3) its row may fail).
@@ -54,7 +54,7 @@ run() {
     transverse) set+=(--set "options.transverse_dissipation=compression") ;;
     seed) set+=(--set "options.objective=false") ;;
     slopes) set+=(--set "options.corrected_slopes=true") ;;
-    eigen) set+=(--set "options.surface_scan=false") ;;
+    scan) set+=(--set "options.surface_scan=true") ;;
     leapfrog) set+=(--set "options.integrator=leapfrog") ;;
   esac
   echo "== $name" >&2
@@ -87,7 +87,7 @@ dissipations() {
     av) echo none ;;
     ts1 | ts2) echo full compression leapfrog ;;
     pm) echo full compression transverse seed ;;
-    *) echo full compression transverse seed slopes eigen leapfrog ;;
+    *) echo full compression transverse seed slopes scan leapfrog ;;
   esac
 }
 has() { [[ ,$PARTS, == *,$1,* ]]; }
