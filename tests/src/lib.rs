@@ -15,17 +15,7 @@ pub fn case(name: &str) -> PathBuf {
 /// Runs a bundled scene with overrides, in memory, and returns its summary as
 /// summary.json's object (every key by name).
 pub fn run_case(name: &str, overrides: &[&str]) -> serde_json::Map<String, serde_json::Value> {
-    let path = case(name);
-    let set: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
-    let scene = gsph::scene::load(&path, &set).unwrap_or_else(|e| panic!("{e}"));
-    let opts = RunOptions {
-        out: None,
-        progress: false,
-    };
-    run(&scene, name, &opts)
-        .unwrap_or_else(|e| panic!("{name} {overrides:?}: {e}"))
-        .summary
-        .to_map()
+    run_case_table(name, overrides).1
 }
 
 /// Runs a bundled scene with overrides, in memory, and returns its final particle table

@@ -8,16 +8,14 @@
 //! antisymmetric, `vbar`, `u* n` symmetric), so total energy is conserved to round-off as
 //! in the split. Density follows `rho' = -rho div` exactly over each half step.
 
-use super::gradients::front_gradient_pass;
-use super::pairs::{continuity_pass, deviatoric_pass, hydro_pass};
-use super::EXCHANGES;
+use super::pairs::{deviatoric_pass, hydro_pass};
+use super::{kinematics, EXCHANGES};
 use crate::effects::{EffectSet, Effects};
 use crate::exec::Executor;
 use crate::halo::Halo;
 use crate::math::{Real, Vector};
 use crate::schemes::common::{
-    artificial_stress_tensors, deviator_rate, equivalent_strain_rate, geometry_pass, halo_exchange,
-    refresh_aux,
+    artificial_stress_tensors, deviator_rate, equivalent_strain_rate, halo_exchange,
 };
 use crate::schemes::leapfrog;
 use crate::state::{AvRates, PairGeom, PairSums, StepError, StepParams, System, Workspace};
@@ -44,16 +42,9 @@ fn rates<const D: usize, E: Effects, X: Executor>(
     exec: &X,
     halo: &mut dyn Halo<D>,
 ) {
-    let [front, continuity, deviatoric, _] = &EXCHANGES;
-    halo_exchange!(params, halo, front, sys, ws);
-    geometry_pass::<D, E, X>(sys.x, sys.h, params, ws.geom, ws.fac, exec);
+    let [_, _, deviatoric, _] = &EXCHANGES;
+    kinematics::<D, E, X>(sys, ws, params, exec, halo);
     let (geom, fac): (&[PairGeom<D>], &[Real]) = (ws.geom, ws.fac);
-    refresh_aux::<D, false, X>(sys, ws.aux, params, exec);
-    front_gradient_pass::<D, E, X>(sys, geom, ws.aux, ws.sums, ws.grad, params, exec);
-    halo_exchange!(params, halo, continuity, sys, ws);
-    continuity_pass::<D, E, X>(
-        sys, ws.grad, geom, ws.aux, ws.ts_star, ws.sums, params, exec,
-    );
     // the deviatoric forces read S of the neighbours
     halo_exchange!(params, halo, deviatoric, sys, ws);
     let sysr: &System<'_, D> = sys;

@@ -161,16 +161,9 @@ impl SchemeFamily for Ts {
         //    then density and deviator) is forward Euler, whose amplification factor
         //    |1 + i w dt| > 1 lets waves grow wherever the Riemann dissipation vanishes:
         //    always in the deviatoric step, and in smooth flow with MUSCL.
-        let [front, continuity, deviatoric, hydro] = &EXCHANGES;
-        halo_exchange!(params, halo, front, sys, ws);
-        geometry_pass::<D, E, X>(sys.x, sys.h, params, ws.geom, ws.fac, exec);
+        let [_, _, deviatoric, hydro] = &EXCHANGES;
+        kinematics::<D, E, X>(sys, ws, params, exec, halo);
         let (geom, fac): (&[PairGeom<D>], &[Real]) = (ws.geom, ws.fac);
-        refresh_aux::<D, false, X>(sys, ws.aux, params, exec);
-        front_gradient_pass::<D, E, X>(sys, geom, ws.aux, ws.sums, ws.grad, params, exec);
-        halo_exchange!(params, halo, continuity, sys, ws);
-        continuity_pass::<D, E, X>(
-            sys, ws.grad, geom, ws.aux, ws.ts_star, ws.sums, params, exec,
-        );
         exec.run(
             (sys.reborrow(), &ws.sums[..]),
             |_, (mut s, sums): (System<'_, D>, &[PairSums<D>])| {
@@ -233,6 +226,28 @@ impl SchemeFamily for Ts {
         );
         Ok(())
     }
+}
+
+/// The kinematic sums of the state in `sys` (the split's step 1 and the leap-frog's
+/// rates): pair geometry, aux, the front gradients and the divergence from the contact
+/// velocities into `ws.sums`, with their halo exchanges.
+pub(super) fn kinematics<const D: usize, E: Effects, X: Executor>(
+    sys: &mut System<'_, D>,
+    ws: &mut Workspace<'_, D>,
+    params: &StepParams<'_, D>,
+    exec: &X,
+    halo: &mut dyn Halo<D>,
+) {
+    let [front, continuity, _, _] = &EXCHANGES;
+    halo_exchange!(params, halo, front, sys, ws);
+    geometry_pass::<D, E, X>(sys.x, sys.h, params, ws.geom, ws.fac, exec);
+    let geom: &[PairGeom<D>] = ws.geom;
+    refresh_aux::<D, false, X>(sys, ws.aux, params, exec);
+    front_gradient_pass::<D, E, X>(sys, geom, ws.aux, ws.sums, ws.grad, params, exec);
+    halo_exchange!(params, halo, continuity, sys, ws);
+    continuity_pass::<D, E, X>(
+        sys, ws.grad, geom, ws.aux, ws.ts_star, ws.sums, params, exec,
+    );
 }
 
 #[cfg(test)]
