@@ -10,7 +10,10 @@
 # and with the umbrella scan confirming its free surfaces (`scan`: `options.surface_scan = true`);
 # ts1, ts2 and tkc also with the second-order leap-frog (`leapfrog`:
 # `options.integrator = "leapfrog"`, at each scene's CFL; ts2 needs CFL <= 0.25 on
-# converging cases, so on the Taylor rod (0.3) its row may fail).
+# converging cases, so on the Taylor rod (0.3) its row may fail), and pm and tkc with
+# Sugiura & Inutsuka's interpolated specific volumes (`volume`:
+# `options.specific_volume = "interpolated"`; on the colliding rings also `volume_noas`,
+# the same in place of artificial stress).
 # The breathing ring runs on the rings' clipped square lattice and on a polar lattice
 # (smooth surfaces: `breathing_polar`). One Markdown table: out/elastic/table.md (rows
 # also as out/elastic/rows.csv).
@@ -56,6 +59,8 @@ run() {
     slopes) set+=(--set "options.corrected_slopes=true") ;;
     scan) set+=(--set "options.surface_scan=true") ;;
     leapfrog) set+=(--set "options.integrator=leapfrog") ;;
+    volume) set+=(--set "options.specific_volume=interpolated") ;;
+    volume_noas) set+=(--set "options.specific_volume=interpolated" --unset options.artificial_stress) ;;
   esac
   echo "== $name" >&2
   if ! "$GSPH" run "$scene" "${set[@]}" "$@" --out "$OUT/runs/$name" --quiet >&2; then
@@ -86,8 +91,8 @@ dissipations() {
   case $1 in
     av) echo none ;;
     ts1 | ts2) echo full compression leapfrog ;;
-    pm) echo full compression transverse seed ;;
-    *) echo full compression transverse seed slopes scan leapfrog ;;
+    pm) echo full compression transverse seed volume ;;
+    *) echo full compression transverse seed slopes scan leapfrog volume ;;
   esac
 }
 has() { [[ ,$PARTS, == *,$1,* ]]; }
@@ -131,7 +136,9 @@ if has rings; then
   if [[ $QUICK == 1 ]]; then DXS="1e-3"; else DXS="1e-3 5e-4"; fi
   for dx in $DXS; do
     for s in $SCHEMES; do
-      for d in $(dissipations $s); do
+      ds=$(dissipations $s)
+      [[ $ds == *volume* ]] && ds="$ds volume_noas"
+      for d in $ds; do
         n=rings-$dx-$s-$d
         run "$n" cases/rings.toml "$s" "$d" --set t_end=2.5e-4 \
           --set "bodies.0.spacing=$dx" --set "bodies.1.spacing=$dx" \

@@ -69,7 +69,7 @@ mod impls {
     use crate::limiter::Limiter;
     use crate::riemann::Dissipation;
     use crate::schemes::Scheme;
-    use crate::state::{Integrator, MusclTime, RiemannSolver};
+    use crate::state::{Integrator, MusclTime, RiemannSolver, SpecificVolume};
 
     serde_by_name!(Scheme, "scheme", "av, pm, ts1, ts2, tkc");
     serde_by_name!(Kernel, "kernel", "cubic_spline, wendland_c2, gaussian");
@@ -82,4 +82,5 @@ mod impls {
     serde_by_name!(Dissipation, "dissipation", "compression, full");
     serde_by_name!(MusclTime, "value", "predictor, courant, none");
     serde_by_name!(Integrator, "integrator", "euler, leapfrog");
+    serde_by_name!(SpecificVolume, "specific volume", "product, interpolated");
 }

@@ -200,6 +200,10 @@ pub struct Gradients<const D: usize> {
     /// invertible): the rigid rotation the contact family's transverse Riemann problems
     /// leave out with `options.objective` (`pm`, `tkc`).
     pub w: Matrix<D>,
+    /// The gradient of the specific volume `1/rho` from the plain kernel sum,
+    /// `-(1/rho^2) sum_j m_j grad W_ij`, with `options.specific_volume = "interpolated"`
+    /// (`pm`, `tkc`; `schemes::pm::volume`).
+    pub sv: Vector<D>,
 }
 
 impl<const D: usize> Default for Gradients<D> {
@@ -211,6 +215,7 @@ impl<const D: usize> Default for Gradients<D> {
             cl: Vector::<D>::zeros(),
             ct: Vector::<D>::zeros(),
             w: Matrix::<D>::zeros(),
+            sv: Vector::<D>::zeros(),
         }
     }
 }
@@ -501,6 +506,48 @@ impl core::fmt::Display for Integrator {
     }
 }
 
+/// The specific volumes a pair force of the contact family (`pm`, `tkc`) carries
+/// (`options.specific_volume`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SpecificVolume {
+    /// The seeds': `1/(rho_i rho_j)`.
+    Product,
+    /// Sugiura & Inutsuka (2016, 2017): `1/rho` interpolated along the pair, linear
+    /// through both values where the pair is compressed and cubic through the values and
+    /// the slopes of the plain kernel sum where it is stretched, and its square averaged
+    /// over the pair's kernel product (Inutsuka 2002; `schemes::pm::volume`).
+    Interpolated,
+}
+
+impl SpecificVolume {
+    /// The scene names, in the order messages list them.
+    pub const NAMES: [&'static str; 2] = ["product", "interpolated"];
+
+    /// The scene name.
+    pub const fn name(self) -> &'static str {
+        match self {
+            SpecificVolume::Product => "product",
+            SpecificVolume::Interpolated => "interpolated",
+        }
+    }
+
+    /// The choice of a scene name.
+    pub fn from_name(name: &str) -> Option<SpecificVolume> {
+        match name {
+            "product" => Some(SpecificVolume::Product),
+            "interpolated" => Some(SpecificVolume::Interpolated),
+            _ => None,
+        }
+    }
+}
+
+/// The scene name.
+impl core::fmt::Display for SpecificVolume {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
 /// Scheme options (with the defaults of the seeds).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SchemeOptions {
@@ -543,6 +590,8 @@ pub struct SchemeOptions {
     pub surface_scan: bool,
     /// L is not inverted where det L is below this (`tkc`, `ts`).
     pub det_epsilon: Real,
+    /// The specific volumes of the contact family's pair force (`pm`, `tkc`).
+    pub specific_volume: SpecificVolume,
     /// Artificial stress (read with the effect `artificial_stress`).
     pub artificial_stress: ArtificialStress,
     /// Keep every particle's smoothing length as it starts (the peers' colliding rings,
@@ -563,6 +612,7 @@ impl Default for SchemeOptions {
             corrected_slopes: false,
             integrator: Integrator::Euler,
             muscl_time: MusclTime::None,
+            specific_volume: SpecificVolume::Product,
             surface_lambda: 0.75,
             surface_scan: false,
             det_epsilon: 0.05,

@@ -211,7 +211,8 @@ struct_codec!(PairSums<D>,
     v0: SMatrix<f64, D, 1>);
 struct_codec!(Gradients<D>,
     rho: SMatrix<f64, D, 1>, p: SMatrix<f64, D, 1>, v: SMatrix<f64, D, D>,
-    cl: SMatrix<f64, D, 1>, ct: SMatrix<f64, D, 1>, w: SMatrix<f64, D, D>);
+    cl: SMatrix<f64, D, 1>, ct: SMatrix<f64, D, 1>, w: SMatrix<f64, D, D>,
+    sv: SMatrix<f64, D, 1>);
 struct_codec!(Correction<D>, l_inv: SMatrix<f64, D, D>, lambda_min: f64, boundary: u8);
 struct_codec!(AvRates<D>,
     acc: SMatrix<f64, D, 1>, de: f64, drho: f64, ds: Sym3, rate: f64,

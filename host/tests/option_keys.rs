@@ -80,6 +80,10 @@ const KEYS: &[(&str, &[&str])] = &[
     ),
     ("options.correction=true", &["pm", "pm+muscl"]),
     ("options.muscl=true", &["pm", "pm+correction"]),
+    (
+        "options.specific_volume=interpolated",
+        &["pm", "pm+muscl", "pm+correction", "tkc"],
+    ),
 ];
 
 fn final_state(scheme: &str, extra: &[&str], key: Option<&str>) -> Result<Vec<u64>, String> {
@@ -157,5 +161,27 @@ fn surface_scan_is_refused_where_not_read() {
     }
     for (config, extra) in [("tkc", &[][..]), ("pm", &["options.correction=true"][..])] {
         assert!(final_state(config, extra, Some("options.surface_scan=true")).is_ok());
+    }
+}
+
+/// `options.specific_volume` is refused without strength (the halo would not carry its
+/// slopes, and it stands in for artificial stress in solids), naming the key.
+#[test]
+fn specific_volume_is_refused_without_strength() {
+    let fluid = FLYER.replace(
+        "strength = { type = \"von_mises\", yield_stress = 2.5e9 }\n",
+        "",
+    );
+    assert_ne!(fluid, FLYER);
+    for scheme in ["pm", "tkc"] {
+        let set = [
+            format!("scheme={scheme}"),
+            "options.specific_volume=interpolated".to_string(),
+        ];
+        let e = parse(&fluid, "flyer", &set).unwrap_err().0;
+        assert!(
+            e.contains("options.specific_volume") && e.contains("strength") && !e.contains('\n'),
+            "{scheme}: {e}"
+        );
     }
 }

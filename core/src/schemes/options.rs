@@ -16,6 +16,7 @@
 //! | `muscl_time` | `ts2` |
 //! | `surface_lambda`, `det_epsilon` | `ts1`, `ts2` (free-surface divergence), `tkc`, `pm` with `correction = true` |
 //! | `surface_scan` | `tkc`, `pm` with `correction = true` |
+//! | `specific_volume` | `pm`, `tkc` |
 //! | `correction`, `muscl` | `pm` (tkc always has both) |
 //! | `artificial_stress`, `artificial_stress_exponent` | every scheme |
 
@@ -54,6 +55,8 @@ pub enum OptionKey {
     SurfaceLambda,
     /// `surface_scan`.
     SurfaceScan,
+    /// `specific_volume`.
+    SpecificVolume,
     /// `det_epsilon`.
     DetEpsilon,
     /// `correction`.
@@ -68,7 +71,7 @@ pub enum OptionKey {
 
 impl OptionKey {
     /// Every key, in the order a scene's keys are checked.
-    pub const ALL: [OptionKey; 17] = [
+    pub const ALL: [OptionKey; 18] = [
         OptionKey::AvAlpha,
         OptionKey::AvBeta,
         OptionKey::Limiter,
@@ -81,6 +84,7 @@ impl OptionKey {
         OptionKey::MusclTime,
         OptionKey::SurfaceLambda,
         OptionKey::SurfaceScan,
+        OptionKey::SpecificVolume,
         OptionKey::DetEpsilon,
         OptionKey::Correction,
         OptionKey::Muscl,
@@ -103,6 +107,7 @@ impl OptionKey {
             OptionKey::MusclTime => "options.muscl_time",
             OptionKey::SurfaceLambda => "options.surface_lambda",
             OptionKey::SurfaceScan => "options.surface_scan",
+            OptionKey::SpecificVolume => "options.specific_volume",
             OptionKey::DetEpsilon => "options.det_epsilon",
             OptionKey::Correction => "options.correction",
             OptionKey::Muscl => "options.muscl",
@@ -167,6 +172,8 @@ pub(crate) mod why {
     pub const NO_MUSCL_TIME: &str = "only ts2's reconstruction has a time treatment";
     pub const NO_SCAN: &str =
         "its kernel is not corrected, so no particle is switched to L = I; tkc and pm with options.correction scan";
+    pub const NO_SPECIFIC_VOLUME: &str =
+        "its pair force's specific volumes are not interpolated; pm and tkc interpolate them";
     pub const NO_SURFACE: &str =
         "it has no free-surface rule; ts1, ts2, tkc and pm with options.correction have";
 }
@@ -215,6 +222,8 @@ pub struct SceneOptions {
     pub surface_lambda: Option<Real>,
     /// The umbrella scan confirms each free-surface particle (tkc, pm with correction).
     pub surface_scan: Option<bool>,
+    /// The specific volumes of the pair force (pm, tkc).
+    pub specific_volume: Option<crate::state::SpecificVolume>,
     /// det L threshold below which L is not inverted.
     pub det_epsilon: Option<Real>,
     /// Kernel gradient correction for scheme pm.
@@ -243,6 +252,7 @@ impl SceneOptions {
             OptionKey::MusclTime => self.muscl_time.is_some(),
             OptionKey::SurfaceLambda => self.surface_lambda.is_some(),
             OptionKey::SurfaceScan => self.surface_scan.is_some(),
+            OptionKey::SpecificVolume => self.specific_volume.is_some(),
             OptionKey::DetEpsilon => self.det_epsilon.is_some(),
             OptionKey::Correction => self.correction.is_some(),
             OptionKey::Muscl => self.muscl.is_some(),
@@ -266,6 +276,7 @@ impl SceneOptions {
             OptionKey::MusclTime => self.muscl_time = None,
             OptionKey::SurfaceLambda => self.surface_lambda = None,
             OptionKey::SurfaceScan => self.surface_scan = None,
+            OptionKey::SpecificVolume => self.specific_volume = None,
             OptionKey::DetEpsilon => self.det_epsilon = None,
             OptionKey::Correction => self.correction = None,
             OptionKey::Muscl => self.muscl = None,
@@ -316,6 +327,7 @@ impl SceneOptions {
         o.muscl_time = self.muscl_time.unwrap_or(d.muscl_time);
         o.surface_lambda = self.surface_lambda.unwrap_or(d.surface_lambda);
         o.surface_scan = self.surface_scan.unwrap_or(d.surface_scan);
+        o.specific_volume = self.specific_volume.unwrap_or(d.specific_volume);
         o.det_epsilon = self.det_epsilon.unwrap_or(d.det_epsilon);
         if let Some(eps) = self.artificial_stress {
             o.artificial_stress.epsilon = eps;

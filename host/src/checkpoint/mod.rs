@@ -19,7 +19,8 @@
 //! 0 for none); the [`DriverState`]; the simulation state (`Sim::save_checkpoint`: counters,
 //! ids, the particle table's field names, then each field in table order, then the workspace).
 //! Version 4 added the field names and follows the order of the core's table; version 5
-//! the spin of the gradients (`Gradients::w`, `options.objective`).
+//! the spin of the gradients (`Gradients::w`, `options.objective`); version 6 the specific
+//! volume's slope (`Gradients::sv`, `options.specific_volume`).
 //!
 //! The snapshots written so far are kept in `DIR/checkpoint.h5`, a copy of the snapshot
 //! file taken at the checkpoint (only when a snapshot was added since the last one).
@@ -43,7 +44,7 @@ pub const CHECKPOINT_H5: &str = "checkpoint.h5";
 /// Magic bytes at the start of a checkpoint.
 pub const MAGIC: &[u8; 8] = b"GSPHCKPT";
 /// The format version this build writes and reads.
-pub const FORMAT_VERSION: u32 = 5;
+pub const FORMAT_VERSION: u32 = 6;
 const HEADER: usize = 32;
 
 /// A checkpoint problem; `Display` is one line.

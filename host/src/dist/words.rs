@@ -86,7 +86,7 @@ impl<const D: usize> Words for [Vector<D>; 6] {
 
 impl<const D: usize> Words for Gradients<D> {
     fn words() -> usize {
-        4 * D + 2 * D * D
+        5 * D + 2 * D * D
     }
     fn put_words(&self, out: &mut Vec<f64>) {
         self.rho.put_words(out);
@@ -95,6 +95,7 @@ impl<const D: usize> Words for Gradients<D> {
         self.cl.put_words(out);
         self.ct.put_words(out);
         self.w.put_words(out);
+        self.sv.put_words(out);
     }
     fn from_words(s: &[f64]) -> Self {
         let mut at = 0;
@@ -110,6 +111,7 @@ impl<const D: usize> Words for Gradients<D> {
             cl: Vector::<D>::from_words(next(D)),
             ct: Vector::<D>::from_words(next(D)),
             w: SMatrix::<f64, D, D>::from_words(next(D * D)),
+            sv: Vector::<D>::from_words(next(D)),
         }
     }
 }
@@ -203,6 +205,7 @@ mod tests {
         g.v[(0, 1)] = 7.0;
         g.ct[1] = -1.0;
         g.w[(1, 0)] = -0.5;
+        g.sv[0] = 3.5;
         round_trip(g);
         round_trip(Correction::<3> {
             boundary: 2,

@@ -272,6 +272,15 @@ fn check_options(s: &Scene) -> R {
             );
         }
     }
+    // the halo carries the specific volume's slopes with the other gradients, which a
+    // scene without strength, correction or MUSCL does not exchange; the interpolation
+    // stands in for artificial stress against the tensile instability of solids
+    if o.specific_volume.is_some() && no_strength {
+        return fail(
+            "options.specific_volume",
+            "not read without strength (no material has a strength model; it stands in for artificial stress in solids)",
+        );
+    }
     if let Some(v) = o.av_alpha {
         non_negative("options.av_alpha", v)?;
     }

@@ -15,6 +15,7 @@ pub(crate) fn reads(scheme: Scheme, key: OptionKey) -> Result<(), NotRead> {
         MusclTime => read_if(false, scheme, why::NO_MUSCL_TIME),
         CorrectedSlopes => read_if(false, scheme, why::NO_CORRECTED_SLOPES),
         Integrator => read_if(false, scheme, why::OWN_INTEGRATOR),
+        SpecificVolume => read_if(false, scheme, why::NO_SPECIFIC_VOLUME),
         SurfaceLambda | SurfaceScan | DetEpsilon => read_if(false, scheme, why::NO_SURFACE),
         Correction | Muscl => Err(NotRead::OnlyPm { scheme }),
     }

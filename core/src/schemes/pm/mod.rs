@@ -44,6 +44,7 @@ mod options;
 mod pairs;
 mod particles;
 mod records;
+mod volume;
 
 pub(crate) use gradients::correction_pass;
 use gradients::{gradient_pass, objective, spin_pass};
@@ -60,8 +61,8 @@ use crate::schemes::common::{
 };
 use crate::schemes::SchemeFamily;
 use crate::state::{
-    Family, Integrator, Layout, PairGeom, PairSums, SchemeOptions, StepError, StepParams, System,
-    Workspace,
+    Family, Integrator, Layout, PairGeom, PairSums, SchemeOptions, SpecificVolume, StepError,
+    StepParams, System, Workspace,
 };
 pub use records::PmStar;
 
@@ -123,7 +124,10 @@ impl SchemeFamily for Pm {
             grad_stress: effects.contains(EffectSet::MUSCL)
                 && effects.contains(EffectSet::STRENGTH),
             // the spin of `options.objective` lives in the gradients
-            grad: effects.contains(EffectSet::MUSCL) || effects.contains(EffectSet::STRENGTH),
+            // and the specific volume's slopes of `options.specific_volume`
+            grad: effects.contains(EffectSet::MUSCL)
+                || effects.contains(EffectSet::STRENGTH)
+                || options.specific_volume == SpecificVolume::Interpolated,
             pm_star: true,
             // the leap-frog's rates and half-step state
             av: options.integrator == Integrator::Leapfrog,
@@ -234,6 +238,9 @@ fn prepare<const D: usize, E: Effects, X: Executor>(
                 params,
                 exec,
             );
+        }
+        if params.options.specific_volume == SpecificVolume::Interpolated {
+            volume::specific_volume_pass::<D, X>(sysr, geom, ws.grad, params, exec);
         }
     }
     halo_exchange!(params, halo, pair, sys, ws);

@@ -19,6 +19,7 @@ pub(crate) fn reads(scheme: Scheme, key: OptionKey, effects: EffectSet) -> Resul
         | Dissipation
         | TransverseDissipation
         | Objective
+        | SpecificVolume
         | ArtificialStress
         | ArtificialStressExponent => Ok(()),
         MusclTime => read_if(false, scheme, why::NO_MUSCL_TIME),

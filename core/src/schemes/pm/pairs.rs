@@ -1,6 +1,7 @@
 //! The pair interactions of the contact family: the elastic Riemann problem of each pair
 //! (its MUSCL states), the star states and their sums.
 
+use super::volume::pair_v2;
 use crate::effects::{EffectSet, Effects};
 use crate::exec::Executor;
 use crate::limiter::{bounded_extrapolation, Limiter};
@@ -10,8 +11,8 @@ use crate::riemann::{acoustic_star_vector, elastic_star_vector, two_shock_star, 
 use crate::schemes::artificial_stress::pair_acceleration;
 use crate::schemes::common::{cauchy, failed, for_each_pair, outer, solve_pairs, Pair};
 use crate::state::{
-    Aux, Correction, Gradients, PairGeom, PairSums, PmStar, RiemannSolver, StepParams, System,
-    Workspace,
+    Aux, Correction, Gradients, PairGeom, PairSums, PmStar, RiemannSolver, SpecificVolume,
+    StepParams, System, Workspace,
 };
 
 /// Reconstructed contact values of a pair: `Phi_l = Phi_i + phi(r) (grad Phi_i . r_ji)/2`
@@ -126,6 +127,13 @@ pub(super) fn pair_pass<
         pair_star::<D, E>(sys, aux, corr, grad, grad_s, params, i, pr)
     });
     let stars: &[PmStar<D>] = ws.pm_star;
+    // options.specific_volume: the kernel product's <s^2> per h_i h_j (super::volume)
+    let mu = match params.options.specific_volume {
+        SpecificVolume::Product => None,
+        SpecificVolume::Interpolated => {
+            Some(params.kernel.second_moment::<D>() / (4.0 * D as Real))
+        }
+    };
     let ctx = GatherCtx {
         geom,
         aux,
@@ -133,6 +141,8 @@ pub(super) fn pair_pass<
         art,
         fac,
         stars,
+        grad,
+        mu,
     };
     // the run-time flag chosen outside the pair loop, so that the loop without it has
     // none of its code
@@ -166,6 +176,9 @@ pub(super) struct GatherCtx<'a, const D: usize> {
     art: &'a [Matrix<D>],
     fac: &'a [Real],
     stars: &'a [PmStar<D>],
+    grad: &'a [Gradients<D>],
+    /// `Some(<s^2>/(h_i h_j))` with `options.specific_volume = "interpolated"`.
+    mu: Option<Real>,
 }
 
 /// The star state of pair (i, j) with `i` on the left (`pr` seen from `i`): MUSCL states
@@ -327,6 +340,8 @@ pub(super) fn gather<
         art,
         fac,
         stars,
+        grad,
+        mu,
     } = *ctx;
     let vi = sys.v[i];
     let inv_i = aux[i].inv_rho;
@@ -339,7 +354,18 @@ pub(super) fn gather<
         let (mj, inv_j) = (sys.m[j], aux[j].inv_rho);
         let dv = vs - vi;
         if DYN {
-            let f = -2.0 * mj * pr.dw * (inv_i * inv_j);
+            let vv = match mu {
+                Some(mu) if pr.r > 0.0 => {
+                    // V' = e . grad V with e = (x_i - x_j)/r = -n; cubic where the
+                    // pair's normal traction is tension (super::volume)
+                    let cubic = ts.dot(&pr.n) > 0.0;
+                    let (vpi, vpj) = (-grad[i].sv.dot(&pr.n), -grad[j].sv.dot(&pr.n));
+                    let mu = mu * sys.h[i] * sys.h[j];
+                    pair_v2(inv_i, inv_j, vpi, vpj, pr.r, mu, cubic)
+                }
+                _ => inv_i * inv_j,
+            };
+            let f = -2.0 * mj * pr.dw * vv;
             out.acc += ts * f;
             out.power += f * ts.dot(if E::CORRECTION { &vs } else { &dv });
             if ART {

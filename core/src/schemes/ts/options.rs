@@ -16,6 +16,7 @@ pub(crate) fn reads(scheme: Scheme, key: OptionKey) -> Result<(), NotRead> {
         MusclTime => read_if(muscl, scheme, why::NO_MUSCL_TIME),
         CorrectedSlopes => read_if(false, scheme, why::NO_CORRECTED_SLOPES),
         SurfaceScan => read_if(false, scheme, why::NO_SCAN),
+        SpecificVolume => read_if(false, scheme, why::NO_SPECIFIC_VOLUME),
         Integrator
         | Riemann
         | Dissipation

@@ -137,6 +137,7 @@ impl<const D: usize> Halo<D> for Mirrors<D> {
                 t.cl = pl.reflect(&s.cl);
                 t.ct = pl.reflect(&s.ct);
                 t.w = pl.reflect_matrix(&s.w);
+                t.sv = pl.reflect(&s.sv);
                 ws.grad[g] = t;
             }
             if f.contains(Fields::GRAD_STRESS) && !ws.grad_stress.is_empty() {
