@@ -13,7 +13,11 @@ to first order is what the continuity equation of a pair at rest accumulates
 positions is circulant; omega^2(k) < 0 is a growing mode (the tensile instability).
 
     python3 scripts/tensile_modes.py            (needs numpy; prints a Markdown table)
+    python3 scripts/tensile_modes.py --inutsuka (Inutsuka's own setting: Gaussian
+        W(x, h) = exp(-x^2/h^2)/(sqrt(pi) h), summation density with W(h), the force with
+        W(sqrt(2) h), <s^2> = h^2/4)
 """
+import sys
 import numpy as np
 
 N = 48
@@ -42,10 +46,23 @@ def pair_v2(vi, vj, vpi, vpj, ds, mu, cubic):  # core/src/schemes/pm/volume.rs::
     return np.where(cubic, cub, lin)
 
 
+INUTSUKA = "--inutsuka" in sys.argv
+
+
+def gauss(x, h):
+    return np.exp(-(x**2) / h**2) / (np.sqrt(np.pi) * h)
+
+
+def density_kernel(d, h):
+    if INUTSUKA:
+        return gauss(d, h), -2 * d / h**2 * gauss(d, h)
+    return shape(d / h) / h, dshape(d / h) / h**2
+
+
 def accel(x, h, p0, rho0, mode):
     d = x[:, None] - x[None, :]
     d -= L * np.round(d / L)
-    w, dw = shape(d / h) / h, dshape(d / h) / h**2
+    w, dw = density_kernel(d, h)
     rho = w.sum(1)
     v = 1 / rho
     p = p0 + C2 * (rho - rho0)
@@ -53,12 +70,16 @@ def accel(x, h, p0, rho0, mode):
     if mode == "product":
         f = v[:, None] * v[None, :]
     else:
-        mu = h * h / 3 / 4  # 1D cubic spline: <r^2> = h^2/3; mu = <r^2>/(4 D)
+        # 1D cubic spline: <r^2> = h^2/3, mu = <r^2>/(4 D); Inutsuka's Gaussian: h^2/4
+        mu = h * h / 4 if INUTSUKA else h * h / 3 / 4
         vp = -(v**2) * dw.sum(1)  # grad V from the plain kernel sum
         e = np.sign(d)  # (x_i - x_j)/r
         ds = np.where(d == 0, 1.0, np.abs(d))
         f = pair_v2(v[:, None], v[None, :], vp[:, None] * e, vp[None, :] * e, ds, mu, ps < 0)
     np.fill_diagonal(f, 0)
+    if INUTSUKA:  # the force's kernel is W(sqrt(2) h)
+        hf = np.sqrt(2) * h
+        dw = -2 * d / hf**2 * gauss(d, hf)
     return -(2 * ps * f * dw).sum(1)
 
 
@@ -66,7 +87,7 @@ def omega2(h, p0, mode):
     x0 = np.arange(N, dtype=float)
     d = x0[:, None] - x0[None, :]
     d -= L * np.round(d / L)
-    rho0 = (shape(d / h) / h).sum(1)[0]
+    rho0 = density_kernel(d, h)[0].sum(1)[0]
     jac = np.zeros((N, N))
     eps = 1e-6
     for k in range(N):
@@ -81,7 +102,7 @@ def omega2(h, p0, mode):
 def main():
     print("| h/dx | P0/(rho c^2) | product: min omega^2 | interpolated: min omega^2 | at k dx/pi (product, interpolated) |")
     print("| ---: | ---: | ---: | ---: | --- |")
-    for h in (1.0, 1.2, 1.5, 2.0):
+    for h in (0.8, 1.0, 1.2, 1.5) if INUTSUKA else (1.0, 1.2, 1.5, 2.0):
         for p0 in (-0.05, -0.01, 0.05):
             a, b = omega2(h, p0, "product"), omega2(h, p0, "interpolated")
             ka, kb = (np.argmin(a) + 1) * 2 / N, (np.argmin(b) + 1) * 2 / N
