@@ -13,6 +13,8 @@ to first order is what the continuity equation of a pair at rest accumulates
 positions is circulant; omega^2(k) < 0 is a growing mode (the tensile instability).
 
     python3 scripts/tensile_modes.py            (needs numpy; prints a Markdown table)
+    python3 scripts/tensile_modes.py --plot FILE (also omega^2(k) in tension at h = dx and 2 dx
+        into FILE; needs matplotlib)
     python3 scripts/tensile_modes.py --inutsuka (Inutsuka's own setting: Gaussian
         W(x, h) = exp(-x^2/h^2)/(sqrt(pi) h), summation density with W(h), the force with
         W(sqrt(2) h), <s^2> = h^2/4)
@@ -109,5 +111,28 @@ def main():
             print(f"| {h} | {p0:+.2f} | {a.min():+.5f} | {b.min():+.5f} | {ka:.2f}, {kb:.2f} |")
 
 
+def plot(path):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    k = np.arange(1, N // 2 + 1) * 2 / N
+    fig, axes = plt.subplots(1, 2, figsize=(9, 3.4))
+    p0 = -0.05
+    for ax, h in zip(axes, (1.0, 2.0)):
+        for mode, style in (("product", "-"), ("interpolated", "--")):
+            ax.plot(k, omega2(h, p0, mode), style, label=mode)
+        ax.axhline(0, color="k", lw=0.5)
+        ax.set_xlabel("k dx / pi")
+        ax.set_title(f"h = {h} dx, P0 = {p0:+.2f} rho c^2")
+    axes[0].set_ylabel("omega^2 (< 0: grows)")
+    axes[0].legend()
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+
+
 if __name__ == "__main__":
     main()
+    if "--plot" in sys.argv:
+        plot(sys.argv[sys.argv.index("--plot") + 1])
