@@ -385,6 +385,39 @@ pub enum Family {
     Ts,
 }
 
+/// `NAMES`, `name`, `from_name` and `Display` (the scene name) of an enum chosen by name
+/// in a scene's `[options]`.
+macro_rules! scene_names {
+    ($t:ident { $($v:ident => $s:literal),+ $(,)? }) => {
+        impl $t {
+            /// The scene names, in the order messages list them.
+            pub const NAMES: [&'static str; [$($s),+].len()] = [$($s),+];
+
+            /// The scene name.
+            pub const fn name(self) -> &'static str {
+                match self {
+                    $($t::$v => $s),+
+                }
+            }
+
+            /// The choice of a scene name.
+            pub fn from_name(name: &str) -> Option<$t> {
+                match name {
+                    $($s => Some($t::$v),)+
+                    _ => None,
+                }
+            }
+        }
+
+        /// The scene name.
+        impl core::fmt::Display for $t {
+            fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+                f.write_str(self.name())
+            }
+        }
+    };
+}
+
 /// Riemann solver of the hydrodynamic step of `ts`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum RiemannSolver {
@@ -407,35 +440,6 @@ pub enum MusclTime {
     CourantFactor,
     /// Spatial reconstruction only (default).
     None,
-}
-
-impl RiemannSolver {
-    /// The scene names, in the order messages list them.
-    pub const NAMES: [&'static str; 2] = ["acoustic", "two_shock"];
-
-    /// The scene name.
-    pub const fn name(self) -> &'static str {
-        match self {
-            RiemannSolver::Acoustic => "acoustic",
-            RiemannSolver::TwoShock => "two_shock",
-        }
-    }
-
-    /// The solver of a scene name.
-    pub fn from_name(name: &str) -> Option<RiemannSolver> {
-        match name {
-            "acoustic" => Some(RiemannSolver::Acoustic),
-            "two_shock" => Some(RiemannSolver::TwoShock),
-            _ => None,
-        }
-    }
-}
-
-/// The scene name.
-impl core::fmt::Display for RiemannSolver {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        f.write_str(self.name())
-    }
 }
 
 /// The scene name.
@@ -464,6 +468,8 @@ impl MusclTime {
     }
 }
 
+scene_names!(RiemannSolver { Acoustic => "acoustic", TwoShock => "two_shock" });
+
 /// How the contact family (`pm`, `tkc`) advances in time (`options.integrator`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Integrator {
@@ -477,34 +483,7 @@ pub enum Integrator {
     Leapfrog,
 }
 
-impl Integrator {
-    /// The scene names, in the order messages list them.
-    pub const NAMES: [&'static str; 2] = ["euler", "leapfrog"];
-
-    /// The scene name.
-    pub const fn name(self) -> &'static str {
-        match self {
-            Integrator::Euler => "euler",
-            Integrator::Leapfrog => "leapfrog",
-        }
-    }
-
-    /// The integrator of a scene name.
-    pub fn from_name(name: &str) -> Option<Integrator> {
-        match name {
-            "euler" => Some(Integrator::Euler),
-            "leapfrog" => Some(Integrator::Leapfrog),
-            _ => None,
-        }
-    }
-}
-
-/// The scene name.
-impl core::fmt::Display for Integrator {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        f.write_str(self.name())
-    }
-}
+scene_names!(Integrator { Euler => "euler", Leapfrog => "leapfrog" });
 
 /// The specific volumes a pair force of the contact family (`pm`, `tkc`) carries
 /// (`options.specific_volume`).
@@ -519,34 +498,7 @@ pub enum SpecificVolume {
     Interpolated,
 }
 
-impl SpecificVolume {
-    /// The scene names, in the order messages list them.
-    pub const NAMES: [&'static str; 2] = ["product", "interpolated"];
-
-    /// The scene name.
-    pub const fn name(self) -> &'static str {
-        match self {
-            SpecificVolume::Product => "product",
-            SpecificVolume::Interpolated => "interpolated",
-        }
-    }
-
-    /// The choice of a scene name.
-    pub fn from_name(name: &str) -> Option<SpecificVolume> {
-        match name {
-            "product" => Some(SpecificVolume::Product),
-            "interpolated" => Some(SpecificVolume::Interpolated),
-            _ => None,
-        }
-    }
-}
-
-/// The scene name.
-impl core::fmt::Display for SpecificVolume {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        f.write_str(self.name())
-    }
-}
+scene_names!(SpecificVolume { Product => "product", Interpolated => "interpolated" });
 
 /// Scheme options (with the defaults of the seeds).
 #[derive(Clone, Copy, Debug, PartialEq)]
