@@ -264,6 +264,7 @@ mod runner {
                 nbrs: list.view(),
                 options: SchemeOptions::default(),
                 effects: EFFECTS,
+                simd: gsph_core::simd::SimdLevel::BASELINE,
             };
             let pairs = list.view().unordered_pairs();
             if pairs > geom.len() {

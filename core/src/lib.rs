@@ -30,6 +30,7 @@ pub mod neighbors;
 pub mod particles;
 pub mod riemann;
 pub mod schemes;
+pub mod simd;
 pub mod state;
 
 pub use effects::{EffectSet, Effects};

@@ -596,6 +596,9 @@ pub struct StepParams<'a, const D: usize> {
     /// artificial stress from here ([`Self::has`]), and plasticity, damage and heat from
     /// their storage ([`System::has_plasticity`] …), which the caller sizes by this set.
     pub effects: EffectSet,
+    /// The instruction-set level of the vectorised loops ([`crate::simd`]; results are
+    /// bitwise the same at every level).
+    pub simd: crate::simd::SimdLevel,
 }
 
 impl<const D: usize> StepParams<'_, D> {

@@ -185,6 +185,7 @@ fn run<const D: usize, E: Effects>(c: &Case) -> Result<Totals, StepError> {
             nbrs: list.view(),
             options,
             effects: E::SET.union(EffectSet::PLASTICITY),
+            simd: gsph_core::simd::SimdLevel::BASELINE,
         };
         let pairs = list.view().unordered_pairs();
         let mut ws = Workspace {

@@ -1,8 +1,94 @@
 //! The rayon executor of the core's per-particle loops (in `gsph-steps`, which compiles
-//! the step specialisations for it), and the bound on the worker threads a caller may ask
-//! for (`gsph --threads`, the C ABI's `gsph_set_threads`).
+//! the step specialisations for it), the instruction-set level the steps run at
+//! (`gsph --simd`, the environment variable `GSPH_SIMD`), and the bound on the worker
+//! threads a caller may ask for (`gsph --threads`, the C ABI's `gsph_set_threads`).
 
+use std::sync::Mutex;
+
+pub use gsph_core::simd::{Simd, SimdLevel};
 pub use gsph_steps::Rayon;
+
+/// Whether this CPU has the instructions of `simd`'s loops.
+pub fn available(simd: Simd) -> bool {
+    match simd {
+        Simd::Baseline => true,
+        #[cfg(target_arch = "x86_64")]
+        Simd::Avx2 => std::arch::is_x86_feature_detected!("avx2"),
+        #[cfg(not(target_arch = "x86_64"))]
+        Simd::Avx2 => false,
+    }
+}
+
+/// The highest level this CPU has.
+pub fn detect() -> Simd {
+    Simd::ALL
+        .into_iter()
+        .rev()
+        .find(|&l| available(l))
+        .unwrap_or(Simd::Baseline)
+}
+
+/// The level as the core takes it, if this CPU has it.
+pub fn level(simd: Simd) -> Result<SimdLevel, String> {
+    if !available(simd) {
+        return Err(format!(
+            "this CPU cannot run the level `{simd}` (it has up to `{}`)",
+            detect()
+        ));
+    }
+    // SAFETY: checked just above
+    Ok(unsafe { SimdLevel::assume(simd) })
+}
+
+/// The environment variable that picks the instruction-set level of every simulation of
+/// the process (`baseline`, `avx2` or `auto`; unset: `auto`, the best the CPU
+/// has). `gsph --simd` overrides it.
+pub const SIMD_ENV: &str = "GSPH_SIMD";
+
+static SIMD_CHOICE: Mutex<Option<Simd>> = Mutex::new(None);
+
+/// The level `name` asks for (`auto`: the best this CPU has), or why it cannot run here
+/// (a one-line error without the key; the caller names it).
+pub fn parse_simd(name: &str) -> Result<Simd, String> {
+    let name = name.trim();
+    if name == "auto" {
+        return Ok(detect());
+    }
+    let Some(l) = Simd::from_name(name) else {
+        let names: Vec<&str> = Simd::ALL.iter().map(|l| l.name()).collect();
+        return Err(format!(
+            "unknown instruction-set level `{name}` (one of auto, {})",
+            names.join(", ")
+        ));
+    };
+    level(l).map(|_| l)
+}
+
+/// Sets the level of the simulations this process builds from now on (`gsph --simd`);
+/// an error if the CPU lacks it.
+pub fn set_simd(simd: Simd) -> Result<(), String> {
+    level(simd)?;
+    *SIMD_CHOICE.lock().unwrap_or_else(|e| e.into_inner()) = Some(simd);
+    Ok(())
+}
+
+/// The level a new simulation runs at: the one [`set_simd`] chose, else [`SIMD_ENV`]'s,
+/// else the best the CPU has; an error naming `GSPH_SIMD` if that variable asks for an
+/// unknown level or one this CPU lacks.
+pub fn simd() -> Result<SimdLevel, String> {
+    let chosen = *SIMD_CHOICE.lock().unwrap_or_else(|e| e.into_inner());
+    let simd = match (chosen, std::env::var(SIMD_ENV)) {
+        (Some(l), _) => l,
+        (None, Ok(v)) => parse_simd(&v).map_err(|e| format!("{SIMD_ENV}={v}: {e}"))?,
+        (None, Err(std::env::VarError::NotPresent)) => detect(),
+        (None, Err(std::env::VarError::NotUnicode(_))) => {
+            return Err(format!(
+                "{SIMD_ENV}: not valid UTF-8 (one of auto, baseline, avx2)"
+            ))
+        }
+    };
+    level(simd)
+}
 
 /// Most worker threads per core a caller may ask for.
 pub const MAX_THREADS_PER_CORE: usize = 8;

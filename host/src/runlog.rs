@@ -5,7 +5,7 @@
 //! ```text
 //! gsph 0.1.0, run 3f2a9c0d41e7b655, started 2026-12-02 21:40:01 UTC
 //! command: gsph run cases/flyer_plate.toml --out out/flyer
-//! threads: 2, MPI ranks: 1
+//! threads: 2, MPI ranks: 1, SIMD: avx2
 //! scene: cases/flyer_plate.toml, sha256 9b1c…
 //! overrides: t_end=1e-6
 //! ----- scene text -----
@@ -111,9 +111,10 @@ impl RunLog {
             std::env::args().collect::<Vec<_>>().join(" ")
         ));
         head.push_str(&format!(
-            "threads: {}, MPI ranks: {}\n",
+            "threads: {}, MPI ranks: {}, SIMD: {}\n",
             rayon::current_num_threads(),
-            crate::dist_size()
+            crate::dist_size(),
+            crate::exec::simd().map_or("?", |l| l.get().name())
         ));
         if resumed_at.is_none() {
             head.push_str(&format!(

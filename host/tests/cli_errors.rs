@@ -205,6 +205,7 @@ fn cases() -> Vec<Case> {
         case("cfl above 1", f(), "check", &["--set", "cfl=1.5"], &["cfl: must be at most 1 (got 1.5)"]),
         case("zero threads", f(), "run", &["--threads", "0"], &["--threads must be at least 1"]),
         case("usage: threads not a number", f(), "run", &["--threads", "many"], &["'many'", "--threads"]),
+        case("unknown SIMD level", f(), "run", &["--simd", "sse"], &["--simd sse: unknown instruction-set level `sse` (one of auto, baseline, avx2)"]),
         case("nonexistent scene file", None, "check", &[], &["missing.toml: cannot read scene"]),
         case("JH1 tensile limit not a tension", impact(), "check", &["--set", "materials.1.strength.tensile_limit=7.5e8"], &["materials[1].strength.tensile_limit: must be negative"]),
         case("Johnson-Cook melt below room temperature", impact(), "check", &["--set", "materials.0.strength.t_melt=200"], &["materials[0].strength.t_melt: must exceed t_room = 298 K (got 200)"]),
@@ -374,6 +375,7 @@ fn run_of_the_flyer_plate_writes_every_output() {
         "steps",
         "t_end",
         "wall_s",
+        "simd",
         "energy_initial",
         "energy_final",
         "energy_rel_error",
@@ -397,6 +399,43 @@ fn run_of_the_flyer_plate_writes_every_output() {
     assert_eq!(header, gsph::output::csv::csv_header());
     assert_eq!(lines.filter(|l| !l.is_empty()).count(), 100);
     assert_eq!(s["ended"], "t_end");
+}
+
+/// `GSPH_SIMD` picks the level (recorded in summary.json and run.log); one the code does
+/// not know is refused with a line naming the variable, before the output folder exists.
+#[test]
+fn gsph_simd_picks_the_level_and_a_bad_one_is_refused() {
+    let tmp = tempfile::tempdir().unwrap();
+    std::fs::write(tmp.path().join("scene.toml"), flyer()).unwrap();
+    let run = |env: &str, out: &str, more: &[&str]| {
+        Command::new(env!("CARGO_BIN_EXE_gsph"))
+            .args(["run", "scene.toml", "--out", out, "--quiet"])
+            .args(more)
+            .env("GSPH_SIMD", env)
+            .current_dir(tmp.path())
+            .output()
+            .expect("gsph starts")
+    };
+    let o = run("baseline", "a", &[]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(summary(&tmp.path().join("a"))["simd"], "baseline");
+    let log = std::fs::read_to_string(tmp.path().join("a/run.log")).unwrap();
+    assert!(log.contains("SIMD: baseline"), "{log}");
+    // the flag wins over the variable
+    let o = run("bogus", "b", &["--simd", "baseline"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = run("bogus", "c", &[]);
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(err.trim().lines().count(), 1, "{err}");
+    assert!(
+        err.contains("GSPH_SIMD=bogus: unknown instruction-set level `bogus`"),
+        "{err}"
+    );
+    assert!(
+        !tmp.path().join("c").exists(),
+        "a refused run made its folder"
+    );
 }
 
 /// A run that `max_steps` stops says so (issue 25: it looked finished in summary.json).

@@ -91,6 +91,10 @@ pub(crate) fn geometry_pass<const D: usize, E: Effects, X: Executor>(
     } else {
         0.0
     };
+    // the vectorised loop: AVX2 where the CPU has it, for the polynomial kernels, without
+    // periodic images (`crate::simd`)
+    #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
+    let vector = params.simd.avx2() && !periodic && crate::simd::avx2::has_geometry(kernel);
     exec.run(
         (
             Rows {
@@ -107,7 +111,29 @@ pub(crate) fn geometry_pass<const D: usize, E: Effects, X: Executor>(
                 let i = off + k;
                 let (xi, hi) = (x[i], h[i]);
                 let fk: &mut [Real] = if art { fs.of(k) } else { &mut [] };
-                for (q, (g, &j)) in gs.of(k).iter_mut().zip(nb.owned(i)).enumerate() {
+                let (gk, owned) = (gs.of(k), nb.owned(i));
+                // the vectorised loop does whole groups of four; this loop the rest
+                let mut done = 0;
+                #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
+                if vector {
+                    // SAFETY: `params.simd` vouches for AVX2 (`SimdLevel::assume`), `vector`
+                    // for the kernel; the neighbour indices are in bounds of `x` and `h`
+                    // (the lists were built over them) and `gk`, `fk` are as long as `owned`
+                    done = unsafe {
+                        crate::simd::avx2::geometry_row::<D>(
+                            kernel,
+                            &xi,
+                            hi,
+                            x,
+                            h,
+                            owned,
+                            gk,
+                            fk,
+                            art.then_some((inv_wref, asp.exponent)),
+                        )
+                    };
+                }
+                for (q, (g, &j)) in gk.iter_mut().zip(owned).enumerate().skip(done) {
                     let j = j as usize;
                     let mut rij = xi - x[j];
                     if periodic {

@@ -193,6 +193,7 @@ fn run<F: SchemeFamily, E: Effects + Plasticity>(t_end: Real) -> (Real, Real, Re
             nbrs: list.view(),
             options: SchemeOptions::default(),
             effects: EffectSet::HYDRO,
+            simd: crate::simd::SimdLevel::BASELINE,
         };
         let pairs = list.view().unordered_pairs();
         let mut ws = Workspace {
@@ -340,6 +341,7 @@ fn corrections(x: &mut [Vector<2>; 100], options: SchemeOptions) -> [Correction<
         nbrs: list.view(),
         options,
         effects: EffectSet::HYDRO,
+        simd: crate::simd::SimdLevel::BASELINE,
     };
     let mut corr = [Correction::<2>::default(); M];
     let mut sums = [PairSums::<2>::default(); M];

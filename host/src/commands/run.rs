@@ -25,6 +25,10 @@ pub struct RunArgs {
     /// No progress bar.
     #[arg(long)]
     pub quiet: bool,
+    /// Instruction-set level of the vectorised loops: auto (the best this CPU has),
+    /// baseline or avx2; results are bitwise the same (default: GSPH_SIMD, else auto).
+    #[arg(long, value_name = "LEVEL")]
+    pub simd: Option<String>,
     /// Write OUT/checkpoint.bin every K steps (docs/checkpoint.md).
     #[arg(long, value_name = "K")]
     pub checkpoint_every_steps: Option<u64>,
@@ -47,6 +51,7 @@ pub fn command(args: RunArgs) -> Result<(), super::Failure> {
         overrides,
         threads,
         quiet,
+        simd,
         checkpoint_every_steps,
         checkpoint_every_seconds,
         restart: restart_dir,
@@ -59,6 +64,10 @@ pub fn command(args: RunArgs) -> Result<(), super::Failure> {
         stop_after_steps,
     };
     check_flags(&flags)?;
+    if let Some(name) = &simd {
+        let level = crate::exec::parse_simd(name).map_err(|e| format!("--simd {name}: {e}"))?;
+        crate::exec::set_simd(level).map_err(|e| format!("--simd {name}: {e}"))?;
+    }
     let (sc, out, ckpt) = match (restart_dir, scene) {
         (Some(dir), _) => restart(&dir, flags)?,
         (None, Some(path)) => {

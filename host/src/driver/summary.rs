@@ -59,6 +59,9 @@ pub struct Summary {
     pub wall_total_s: f64,
     /// Worker threads per rank.
     pub threads: usize,
+    /// Instruction-set level of the vectorised loops (`gsph run --simd`; results are
+    /// bitwise the same at every level).
+    pub simd: &'static str,
     /// MPI ranks.
     pub ranks: usize,
     /// What the decomposition cost (several ranks): `crate::dist::report::summary`.
@@ -181,6 +184,7 @@ pub(super) fn summary<const D: usize>(x: Summed<'_, D>) -> Summary {
         wall_s: x.wall,
         wall_total_s: x.wall_total,
         threads: rayon::current_num_threads(),
+        simd: sim.simd().name(),
         ranks: x.ranks,
         mpi,
         pair_interactions: pairs,

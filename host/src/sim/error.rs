@@ -79,6 +79,8 @@ pub enum SimError {
     Distributed(String),
     /// A wall cannot be set up (a particle starts behind it).
     Walls(String),
+    /// The instruction-set level asked for (`GSPH_SIMD`, `--simd`) cannot run here.
+    Simd(String),
     /// The scheme family cannot run an effect the scene needs.
     Unsupported {
         /// Scheme.
@@ -93,6 +95,7 @@ impl std::fmt::Display for SimError {
         match self {
             SimError::Neighbors(e) => write!(f, "{e}"),
             SimError::Walls(e) => write!(f, "{e}"),
+            SimError::Simd(e) => write!(f, "{e}"),
             SimError::Overlap { i, j, distance, at } if *distance == 0.0 => write!(
                 f,
                 "particles {i} and {j} are at the same point ({:.4e}, {:.4e}, {:.4e}) (a point given twice in a particle file, or two bodies overlapping?)",

@@ -1,7 +1,7 @@
 //! A simulation in one dimension: Vec-backed particle state, workspace and neighbour lists
 //! around the core's slice-based step.
 
-use crate::exec::Rayon;
+use crate::exec::{Rayon, Simd, SimdLevel};
 use crate::neighbors::{morton_order, Lists};
 use crate::output::{ParticleRow, ParticleTable};
 use crate::scene::{InitialParticles, Scene};
@@ -142,6 +142,7 @@ pub struct Sim {
     pub scheme: Scheme,
     step_fn: StepFn<D, Rayon>,
     exec: Rayon,
+    simd: SimdLevel,
     /// Time, s.
     pub t: Real,
     /// Steps taken.
@@ -197,6 +198,7 @@ impl<const D: usize> Sim<D> {
             scheme,
             effects,
         })?;
+        let simd = crate::exec::simd().map_err(SimError::Simd)?;
         let n = parts.len();
         let kernel = scene.kernel;
         let options = scene.options.resolve(scheme, scene.constant_h);
@@ -258,6 +260,7 @@ impl<const D: usize> Sim<D> {
             scheme,
             step_fn,
             exec: Rayon::default(),
+            simd,
             t: 0.0,
             step: 0,
             pair_interactions: 0,
@@ -281,6 +284,18 @@ impl<const D: usize> Sim<D> {
     #[doc(hidden)]
     pub fn replace_step(&mut self, step: StepFn<D, Rayon>) {
         self.step_fn = step;
+    }
+
+    /// The instruction-set level of the vectorised loops ([`crate::exec::simd`] when built).
+    pub fn simd(&self) -> Simd {
+        self.simd.get()
+    }
+
+    /// Runs the vectorised loops at `simd` from now on (results are bitwise the same at
+    /// every level, [`gsph_core::simd`]); an error if this CPU lacks it.
+    pub fn set_simd(&mut self, simd: Simd) -> Result<(), SimError> {
+        self.simd = crate::exec::level(simd).map_err(SimError::Simd)?;
+        Ok(())
     }
 
     /// Number of particles.
@@ -434,6 +449,7 @@ impl<const D: usize> Sim<D> {
             nbrs,
             options: self.options,
             effects: self.effects,
+            simd: self.simd,
         };
         let mut sys = gsph_core::particle_fields!(step each_state_field { system self });
         let mut ws = Workspace {

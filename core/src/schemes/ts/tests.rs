@@ -99,6 +99,7 @@ fn with_failed_particle(
         nbrs: list.view(),
         options: SchemeOptions::default(),
         effects: EffectSet::HYDRO,
+        simd: crate::simd::SimdLevel::BASELINE,
     };
     let mut sums = [PairSums::<1>::default(); N];
     let mut grad = [Gradients::<1>::default(); N];

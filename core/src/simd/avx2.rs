@@ -1,0 +1,200 @@
+//! The AVX2 loops: four pairs per instruction (module docs of [`super`]).
+
+use core::arch::x86_64::*;
+
+use crate::kernel::Kernel;
+use crate::math::{Real, Vector};
+use crate::state::PairGeom;
+
+/// Whether [`geometry_row`] computes this kernel (the polynomial ones; the Gaussian's
+/// `exp` is left to the portable loop).
+#[inline(always)]
+pub(crate) fn has_geometry(kernel: Kernel) -> bool {
+    matches!(kernel, Kernel::CubicSpline | Kernel::WendlandC2)
+}
+
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn splat(x: Real) -> __m256d {
+    _mm256_set1_pd(x)
+}
+
+/// `powi` of [`crate::math::real::powi`], lane by lane with the same operations.
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn powi(x: __m256d, n: u32) -> __m256d {
+    let (mut r, mut b, mut k) = (splat(1.0), x, n);
+    while k > 0 {
+        if k & 1 == 1 {
+            r = _mm256_mul_pd(r, b);
+        }
+        b = _mm256_mul_pd(b, b);
+        k >>= 1;
+    }
+    r
+}
+
+/// Lanes where `a < b`.
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn lt(a: __m256d, b: Real) -> __m256d {
+    _mm256_cmp_pd::<_CMP_LT_OQ>(a, splat(b))
+}
+
+/// `a` where `m` is set, else `b`.
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn select(m: __m256d, a: __m256d, b: __m256d) -> __m256d {
+    _mm256_blendv_pd(b, a, m)
+}
+
+/// The kernel shape `(f, f')` of [`Kernel`]'s private `shape` for `q` (both branches
+/// evaluated and blended; zero from the support on).
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn shape<const D: usize>(kernel: Kernel, q: __m256d) -> (__m256d, __m256d) {
+    let zero = _mm256_setzero_pd();
+    match kernel {
+        Kernel::CubicSpline => {
+            // q < 1: (1 - q q (1.5 - 0.75 q), q (2.25 q - 3))
+            let inner = _mm256_mul_pd(
+                _mm256_mul_pd(q, q),
+                _mm256_sub_pd(splat(1.5), _mm256_mul_pd(splat(0.75), q)),
+            );
+            let f1 = _mm256_sub_pd(splat(1.0), inner);
+            let d1 = _mm256_mul_pd(q, _mm256_sub_pd(_mm256_mul_pd(splat(2.25), q), splat(3.0)));
+            // q < 2: t = 2 - q, (0.25 t t t, -0.75 t t)
+            let t = _mm256_sub_pd(splat(2.0), q);
+            let f2 = _mm256_mul_pd(_mm256_mul_pd(_mm256_mul_pd(splat(0.25), t), t), t);
+            let d2 = _mm256_mul_pd(_mm256_mul_pd(splat(-0.75), t), t);
+            let (m1, m2) = (lt(q, 1.0), lt(q, 2.0));
+            (
+                select(m1, f1, select(m2, f2, zero)),
+                select(m1, d1, select(m2, d2, zero)),
+            )
+        }
+        Kernel::WendlandC2 => {
+            let t = _mm256_sub_pd(splat(1.0), _mm256_mul_pd(splat(0.5), q));
+            let t2 = _mm256_mul_pd(t, t);
+            let (f, d) = if D == 1 {
+                // t³ (1.5 q + 1), -3 q t²
+                (
+                    _mm256_mul_pd(
+                        _mm256_mul_pd(t2, t),
+                        _mm256_add_pd(_mm256_mul_pd(splat(1.5), q), splat(1.0)),
+                    ),
+                    _mm256_mul_pd(_mm256_mul_pd(splat(-3.0), q), t2),
+                )
+            } else {
+                // t⁴ (2 q + 1), -5 q t³
+                (
+                    _mm256_mul_pd(
+                        _mm256_mul_pd(t2, t2),
+                        _mm256_add_pd(_mm256_mul_pd(splat(2.0), q), splat(1.0)),
+                    ),
+                    _mm256_mul_pd(_mm256_mul_pd(_mm256_mul_pd(splat(-5.0), q), t2), t),
+                )
+            };
+            let m = lt(q, 2.0);
+            (select(m, f, zero), select(m, d, zero))
+        }
+        // not reached: `has_geometry` is checked first
+        Kernel::Gaussian => (zero, zero),
+    }
+}
+
+/// The geometry of the pairs particle `i` owns (at `xi`, `hi`; its neighbours `owned`),
+/// four at a time, exactly as the portable `geometry_pass` computes them for a
+/// non-periodic run: into `out` and, with `art = Some((1/W_ref shape, n))`, the
+/// artificial-stress factors into `fac`. Returns how many pairs it did (all of them).
+///
+/// # Safety
+/// The CPU must have AVX2; `kernel` must pass [`has_geometry`]; every index in `owned` must
+/// be in bounds of `x` and `h`; `out` (and `fac` with `art`) at least as long as `owned`.
+#[target_feature(enable = "avx2")]
+#[allow(clippy::too_many_arguments)]
+pub(crate) unsafe fn geometry_row<const D: usize>(
+    kernel: Kernel,
+    xi: &Vector<D>,
+    hi: Real,
+    x: &[Vector<D>],
+    h: &[Real],
+    owned: &[u32],
+    out: &mut [PairGeom<D>],
+    fac: &mut [Real],
+    art: Option<(Real, u32)>,
+) -> usize {
+    let n = owned.len();
+    let support = kernel.support();
+    let xp = x.as_ptr() as *const Real;
+    let hp = h.as_ptr();
+    let sigma = kernel.sigma(D);
+    let zero = _mm256_setzero_pd();
+    let mut q0 = 0;
+    while q0 < n {
+        // a last, partial group repeats its last pair in the spare lanes (not stored)
+        let lanes = (n - q0).min(4);
+        let j: [i64; 4] = core::array::from_fn(|l| owned[q0 + l.min(lanes - 1)] as i64);
+        debug_assert!(j
+            .iter()
+            .all(|&j| (j as usize) < x.len() && (j as usize) < h.len()));
+        let jv = _mm256_set_epi64x(j[3], j[2], j[1], j[0]);
+        // rij = xi - xj, r2 = |rij|² in nalgebra's order ((x0² + x1²) + x2²)
+        let mut rij = [zero; 3];
+        let mut r2 = zero;
+        for (a, ra) in rij.iter_mut().enumerate().take(D) {
+            let idx = _mm256_add_epi64(
+                _mm256_mul_epu32(jv, _mm256_set1_epi64x(D as i64)),
+                _mm256_set1_epi64x(a as i64),
+            );
+            let xa = _mm256_i64gather_pd::<8>(xp, idx);
+            *ra = _mm256_sub_pd(splat(xi[a]), xa);
+            let sq = _mm256_mul_pd(*ra, *ra);
+            r2 = if a == 0 { sq } else { _mm256_add_pd(r2, sq) };
+        }
+        let hj = _mm256_i64gather_pd::<8>(hp, jv);
+        let hij = _mm256_mul_pd(splat(0.5), _mm256_add_pd(splat(hi), hj));
+        let rmax = _mm256_mul_pd(splat(support), hij);
+        let inside = _mm256_and_pd(
+            _mm256_cmp_pd::<_CMP_LT_OQ>(r2, _mm256_mul_pd(rmax, rmax)),
+            _mm256_cmp_pd::<_CMP_GT_OQ>(r2, zero),
+        );
+        let r = _mm256_sqrt_pd(r2);
+        // Kernel::shape_dw: zero from r >= support h on (compared in r)
+        let beyond = _mm256_cmp_pd::<_CMP_GE_OQ>(r, rmax);
+        let inv_h = _mm256_div_pd(splat(1.0), hij);
+        let q = _mm256_mul_pd(r, inv_h);
+        let (f, df) = shape::<D>(kernel, q);
+        let norm = _mm256_mul_pd(splat(sigma), powi(inv_h, D as u32));
+        let dw = _mm256_mul_pd(_mm256_mul_pd(norm, inv_h), df);
+        let (f, dw) = (select(beyond, zero, f), select(beyond, zero, dw));
+        // everything outside `inside` is the default (zero) geometry
+        let minus_inv_r = _mm256_div_pd(splat(-1.0), r);
+        let mut n = [[0.0; 4]; 3];
+        for a in 0..D {
+            _mm256_storeu_pd(
+                n[a].as_mut_ptr(),
+                _mm256_and_pd(inside, _mm256_mul_pd(rij[a], minus_inv_r)),
+            );
+        }
+        let (mut rr, mut ww) = ([0.0; 4], [0.0; 4]);
+        _mm256_storeu_pd(rr.as_mut_ptr(), _mm256_and_pd(inside, r));
+        _mm256_storeu_pd(ww.as_mut_ptr(), _mm256_and_pd(inside, dw));
+        for l in 0..lanes {
+            let g = &mut out[q0 + l];
+            for (ga, na) in g.n.iter_mut().zip(&n) {
+                *ga = na[l];
+            }
+            g.r = rr[l];
+            g.dw = ww[l];
+        }
+        if let Some((inv_wref, exponent)) = art {
+            let fa = _mm256_and_pd(inside, powi(_mm256_mul_pd(f, splat(inv_wref)), exponent));
+            let mut fl = [0.0; 4];
+            _mm256_storeu_pd(fl.as_mut_ptr(), fa);
+            fac[q0..q0 + lanes].copy_from_slice(&fl[..lanes]);
+        }
+        q0 += lanes;
+    }
+    n
+}

@@ -1,0 +1,93 @@
+//! Explicitly vectorised loops, several pairs per instruction, chosen at run time.
+//!
+//! A step runs a loop's vectorised version when [`StepParams::simd`](crate::state::StepParams)
+//! says the CPU has the instructions. The core cannot ask the CPU (`no_std`): the host
+//! detects the level and vouches for it through the `unsafe` [`SimdLevel::assume`]; an
+//! embedded caller that never does runs the portable loops, which are the reference the
+//! vectorised ones are tested against.
+//!
+//! **Results are bitwise identical at every level.** Each lane performs exactly the scalar
+//! code's IEEE operations in the scalar code's order (no fused multiply-add: Rust never
+//! contracts on its own, and the kernels call no FMA instruction), branches become blends
+//! of both sides, and nothing is summed across lanes. The tests compare every output bit
+//! against the portable loop (`core/src/simd/tests.rs`), and `tests/tests/determinism.rs`
+//! compares whole runs.
+//!
+//! What is vectorised so far: the pair geometry (`schemes::common::geometry_pass` of the
+//! `pm` and `ts` families, which store it for their several pair passes; the cubic spline
+//! and Wendland C2 kernels, non-periodic runs), `avx2.rs`. (`av`, with one pair loop,
+//! computes the geometry in that loop.)
+//! A vectorised `av` pair loop that filled its lanes from the per-particle arrays (about
+//! twenty scalar loads per neighbour) was bitwise right but 25 % slower than the portable
+//! loop on the colliding rings: the loop is bound by those scattered loads, not by its
+//! arithmetic, so it waits for a compact neighbour record (docs/performance.md).
+
+#[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
+pub(crate) mod avx2;
+#[cfg(all(test, target_arch = "x86_64", not(feature = "f32")))]
+mod tests;
+
+/// An instruction-set level of the vectorised loops.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Simd {
+    /// The portable loops (x86-64: SSE2, one pair at a time).
+    #[default]
+    Baseline,
+    /// AVX2 (x86-64-v3: Intel since Haswell, AMD since Zen): four `f64` pairs per
+    /// instruction.
+    Avx2,
+}
+
+impl Simd {
+    /// Every level, lowest first.
+    pub const ALL: [Simd; 2] = [Simd::Baseline, Simd::Avx2];
+
+    /// The level's name (`baseline`, `avx2`), as `gsph --simd` and `GSPH_SIMD` take it.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Simd::Baseline => "baseline",
+            Simd::Avx2 => "avx2",
+        }
+    }
+
+    /// The level of a name ([`Simd::name`]).
+    pub fn from_name(s: &str) -> Option<Simd> {
+        Simd::ALL.into_iter().find(|l| l.name() == s)
+    }
+}
+
+impl core::fmt::Display for Simd {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// A level the CPU is known to have: the only way to reach a vectorised loop.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SimdLevel(Simd);
+
+impl SimdLevel {
+    /// The portable loops (always safe).
+    pub const BASELINE: SimdLevel = SimdLevel(Simd::Baseline);
+
+    /// Vouches that the CPU running the steps has `level`'s instructions.
+    ///
+    /// # Safety
+    /// The CPU must have them (x86-64 AVX2 for [`Simd::Avx2`]; the host checks with
+    /// `is_x86_feature_detected!`). A level the target architecture has no loops for runs
+    /// the portable ones.
+    pub const unsafe fn assume(level: Simd) -> SimdLevel {
+        SimdLevel(level)
+    }
+
+    /// The level.
+    pub const fn get(self) -> Simd {
+        self.0
+    }
+
+    /// True when the AVX2 loops may run.
+    #[inline(always)]
+    pub(crate) fn avx2(self) -> bool {
+        cfg!(target_arch = "x86_64") && !cfg!(feature = "f32") && matches!(self.0, Simd::Avx2)
+    }
+}

@@ -1,0 +1,156 @@
+//! The vectorised loops against the portable ones, bit for bit.
+
+extern crate std;
+
+use crate::effects::{EffectSet, Effects};
+use crate::exec::Serial;
+use crate::kernel::Kernel;
+use crate::math::{Real, Vector};
+use crate::neighbors::{build_naive, NeighborList, Periodic};
+use crate::schemes::artificial_stress::ArtificialStress;
+use crate::schemes::common::geometry_pass;
+use crate::simd::{Simd, SimdLevel};
+use crate::state::{PairGeom, SchemeOptions, StepParams};
+use std::vec;
+use std::vec::Vec;
+
+#[derive(Clone, Copy, Debug)]
+struct Hydro;
+impl Effects for Hydro {
+    const STRENGTH: bool = false;
+    const CORRECTION: bool = false;
+    const MUSCL: bool = false;
+    const SET: EffectSet = EffectSet::HYDRO;
+}
+
+/// A small linear congruential generator in [0, 1): the test needs no crate.
+struct Lcg(u64);
+impl Lcg {
+    fn next(&mut self) -> Real {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (self.0 >> 11) as Real / (1u64 << 53) as Real
+    }
+}
+
+/// The pair geometry and artificial-stress factors of `n` jittered particles with
+/// scattered smoothing lengths (some pairs of the lists lie outside the support, some
+/// particles have a partial last group of four) at `simd`.
+fn geometry<const D: usize>(
+    simd: SimdLevel,
+    kernel: Kernel,
+    exponent: Option<u32>,
+    seed: u64,
+) -> (Vec<PairGeom<D>>, Vec<Real>) {
+    const CAP: usize = 96;
+    let side = match D {
+        1 => 40,
+        2 => 9,
+        _ => 4,
+    };
+    let n = (0..D).fold(1, |a, _| a * side);
+    let mut rng = Lcg(seed);
+    let x: Vec<Vector<D>> = (0..n)
+        .map(|i| {
+            let mut c = i;
+            Vector::<D>::from_fn(|_, _| {
+                let k = c % side;
+                c /= side;
+                1e-3 * (k as Real + 0.3 * (rng.next() - 0.5)) - 0.01
+            })
+        })
+        .collect();
+    let h: Vec<Real> = (0..n).map(|_| 1e-3 * (1.0 + 0.6 * rng.next())).collect();
+    let mut storage = vec![0u32; NeighborList::storage_len(n, CAP)];
+    let mut list = NeighborList::new(CAP, n, &mut storage).unwrap();
+    let hmax = h.iter().cloned().fold(0.0, Real::max);
+    build_naive(
+        &x,
+        &Periodic::none(),
+        |_, _| 1.2 * kernel.support() * hmax,
+        &mut list,
+    )
+    .unwrap();
+    let mut options = SchemeOptions::default();
+    let mut effects = EffectSet::HYDRO;
+    if let Some(e) = exponent {
+        options.artificial_stress = ArtificialStress {
+            epsilon: 0.3,
+            exponent: e,
+        };
+        effects = effects.union(EffectSet::ARTIFICIAL_STRESS);
+    }
+    let params = StepParams {
+        dt: 0.0,
+        materials: &[],
+        kernel,
+        h_factor: 1.5,
+        periodic: Periodic::none(),
+        nbrs: list.view(),
+        options,
+        effects,
+        simd,
+    };
+    let pairs = list.view().unordered_pairs();
+    let mut geom = vec![PairGeom::<D>::default(); pairs];
+    let mut fac = vec![0.0; if exponent.is_some() { pairs } else { 0 }];
+    geometry_pass::<D, Hydro, Serial>(&x, &h, &params, &mut geom, &mut fac, &Serial);
+    assert!(
+        geom.iter().any(|g| g.r == 0.0),
+        "some pairs outside the support"
+    );
+    assert!(geom.iter().filter(|g| g.r > 0.0).count() > pairs / 4);
+    (geom, fac)
+}
+
+fn bits<const D: usize>(g: &[PairGeom<D>]) -> Vec<u64> {
+    g.iter()
+        .flat_map(|g| {
+            g.n.iter()
+                .chain([&g.r, &g.dw])
+                .map(|v| v.to_bits())
+                .collect::<Vec<_>>()
+        })
+        .collect()
+}
+
+fn same_geometry<const D: usize>() {
+    if !std::is_x86_feature_detected!("avx2") {
+        std::eprintln!("this CPU has no AVX2: the AVX2 loops are not tested here");
+        return;
+    }
+    // SAFETY: detected just above
+    let avx2 = unsafe { SimdLevel::assume(Simd::Avx2) };
+    for kernel in [Kernel::CubicSpline, Kernel::WendlandC2, Kernel::Gaussian] {
+        for exponent in [None, Some(4), Some(0), Some(3)] {
+            for seed in [1, 2, 3] {
+                let (g0, f0) = geometry::<D>(SimdLevel::BASELINE, kernel, exponent, seed);
+                let (g1, f1) = geometry::<D>(avx2, kernel, exponent, seed);
+                assert_eq!(
+                    bits(&g0),
+                    bits(&g1),
+                    "{kernel} {D}D {exponent:?} seed {seed}"
+                );
+                let fb = |f: &[Real]| f.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+                assert_eq!(fb(&f0), fb(&f1), "{kernel} {D}D {exponent:?} seed {seed}");
+            }
+        }
+    }
+}
+
+#[test]
+fn avx2_pair_geometry_is_bitwise_the_portable_one_1d() {
+    same_geometry::<1>();
+}
+
+#[test]
+fn avx2_pair_geometry_is_bitwise_the_portable_one_2d() {
+    same_geometry::<2>();
+}
+
+#[test]
+fn avx2_pair_geometry_is_bitwise_the_portable_one_3d() {
+    same_geometry::<3>();
+}
