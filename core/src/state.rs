@@ -321,7 +321,11 @@ pub struct Layout {
     pub corr: bool,
     /// [`Workspace::av`].
     pub av: bool,
-    /// [`Workspace::art`] and [`Workspace::fac`] (one per unordered pair).
+    /// [`Workspace::geom`] (one per unordered pair), and [`Workspace::fac`] with `art`: the
+    /// pair geometry stored by the geometry pass. `av` computes it in its one pair loop
+    /// instead.
+    pub geom: bool,
+    /// [`Workspace::art`], and [`Workspace::fac`] (one per unordered pair) with `geom`.
     pub art: bool,
     /// [`Workspace::ts_star`] (one record per unordered pair).
     pub ts_star: bool,
@@ -339,6 +343,7 @@ impl Layout {
             grad_stress: false,
             corr: effects.contains(EffectSet::CORRECTION),
             av: false,
+            geom: true,
             art: effects.contains(EffectSet::ARTIFICIAL_STRESS),
             ts_star: false,
             pm_star: false,
@@ -354,13 +359,13 @@ impl<const D: usize> Workspace<'_, D> {
         let wrong = [
             ("sums", true, self.sums.len(), n),
             ("aux", true, self.aux.len(), n),
-            ("geom", true, self.geom.len(), pairs),
+            ("geom", layout.geom, self.geom.len(), pairs),
             ("grad", layout.grad, self.grad.len(), n),
             ("grad_stress", layout.grad_stress, self.grad_stress.len(), n),
             ("corr", layout.corr, self.corr.len(), n),
             ("av", layout.av, self.av.len(), n),
             ("art", layout.art, self.art.len(), n),
-            ("fac", layout.art, self.fac.len(), pairs),
+            ("fac", layout.art && layout.geom, self.fac.len(), pairs),
             ("ts_star", layout.ts_star, self.ts_star.len(), pairs),
             ("pm_star", layout.pm_star, self.pm_star.len(), pairs),
         ]

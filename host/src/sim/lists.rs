@@ -44,9 +44,11 @@ impl<const D: usize> Sim<D> {
         .map_err(|e| SimError::Neighbors(overflow_by_id(e, &self.ids)))?;
         let pairs = self.lists.unordered_pairs();
         let layout = self.scheme.family().layout(self.effects, &self.options);
-        self.geom.resize(pairs, PairGeom::default());
-        if layout.art {
-            self.fac.resize(pairs, 0.0);
+        if layout.geom {
+            self.geom.resize(pairs, PairGeom::default());
+            if layout.art {
+                self.fac.resize(pairs, 0.0);
+            }
         }
         if layout.ts_star {
             self.ts_star.resize(pairs, TsStar::default());

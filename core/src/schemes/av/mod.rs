@@ -63,6 +63,8 @@ impl SchemeFamily for Av {
     fn layout(effects: EffectSet, _options: &SchemeOptions) -> Layout {
         Layout {
             av: true,
+            // the pair loop computes the geometry (`pairs.rs`)
+            geom: false,
             ..Layout::base(effects)
         }
     }
