@@ -4,12 +4,20 @@
 # 2025 update 4): one thread each, one markdown table side by side, written with the machine
 # and package versions to out/peers/peers.md (rows kept as JSON in out/peers/dx_DX/rows/).
 #
-#   scripts/peers.sh [--quick] [--only pysph|lammps|gsph] [--resolution 1e-3|5e-4|2.5e-4]
+#   scripts/peers.sh [--quick] [--rounds N] [--only pysph|lammps|gsph[,...]]
+#                    [--resolution 1e-3|5e-4|2.5e-4]
 #
-# --quick: the 1,000-step timing runs only (no full runs to 5e-5 s); the accuracy columns
-#          keep the numbers of the last full run at the same resolution, if any.
-# --only:  run one code; the table still shows the rows earlier runs left for the others
-#          at the same resolution (delete out/peers/dx_DX/rows/ to start afresh).
+# --quick:  the 1,000-step timing runs only (no full runs to 5e-5 s); the accuracy columns
+#           keep the numbers of the last full run at the same resolution, if any.
+# --rounds: N interleaved timing rounds (default 3): each round runs every code and variant
+#           once, in the same order, so a slow spell of a shared machine falls on all of
+#           them. The table gives each row's per-round values and their median; the speed
+#           ratios are medians of the per-round ratios. The full runs are made once.
+# --only:   run these codes (comma-separated); the table still shows the rows earlier runs
+#           left for the others at the same resolution (delete out/peers/dx_DX/rows/ to
+#           start afresh). Ratios across codes are per round only when they ran together.
+# gsph runs the schemes av pm ts1 ts2 tkc at the best SIMD level of the CPU, and av once
+# more at the baseline level (GSPH_SCHEMES overrides: entries SCHEME or SCHEME@LEVEL).
 # Default resolution 5e-4 (17,592 particles). Each peer/variant runs twice: 1,000 steps with
 # no output, timed by the code's own clock over the stepping only (LAMMPS "Loop time",
 # PySPH "Run took"), and the full 5,000 steps (dt = 1e-8 s) with particle dumps at 1e-5 and
@@ -34,12 +42,15 @@ OUT=$ROOT/out/peers
 
 QUICK=0
 ONLY=all
+ROUNDS=3
 DX=5e-4
 while [[ $# -gt 0 ]]; do
   case $1 in
     --quick) QUICK=1 ;;
     --only) ONLY=${2:?--only needs pysph, lammps or gsph}; shift ;;
     --only=*) ONLY=${1#--only=} ;;
+    --rounds) ROUNDS=${2:?--rounds needs a number}; shift ;;
+    --rounds=*) ROUNDS=${1#--rounds=} ;;
     --resolution) DX=${2:?--resolution needs 1e-3, 5e-4 or 2.5e-4}; shift ;;
     --resolution=*) DX=${1#--resolution=} ;;
     -h|--help) sed -n '2,/^set -euo/{/^#/s/^# \{0,1\}//p}' "$0"; exit 0 ;;
@@ -47,7 +58,11 @@ while [[ $# -gt 0 ]]; do
   esac
   shift
 done
-case $ONLY in all|pysph|lammps|gsph) ;; *) echo "peers: --only pysph|lammps|gsph" >&2; exit 2 ;; esac
+for o in ${ONLY//,/ }; do
+  case $o in all|pysph|lammps|gsph) ;; *) echo "peers: --only pysph|lammps|gsph[,...] (got $o)" >&2; exit 2 ;; esac
+done
+wants() { [[ $ONLY == all || ,$ONLY, == *",$1,"* ]]; }
+[[ $ROUNDS =~ ^[1-9][0-9]*$ ]] || { echo "peers: --rounds needs a positive integer (got $ROUNDS)" >&2; exit 2; }
 case $DX in 1e-3|5e-4|2.5e-4) ;; *) echo "peers: --resolution 1e-3|5e-4|2.5e-4" >&2; exit 2 ;; esac
 
 RUN_DIR=$OUT/dx_$DX
@@ -64,7 +79,7 @@ elapsed() { awk -v a="$1" -v b="$(now)" 'BEGIN { printf "%.1f", b - a }'; }
 # fresh DIR: clears DIR's timing run, and its full run unless --quick (which keeps the
 # accuracy numbers of the last full run at this resolution for the row)
 fresh() {
-  rm -rf "$1/timing" "$1/timing.log" "$1/timing.json"
+  rm -rf "$1/timing" "$1/timing.log" "$1/timing.json" "$1/us_rounds" "$1/wall_timing"
   [[ $QUICK -eq 1 ]] || rm -rf "$1/full" "$1/full.log" "$1/measure.json" "$1/wall_full"
   mkdir -p "$1"
 }
@@ -139,16 +154,25 @@ EOF
 }
 
 # ---------------------------------------------------------------------------- PySPH
-run_pysph() {
-  local dir=$RUN_DIR/pysph t0 wt wf="" more
-  fresh "$dir"
-  log "PySPH: timing run, $STEPS_TIMED steps, dx = $DX (the first run compiles the kernels)"
+# Each code has three steps: prep_X (a fresh folder), time_X ROUND (one timing run; its
+# µs/particle-step appended to DIR/us_rounds) and finish_X (the full run unless --quick,
+# then the row).
+prep_pysph() { fresh "$RUN_DIR/pysph"; }
+time_pysph() {
+  local dir=$RUN_DIR/pysph t0 wt
+  log "PySPH: timing run, round $1, $STEPS_TIMED steps, dx = $DX (the first run compiles the kernels)"
   t0=$(now)
+  rm -rf "$dir/timing"
   "$PY" "$HERE/pysph_rings.py" --dx "$DX" -d "$dir/timing" --disable-output \
     --max-steps "$STEPS_TIMED" >"$dir/timing.log" 2>&1
   wt=$(elapsed "$t0")
+  echo "$wt" >"$dir/wall_timing"
   "$PY" "$HERE/metrics.py" timing pysph "$dir/timing.log" --steps "$STEPS_TIMED" -o "$dir/timing.json"
-  local args=(--timing "$dir/timing.json" --wall-timing "$wt")
+  "$PY" "$HERE/metrics.py" us "$dir/timing.json" --steps "$STEPS_TIMED" >>"$dir/us_rounds"
+}
+finish_pysph() {
+  local dir=$RUN_DIR/pysph t0 wf="" more
+  local args=(--timing "$dir/timing.json" --wall-timing "$(cat "$dir/wall_timing")" --us-rounds "$dir/us_rounds")
   if [[ $QUICK -eq 0 ]]; then
     log "PySPH: full run to 5e-5 s"
     t0=$(now)
@@ -160,23 +184,35 @@ run_pysph() {
   mapfile -t more < <(earlier_full "$dir")
   args+=("${more[@]}")
   "$PY" "$HERE/metrics.py" row --peer --name "PySPH 1.0b2 (AS)" "${args[@]}" -o "$ROWS/10-pysph.json"
-  log "PySPH done (timing $wt s${wf:+, full $wf s})"
+  log "PySPH done (rounds: $(awk '{printf "%s%.3f", NR > 1 ? " " : "", $1}' "$dir/us_rounds") µs${wf:+, full $wf s})"
 }
 
 # ---------------------------------------------------------------------------- LAMMPS
-# run_lammps as|noas
-run_lammps() {
-  local variant=$1 dir=$RUN_DIR/lammps_$1 t0 wt wf="" flag=() name more
-  if [[ $variant == as ]]; then name="LAMMPS SMD ulsph (AS)"; else
-    name="LAMMPS SMD ulsph (no AS)"; flag=(--no-artificial-stress); fi
-  fresh "$dir"
-  log "$name: timing run, $STEPS_TIMED steps, dx = $DX"
+# lammps_name as|noas
+lammps_name() {
+  if [[ $1 == as ]]; then echo "LAMMPS SMD ulsph (AS)"; else echo "LAMMPS SMD ulsph (no AS)"; fi
+}
+lammps_flag() { [[ $1 == as ]] || echo --no-artificial-stress; }
+prep_lammps() { fresh "$RUN_DIR/lammps_$1"; }
+# time_lammps as|noas ROUND
+time_lammps() {
+  local variant=$1 dir=$RUN_DIR/lammps_$1 t0 wt flag=()
+  mapfile -t flag < <(lammps_flag "$variant")
+  log "$(lammps_name "$variant"): timing run, round $2, $STEPS_TIMED steps, dx = $DX"
+  rm -rf "$dir/timing"
   "$PY" "$HERE/lammps_rings.py" --dx "$DX" --dir "$dir/timing" --steps "$STEPS_TIMED" "${flag[@]}"
   t0=$(now)
   (cd "$dir/timing" && "$LMP" -in in.rings -log log.lammps -screen none >stdout.txt 2>&1)
   wt=$(elapsed "$t0")
+  echo "$wt" >"$dir/wall_timing"
   "$PY" "$HERE/metrics.py" timing lammps "$dir/timing/log.lammps" -o "$dir/timing.json"
-  local args=(--timing "$dir/timing.json" --wall-timing "$wt")
+  "$PY" "$HERE/metrics.py" us "$dir/timing.json" >>"$dir/us_rounds"
+}
+finish_lammps() {
+  local variant=$1 dir=$RUN_DIR/lammps_$1 t0 wf="" flag=() name more
+  name=$(lammps_name "$variant")
+  mapfile -t flag < <(lammps_flag "$variant")
+  local args=(--timing "$dir/timing.json" --wall-timing "$(cat "$dir/wall_timing")" --us-rounds "$dir/us_rounds")
   if [[ $QUICK -eq 0 ]]; then
     log "$name: full run to 5e-5 s"
     "$PY" "$HERE/lammps_rings.py" --dx "$DX" --dir "$dir/full" --dump-every 1000 "${flag[@]}"
@@ -190,15 +226,16 @@ run_lammps() {
   args+=("${more[@]}")
   "$PY" "$HERE/metrics.py" row --peer --name "$name" "${args[@]}" \
     -o "$ROWS/$([[ $variant == as ]] && echo 20 || echo 21)-lammps-$variant.json"
-  log "$name done (timing $wt s${wf:+, full $wf s})"
+  log "$name done (rounds: $(awk '{printf "%s%.3f", NR > 1 ? " " : "", $1}' "$dir/us_rounds") µs${wf:+, full $wf s})"
 }
 
 # ---------------------------------------------------------------------------- gsph
-# run_gsph SCHEME: gsph's SCHEME on cases/rings.toml at this resolution, one thread. The
-# timing run is 1,000 steps without snapshots or monitor, timed by gsph's own clock over the stepping
-# (summary.json wall_s); the full run writes snapshots every 1e-5 s for the metrics. The
-# release binary is built first if missing (GSPH overrides the binary).
-GSPH_SCHEMES=(av pm ts1 ts2 tkc)
+# gsph's SCHEME[@LEVEL] on cases/rings.toml at this resolution, one thread. The timing run
+# is 1,000 steps without snapshots or monitor, timed by gsph's own clock over the stepping
+# (summary.json wall_s); the full run (at the best level only: results are bitwise the
+# same at every level) writes snapshots every 1e-5 s for the metrics. The release binary
+# is built first if missing (GSPH overrides the binary).
+read -r -a GSPH_SCHEMES <<<"${GSPH_SCHEMES:-av pm ts1 ts2 tkc av@baseline}"
 GSPH=${GSPH:-$ROOT/target/release/gsph}
 gsph_binary() {
   if [[ ! -x $GSPH ]]; then
@@ -206,40 +243,61 @@ gsph_binary() {
     cargo build --release -q -p gsph
   fi
 }
-run_gsph() {
-  local scheme=$1 dir=$RUN_DIR/gsph_$1 t0 wt wf="" more scale
+gsph_dir() { echo "$RUN_DIR/gsph_${1/@/_}"; }
+gsph_set() {
+  local scheme=${1%@*} scale
   scale=$(awk -v d="$DX" 'BEGIN { printf "%.6g", 5e-4 / d }')
-  local set=(--set "scheme=$scheme" --set "resolution_scale=$scale" --threads 1 --quiet)
-  fresh "$dir"
-  log "gsph $scheme: timing run, $STEPS_TIMED steps, dx = $DX"
+  printf '%s\n' --set "scheme=$scheme" --set "resolution_scale=$scale" --threads 1 --quiet
+  if [[ $1 == *@* ]]; then printf '%s\n' --simd "${1#*@}"; fi
+}
+prep_gsph() { fresh "$(gsph_dir "$1")"; }
+time_gsph() {
+  local dir t0 wt set=()
+  dir=$(gsph_dir "$1")
+  mapfile -t set < <(gsph_set "$1")
+  log "gsph $1: timing run, round $2, $STEPS_TIMED steps, dx = $DX"
+  rm -rf "$dir/timing"
   t0=$(now)
   "$GSPH" run "$ROOT/cases/rings.toml" "${set[@]}" --set "max_steps=$STEPS_TIMED" \
     --set output.snapshots=1 --unset monitor --out "$dir/timing" >"$dir/timing.log" 2>&1
   wt=$(elapsed "$t0")
-  local us n steps
-  read -r us n steps < <("$PY" -c '
+  echo "$wt" >"$dir/wall_timing"
+  "$PY" -c '
 import json, sys
 d = json.load(open(sys.argv[1]))
-print(d["wall_s"] / d["particles"] / d["steps"] * 1e6, d["particles"], d["steps"])
+print(d["wall_s"] / d["particles"] / d["steps"] * 1e6)
+' "$dir/timing/summary.json" >>"$dir/us_rounds"
+}
+finish_gsph() {
+  local entry=$1 dir t0 wf="" more set=() n steps level
+  dir=$(gsph_dir "$entry")
+  mapfile -t set < <(gsph_set "$entry")
+  read -r n steps level < <("$PY" -c '
+import json, sys
+d = json.load(open(sys.argv[1]))
+print(d["particles"], d["steps"], d.get("simd", "baseline"))
 ' "$dir/timing/summary.json")
-  local args=(--us-per-step "$us" --particles "$n" --steps "$steps" --wall-timing "$wt")
-  if [[ $QUICK -eq 0 ]]; then
-    log "gsph $scheme: full run to 5e-5 s"
+  local args=(--particles "$n" --steps "$steps" --wall-timing "$(cat "$dir/wall_timing")"
+    --us-rounds "$dir/us_rounds")
+  if [[ $QUICK -eq 0 && $entry != *@* ]]; then
+    log "gsph $entry: full run to 5e-5 s"
     t0=$(now)
     "$GSPH" run "$ROOT/cases/rings.toml" "${set[@]}" --out "$dir/full" >"$dir/full.log" 2>&1
     wf=$(elapsed "$t0")
     echo "$wf" >"$dir/wall_full"
     "$PY" "$HERE/metrics.py" measure gsph "$dir/full/snapshots.h5" --dx "$DX" -o "$dir/measure.json"
     "$GSPH" plot particles "$dir/full" --field sigma_xx --time 5e-5 --range=-4e5,4e5 \
-      --out "$RUN_DIR/gsph_$scheme.png" >/dev/null
+      --out "$RUN_DIR/gsph_$entry.png" >/dev/null
   fi
   mapfile -t more < <(earlier_full "$dir")
   args+=("${more[@]}")
   local order  # rows sort by file name: gsph's in the order of GSPH_SCHEMES, from 30
-  for order in "${!GSPH_SCHEMES[@]}"; do [[ ${GSPH_SCHEMES[$order]} == "$scheme" ]] && break; done
-  "$PY" "$HERE/metrics.py" row --name "gsph $scheme (AS)" "${args[@]}" \
-    -o "$ROWS/$((30 + order))-gsph-$scheme.json"
-  log "gsph $scheme done (timing $wt s${wf:+, full $wf s})"
+  for order in "${!GSPH_SCHEMES[@]}"; do [[ ${GSPH_SCHEMES[$order]} == "$entry" ]] && break; done
+  local base=()
+  [[ $entry == av ]] && base=(--base)
+  "$PY" "$HERE/metrics.py" row --name "gsph ${entry%@*} (AS, $level)" "${base[@]}" "${args[@]}" \
+    -o "$ROWS/$((30 + order))-gsph-${entry/@/_}.json"
+  log "gsph $entry done (rounds: $(awk '{printf "%s%.3f", NR > 1 ? " " : "", $1}' "$dir/us_rounds") µs${wf:+, full $wf s})"
 }
 
 # ---------------------------------------------------------------------------- report
@@ -278,6 +336,14 @@ Jaumann rate, h = 1.5 dx constant, m = rho0 dx^2, u = +-0.059 c0, fixed dt = 1e-
 EOF
 )
 
+# the vector extensions the CPU reports (x86: /proc/cpuinfo flags)
+simd_flags() {
+  local f
+  f=$(grep -m1 '^flags' /proc/cpuinfo 2>/dev/null | tr ' ' '\n' \
+    | grep -E '^(sse2|sse4_2|avx|avx2|fma|avx512f|avx512vl|avx512bw|avx512dq)$' | paste -sd' ' || true)
+  echo "${f:-unknown}"
+}
+
 report() {
   local rows=("$ROWS"/*.json) md=$OUT/peers.md cpu
   [[ -e ${rows[0]} ]] || { log "no rows yet"; return 0; }
@@ -291,8 +357,9 @@ report() {
     echo "- date: $(date -u)"
     echo "- machine: $(uname -a)"
     echo "- CPU: ${cpu:-unknown}, $(getconf _NPROCESSORS_ONLN) cores; load average at the start: ${LOAD0}"
+    echo "- SIMD flags: $(simd_flags)"
     echo "- versions: $(versions)"
-    echo "- resolution dx = $DX m; timing: $STEPS_TIMED steps, one thread, one MPI rank"
+    echo "- resolution dx = $DX m; timing: $STEPS_TIMED steps, one thread, one MPI rank, $ROUNDS interleaved rounds (order: ${RUNS[*]})"
     echo
     echo "$table"
     echo
@@ -303,10 +370,17 @@ report() {
 
 LOAD0=$(cut -d' ' -f1-3 /proc/loadavg)
 setup
-if [[ $ONLY == all || $ONLY == pysph ]]; then run_pysph; fi
-if [[ $ONLY == all || $ONLY == lammps ]]; then run_lammps as; run_lammps noas; fi
-if [[ $ONLY == all || $ONLY == gsph ]]; then
+# every code and variant, in the order each round runs them
+RUNS=()
+if wants pysph; then RUNS+=(pysph); fi
+if wants lammps; then RUNS+=("lammps as" "lammps noas"); fi
+if wants gsph; then
   gsph_binary
-  for s in "${GSPH_SCHEMES[@]}"; do run_gsph "$s"; done
+  for s in "${GSPH_SCHEMES[@]}"; do RUNS+=("gsph $s"); done
 fi
+for r in "${RUNS[@]}"; do read -r code arg <<<"$r"; "prep_$code" $arg; done
+for ((round = 1; round <= ROUNDS; round++)); do
+  for r in "${RUNS[@]}"; do read -r code arg <<<"$r"; "time_$code" $arg $round; done
+done
+for r in "${RUNS[@]}"; do read -r code arg <<<"$r"; "finish_$code" $arg; done
 report

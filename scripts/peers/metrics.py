@@ -278,7 +278,8 @@ COLUMNS = [
     ("code / variant", "name", None),
     ("particles", "particles", "d"),
     ("steps timed", "steps", "d"),
-    ("µs / particle-step (1 thread)", "us", ".3f"),
+    ("µs / particle-step (1 thread, median of rounds)", "us", ".3f"),
+    ("rounds", "us_rounds", "rounds"),
     ("KE/KE0 @1e-5", "ke@1e-05", ".4f"),
     ("KE/KE0 @5e-5", "ke@5e-05", ".4f"),
     ("vx_L/u0 @1e-5", "vxl@1e-05", ".4f"),
@@ -289,8 +290,20 @@ COLUMNS = [
 ]
 
 
+def us_of(timing, steps=None):
+    """µs per particle-step of one timing run (a `timing` result)."""
+    steps = timing.get("steps") or steps
+    return 1e6 * timing["loop_s"] / (steps * timing["particles"])
+
+
+def median(v):
+    v = sorted(v)
+    n = len(v)
+    return v[n // 2] if n % 2 else 0.5 * (v[n // 2 - 1] + v[n // 2])
+
+
 def make_row(name, timing=None, measure=None, us=None, particles=None, steps=None,
-             wall_timing=None, wall_full=None, peer=False, note=None):
+             wall_timing=None, wall_full=None, peer=False, note=None, us_rounds=None):
     row = {"name": name, "peer": peer, "note": note, "wall_timing_s": wall_timing,
            "wall_full_s": wall_full}
     if measure:
@@ -307,6 +320,9 @@ def make_row(name, timing=None, measure=None, us=None, particles=None, steps=Non
         row["particles"] = particles
     if steps is not None:
         row["steps"] = steps
+    if us_rounds:
+        row["us_rounds"] = us_rounds
+        row["us"] = median(us_rounds)
     return row
 
 
@@ -317,6 +333,8 @@ def fmt(v, spec):
         return str(v)
     if spec == "d":
         return "{:,}".format(int(v))
+    if spec == "rounds":
+        return ", ".join("%.3f" % x for x in v)
     return format(v, spec)
 
 
@@ -329,14 +347,25 @@ def table(rows):
     timed = [r for r in rows if r.get("us")]
     if peers and timed:
         out.append("")
-        out.append("Speed ratios: each row's µs/particle-step over each peer's (< 1: faster than "
-                   "that peer).")
+        out.append("Speed ratios: each row's µs/particle-step over each peer's, the median of the "
+                   "per-round ratios where both ran in the same rounds (< 1: faster than that "
+                   "peer).")
         out.append("")
         out.append("| code / variant | " + " | ".join("/ " + p["name"] for p in peers) + " |")
         out.append("|---|" + "---:|" * len(peers))
         for r in timed:
             out.append("| %s | %s |" % (r["name"], " | ".join(
-                "%.3f" % (r["us"] / p["us"]) for p in peers)))
+                "%.3f" % ratio(r, p) for p in peers)))
+    base = [r for r in rows if r.get("us") and r.get("base")]
+    if base and timed:
+        b = base[0]
+        out.append("")
+        out.append("Over %s (median of per-round ratios; its inverse in brackets):" % b["name"])
+        out.append("")
+        for r in timed:
+            if r is not b:
+                q = ratio(r, b)
+                out.append("- %s: %.3f (%.2f)" % (r["name"], q, 1.0 / q))
     walls = [r for r in rows if r.get("wall_timing_s") or r.get("wall_full_s")]
     if walls:
         out.append("")
@@ -352,6 +381,15 @@ def table(rows):
         for r in notes:
             out.append("- %s: %s" % (r["name"], r["note"]))
     return "\n".join(out)
+
+
+def ratio(a, b):
+    """The median over rounds of a's µs over b's, round by round where both have the same
+    number of rounds; else the ratio of the medians."""
+    ra, rb = a.get("us_rounds"), b.get("us_rounds")
+    if ra and rb and len(ra) == len(rb):
+        return median([x / y for x, y in zip(ra, rb)])
+    return a["us"] / b["us"]
 
 
 def fmt_s(v):
@@ -400,7 +438,13 @@ def main(argv=None):
     r.add_argument("--wall-full", type=float)
     r.add_argument("--peer", action="store_true")
     r.add_argument("--note")
+    r.add_argument("--base", action="store_true",
+                   help="the row the others are compared with (gsph av)")
+    r.add_argument("--us-rounds", help="file with one µs/particle-step per round")
     r.add_argument("-o", "--out")
+    u = sub.add_parser("us", help="µs per particle-step of a timing result")
+    u.add_argument("timing")
+    u.add_argument("--steps", type=int)
     tb = sub.add_parser("table")
     tb.add_argument("rows", nargs="*")
     a = ap.parse_args(argv)
@@ -411,9 +455,17 @@ def main(argv=None):
         res = timing_lammps(a.log) if a.format == "lammps" else timing_pysph(a.log, a.steps)
         _dump(res, a.out)
     elif a.cmd == "row":
-        _dump(make_row(a.name, _load(a.timing), _load(a.measure), a.us_per_step,
-                       a.particles, a.steps, a.wall_timing, a.wall_full, a.peer, a.note),
-              a.out)
+        rounds = None
+        if a.us_rounds:
+            rounds = [float(x) for x in open(a.us_rounds).read().split()]
+        row = make_row(a.name, _load(a.timing), _load(a.measure), a.us_per_step,
+                       a.particles, a.steps, a.wall_timing, a.wall_full, a.peer, a.note,
+                       rounds)
+        if a.base:
+            row["base"] = True
+        _dump(row, a.out)
+    elif a.cmd == "us":
+        print("%.6f" % us_of(_load(a.timing), a.steps))
     elif a.cmd == "table":
         print(table([_load(p) for p in a.rows]))
     return 0
