@@ -18,7 +18,7 @@
 //! and Wendland C2 kernels, non-periodic runs), `avx2.rs`. (`av`, with one pair loop,
 //! computes the geometry in that loop.)
 //! A vectorised `av` pair loop that filled its lanes from the per-particle arrays (about
-//! twenty scalar loads per neighbour) was bitwise right but 25 % slower than the portable
+//! twenty scalar loads per neighbour) was bitwise right but 27 % slower than the portable
 //! loop on the colliding rings: the loop is bound by those scattered loads, not by its
 //! arithmetic, so it waits for a compact neighbour record (docs/performance.md).
 
