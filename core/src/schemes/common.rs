@@ -4,9 +4,10 @@
 use crate::effects::{EffectSet, Effects};
 use crate::exec::{Executor, Rows, Split};
 use crate::halo::{Exchange, GhostWorkspace, Halo};
+use crate::kernel::Kernel;
 use crate::material::{strength, Material, Strength};
 use crate::math::{real, Matrix, Real, Sym3, Vector};
-use crate::neighbors::Entry;
+use crate::neighbors::{Entry, Periodic};
 use crate::state::{smoothing_length, Aux, Correction, Gradients, PairGeom, StepParams, System};
 
 /// Calls the caller's halo hook with `x` when the step of a run with `effects` makes it
@@ -79,22 +80,13 @@ pub(crate) fn geometry_pass<const D: usize, E: Effects, X: Executor>(
     exec: &X,
 ) {
     let nb = params.nbrs;
-    let kernel = params.kernel;
-    let support = kernel.support();
-    let asp = params.options.artificial_stress;
-    let (art, periodic) = (
-        params.has::<E>(EffectSet::ARTIFICIAL_STRESS),
-        params.has::<E>(EffectSet::PERIODIC),
-    );
-    let inv_wref = if art {
-        super::artificial_stress::inverse_reference::<D>(kernel, params.h_factor)
-    } else {
-        0.0
-    };
+    let pg = PairGeometry::new::<E>(params);
+    let (kernel, art) = (pg.kernel, pg.art);
     // the vectorised loop: AVX2 where the CPU has it, for the polynomial kernels, without
     // periodic images (`crate::simd`)
     #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
-    let vector = params.simd.avx2() && !periodic && crate::simd::avx2::has_geometry(kernel);
+    let vector =
+        params.simd.avx2() && pg.periodic.is_none() && crate::simd::avx2::has_geometry(kernel);
     exec.run(
         (
             Rows {
@@ -110,7 +102,7 @@ pub(crate) fn geometry_pass<const D: usize, E: Effects, X: Executor>(
             for k in 0..gs.len() {
                 let i = off + k;
                 let (xi, hi) = (x[i], h[i]);
-                let fk: &mut [Real] = if art { fs.of(k) } else { &mut [] };
+                let fk: &mut [Real] = if art.is_some() { fs.of(k) } else { &mut [] };
                 let (gk, owned) = (gs.of(k), nb.owned(i));
                 // the vectorised loop does whole groups of four; this loop the rest
                 let mut done = 0;
@@ -121,52 +113,138 @@ pub(crate) fn geometry_pass<const D: usize, E: Effects, X: Executor>(
                     // (the lists were built over them) and `gk`, `fk` are as long as `owned`
                     done = unsafe {
                         crate::simd::avx2::geometry_row::<D>(
-                            kernel,
-                            &xi,
-                            hi,
-                            x,
-                            h,
-                            owned,
-                            gk,
-                            fk,
-                            art.then_some((inv_wref, asp.exponent)),
+                            kernel, &xi, hi, x, h, owned, gk, fk, art,
                         )
                     };
                 }
                 for (q, (g, &j)) in gk.iter_mut().zip(owned).enumerate().skip(done) {
-                    let j = j as usize;
-                    let mut rij = xi - x[j];
-                    if periodic {
-                        rij = params.periodic.min_image(rij);
-                    }
-                    let r2 = rij.norm_squared();
-                    let hij = 0.5 * (hi + h[j]);
-                    let rmax = support * hij;
-                    let (geo, f) = if r2 < rmax * rmax && r2 > 0.0 {
-                        let r = real::sqrt(r2);
-                        let (shape, dw) = kernel.shape_dw::<D>(r, hij);
-                        let geo = PairGeom {
-                            n: rij * (-1.0 / r),
-                            r,
-                            dw,
-                        };
-                        let f = if art {
-                            real::powi(shape * inv_wref, asp.exponent)
-                        } else {
-                            0.0
-                        };
-                        (geo, f)
-                    } else {
-                        (PairGeom::default(), 0.0)
-                    };
+                    let (geo, f) = pg.of(&xi, hi, &x[j as usize], h[j as usize]);
                     *g = geo;
-                    if art {
+                    if art.is_some() {
                         fk[q] = f;
                     }
                 }
             }
         },
     );
+}
+
+/// The constants of a pair's geometry, and the geometry itself ([`PairGeometry::of`]): one
+/// piece of code for the pass that stores it ([`geometry_pass`]) and the loop that
+/// computes it in place (`av`).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PairGeometry<const D: usize> {
+    pub kernel: Kernel,
+    support: Real,
+    /// The periodic box with the effect `periodic`.
+    pub periodic: Option<Periodic<D>>,
+    /// `(1/W_ref shape, n)` with the effect `artificial_stress`.
+    pub art: Option<(Real, u32)>,
+}
+
+impl<const D: usize> PairGeometry<D> {
+    pub fn new<E: Effects>(params: &StepParams<'_, D>) -> Self {
+        let kernel = params.kernel;
+        let art = params.has::<E>(EffectSet::ARTIFICIAL_STRESS).then(|| {
+            (
+                super::artificial_stress::inverse_reference::<D>(kernel, params.h_factor),
+                params.options.artificial_stress.exponent,
+            )
+        });
+        PairGeometry {
+            kernel,
+            support: kernel.support(),
+            periodic: params
+                .has::<E>(EffectSet::PERIODIC)
+                .then_some(params.periodic),
+            art,
+        }
+    }
+
+    /// The geometry of the pair (i, j) from i's side (`n` from i to j) and its
+    /// artificial-stress factor (0 without); zero outside the kernel support. Bitwise the
+    /// same from either side but for the sign of `n`: `x_i - x_j = -(x_j - x_i)` and
+    /// `h_i + h_j = h_j + h_i` exactly.
+    #[inline(always)]
+    pub fn of(&self, xi: &Vector<D>, hi: Real, xj: &Vector<D>, hj: Real) -> (PairGeom<D>, Real) {
+        match self.inside(xi, hi, xj, hj) {
+            Some((n, r, dw, f)) => (PairGeom { n, r, dw }, f),
+            None => (PairGeom::default(), 0.0),
+        }
+    }
+
+    /// `(n, r, dW/dr, factor)` of [`PairGeometry::of`] inside the kernel support.
+    #[inline(always)]
+    fn inside(
+        &self,
+        xi: &Vector<D>,
+        hi: Real,
+        xj: &Vector<D>,
+        hj: Real,
+    ) -> Option<(Vector<D>, Real, Real, Real)> {
+        let mut rij = xi - xj;
+        if let Some(p) = &self.periodic {
+            rij = p.min_image(rij);
+        }
+        let r2 = rij.norm_squared();
+        let hij = 0.5 * (hi + hj);
+        let rmax = self.support * hij;
+        if r2 < rmax * rmax && r2 > 0.0 {
+            let r = real::sqrt(r2);
+            let (shape, dw) = self.kernel.shape_dw::<D>(r, hij);
+            let f = match self.art {
+                Some((inv_wref, exponent)) => real::powi(shape * inv_wref, exponent),
+                None => 0.0,
+            };
+            Some((rij * (-1.0 / r), r, dw, f))
+        } else {
+            None
+        }
+    }
+
+    /// The pair (i, j) seen from i, as [`for_each_pair`] hands over the stored geometry of
+    /// [`geometry_pass`] (bitwise), and its artificial-stress factor: computed here.
+    #[inline(always)]
+    pub fn seen_from_i(
+        &self,
+        x: &[Vector<D>],
+        h: &[Real],
+        xi: &Vector<D>,
+        hi: Real,
+        e: Entry,
+    ) -> (Pair<D>, Real) {
+        let j = e.j;
+        match self.inside(xi, hi, &x[j], h[j]) {
+            // i's own side: the owner's n, negated where i does not own the pair, as
+            // `seen_from` gives the stored one
+            Some((n, r, dw, f)) => (
+                Pair {
+                    j,
+                    r,
+                    n,
+                    dw,
+                    grad: n * (-dw),
+                },
+                f,
+            ),
+            None => {
+                // the stored zero geometry as `seen_from` gives it: n = -0 on the side
+                // that does not own the pair
+                let z = Vector::<D>::zeros();
+                let n = if e.owner { z } else { -z };
+                (
+                    Pair {
+                        j,
+                        r: 0.0,
+                        n,
+                        dw: 0.0,
+                        grad: n * (-0.0),
+                    },
+                    0.0,
+                )
+            }
+        }
+    }
 }
 
 /// The pair seen from `i` from its cached geometry. A pair outside the support has zero

@@ -2,111 +2,17 @@
 
 use crate::effects::{EffectSet, Effects};
 use crate::exec::Executor;
-use crate::kernel::Kernel;
-use crate::math::real;
 use crate::math::{Matrix, Real, Sym3, Vector};
-use crate::neighbors::Entry;
 use crate::schemes::artificial_stress::pair_acceleration;
-use crate::schemes::common::Pair;
 use crate::schemes::common::{
     artificial_stress_tensors, cauchy, deviator_rate, equivalent_strain_rate, outer, refresh_aux,
 };
+use crate::schemes::common::{Pair, PairGeometry};
 use crate::state::{Aux, AvRates, StepParams, System, Workspace};
-
-/// The pair geometry computed in the pair loop. `av` has one pair loop, so storing each
-/// pair's geometry (40 bytes) in a pass of its own and reading it back from both sides
-/// cost more than computing it on each side (issue 28: the rings' step 17 % faster, 1,336
-/// → 669 bytes per particle). It is bitwise the geometry pass's: `x_i - x_j = -(x_j - x_i)`
-/// and `h_i + h_j = h_j + h_i` exactly, so either side computes the owner's `r`, `dW/dr`
-/// and factor and the negated `n`.
-struct FusedGeometry<const D: usize> {
-    kernel: Kernel,
-    support: Real,
-    periodic: Option<crate::neighbors::Periodic<D>>,
-    /// `(1/W_ref shape, n)` with artificial stress.
-    art: Option<(Real, u32)>,
-}
-
-impl<const D: usize> FusedGeometry<D> {
-    fn new<E: Effects>(params: &StepParams<'_, D>) -> Self {
-        let art = params.has::<E>(EffectSet::ARTIFICIAL_STRESS).then(|| {
-            (
-                crate::schemes::artificial_stress::inverse_reference::<D>(
-                    params.kernel,
-                    params.h_factor,
-                ),
-                params.options.artificial_stress.exponent,
-            )
-        });
-        FusedGeometry {
-            kernel: params.kernel,
-            support: params.kernel.support(),
-            periodic: params
-                .has::<E>(EffectSet::PERIODIC)
-                .then_some(params.periodic),
-            art,
-        }
-    }
-
-    /// The pair (i, j) seen from i and its artificial-stress factor, exactly as
-    /// `geometry_pass` and `for_each_pair` give them (zero geometry outside the support).
-    #[inline(always)]
-    fn pair(
-        &self,
-        x: &[Vector<D>],
-        h: &[Real],
-        xi: &Vector<D>,
-        hi: Real,
-        e: Entry,
-    ) -> (Pair<D>, Real) {
-        let j = e.j;
-        let mut rij = xi - x[j];
-        if let Some(p) = &self.periodic {
-            rij = p.min_image(rij);
-        }
-        let r2 = rij.norm_squared();
-        let hij = 0.5 * (hi + h[j]);
-        let rmax = self.support * hij;
-        if r2 < rmax * rmax && r2 > 0.0 {
-            let r = real::sqrt(r2);
-            let (shape, dw) = self.kernel.shape_dw::<D>(r, hij);
-            let n = rij * (-1.0 / r);
-            let f = match self.art {
-                Some((inv_wref, exponent)) => real::powi(shape * inv_wref, exponent),
-                None => 0.0,
-            };
-            (
-                Pair {
-                    j,
-                    r,
-                    n,
-                    dw,
-                    grad: n * (-dw),
-                },
-                f,
-            )
-        } else {
-            // the stored zero geometry as `for_each_pair` hands it over: n = -0 on the side
-            // that does not own the pair
-            let z = Vector::<D>::zeros();
-            let n = if e.owner { z } else { -z };
-            (
-                Pair {
-                    j,
-                    r: 0.0,
-                    n,
-                    dw: 0.0,
-                    grad: n * (-0.0),
-                },
-                0.0,
-            )
-        }
-    }
-}
 
 /// Evaluates the rates of every particle at the current state into `ws.av` (the
 /// artificial-stress tensors and per-particle aux of `ws` are its scratch; the pair
-/// geometry is computed in the loop, [`FusedGeometry`]).
+/// geometry is computed in the loop, `PairGeometry::seen_from_i`).
 pub(super) fn rates<const D: usize, E: Effects, X: Executor>(
     sys: &System<'_, D>,
     ws: &mut Workspace<'_, D>,
@@ -122,7 +28,11 @@ pub(super) fn rates<const D: usize, E: Effects, X: Executor>(
     let (art, aux): (&[Matrix<D>], &[Aux]) = (art, aux);
     let alpha = params.options.av_alpha;
     let beta = params.options.av_beta;
-    let fg = FusedGeometry::<D>::new::<E>(params);
+    // the pair geometry computed in this, av's one pair loop: storing it in a pass of its
+    // own (40 bytes per pair) and reading it back from both sides cost more than computing
+    // it on each side (issue 28: rings 1,336 -> 669 bytes per particle, step about 17 %
+    // faster), and the result is bitwise the same (`PairGeometry::seen_from_i`)
+    let pg = PairGeometry::<D>::new::<E>(params);
     exec.run(rates, |off, chunk: &mut [AvRates<D>]| {
         for (k, out) in chunk.iter_mut().enumerate() {
             let i = off + k;
@@ -161,7 +71,7 @@ pub(super) fn rates<const D: usize, E: Effects, X: Executor>(
                 }
             };
             params.nbrs.for_each(i, |e| {
-                let (pr, f_art) = fg.pair(sys.x, sys.h, &xi, hi, e);
+                let (pr, f_art) = pg.seen_from_i(sys.x, sys.h, &xi, hi, e);
                 body(&pr, f_art);
             });
             out.acc = acc;
