@@ -29,6 +29,27 @@ pub const PI: Real = core::f64::consts::PI;
 #[cfg(feature = "f32")]
 pub const PI: Real = core::f32::consts::PI;
 
+/// A small deterministic generator for the tests (no crate needed): a 64-bit linear
+/// congruential generator, the top 53 bits as the fraction.
+#[cfg(test)]
+pub(crate) struct Lcg(pub u64);
+
+#[cfg(test)]
+impl Lcg {
+    /// Uniform in [0, 1).
+    pub fn unit(&mut self) -> Real {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (self.0 >> 11) as Real / (1u64 << 53) as Real
+    }
+    /// Uniform in [-1, 1).
+    pub fn next(&mut self) -> Real {
+        self.unit() * 2.0 - 1.0
+    }
+}
+
 /// Scalar maths for `no_std`: thin wrappers over `libm` (or `micromath`).
 #[allow(missing_docs)]
 pub mod real {

@@ -202,17 +202,7 @@ mod tests {
     fn close(a: Real, b: Real, scale: Real) -> bool {
         (a - b).abs() <= 1e-12 * scale
     }
-    /// A small deterministic generator in [-1, 1).
-    struct Lcg(u64);
-    impl Lcg {
-        fn next(&mut self) -> Real {
-            self.0 = self
-                .0
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((self.0 >> 11) as Real / (1u64 << 53) as Real) * 2.0 - 1.0
-        }
-    }
+    use crate::math::Lcg;
 
     #[test]
     fn symmetric_collision_is_compressive() {

@@ -183,16 +183,7 @@ mod tests {
         let u = 0.5 * (a + b);
         (u, l.p + l.hugoniot(l.u - u))
     }
-    struct Lcg(u64);
-    impl Lcg {
-        fn next(&mut self) -> Real {
-            self.0 = self
-                .0
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((self.0 >> 11) as Real / (1u64 << 53) as Real) * 2.0 - 1.0
-        }
-    }
+    use crate::math::Lcg;
     fn random_pair(g: &mut Lcg) -> (ShockSide, ShockSide) {
         let side = |g: &mut Lcg| ShockSide {
             u: 1500.0 * g.next(),

@@ -5,7 +5,7 @@ extern crate std;
 use crate::effects::{EffectSet, Effects};
 use crate::exec::Serial;
 use crate::kernel::Kernel;
-use crate::math::{Real, Vector};
+use crate::math::{Lcg, Real, Vector};
 use crate::neighbors::{build_naive, NeighborList, Periodic};
 use crate::schemes::artificial_stress::ArtificialStress;
 use crate::schemes::common::geometry_pass;
@@ -21,18 +21,6 @@ impl Effects for Hydro {
     const CORRECTION: bool = false;
     const MUSCL: bool = false;
     const SET: EffectSet = EffectSet::HYDRO;
-}
-
-/// A small linear congruential generator in [0, 1): the test needs no crate.
-struct Lcg(u64);
-impl Lcg {
-    fn next(&mut self) -> Real {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 11) as Real / (1u64 << 53) as Real
-    }
 }
 
 /// The pair geometry and artificial-stress factors of `n` jittered particles with
@@ -58,11 +46,11 @@ fn geometry<const D: usize>(
             Vector::<D>::from_fn(|_, _| {
                 let k = c % side;
                 c /= side;
-                1e-3 * (k as Real + 0.3 * (rng.next() - 0.5)) - 0.01
+                1e-3 * (k as Real + 0.3 * (rng.unit() - 0.5)) - 0.01
             })
         })
         .collect();
-    let h: Vec<Real> = (0..n).map(|_| 1e-3 * (1.0 + 0.6 * rng.next())).collect();
+    let h: Vec<Real> = (0..n).map(|_| 1e-3 * (1.0 + 0.6 * rng.unit())).collect();
     let mut storage = vec![0u32; NeighborList::storage_len(n, CAP)];
     let mut list = NeighborList::new(CAP, n, &mut storage).unwrap();
     let hmax = h.iter().cloned().fold(0.0, Real::max);
