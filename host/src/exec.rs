@@ -55,13 +55,18 @@ pub fn parse_simd(name: &str) -> Result<Simd, String> {
         return Ok(detect());
     }
     let Some(l) = Simd::from_name(name) else {
-        let names: Vec<&str> = Simd::ALL.iter().map(|l| l.name()).collect();
         return Err(format!(
-            "unknown instruction-set level `{name}` (one of auto, {})",
-            names.join(", ")
+            "unknown instruction-set level `{name}` ({})",
+            level_names()
         ));
     };
     level(l).map(|_| l)
+}
+
+/// `one of auto, baseline, avx2`: what `--simd` and `GSPH_SIMD` take.
+fn level_names() -> String {
+    let names: Vec<&str> = Simd::ALL.iter().map(|l| l.name()).collect();
+    format!("one of auto, {}", names.join(", "))
 }
 
 /// Sets the level of the simulations this process builds from now on (`gsph --simd`);
@@ -82,9 +87,7 @@ pub fn simd() -> Result<SimdLevel, String> {
         (None, Ok(v)) => parse_simd(&v).map_err(|e| format!("{SIMD_ENV}={v}: {e}"))?,
         (None, Err(std::env::VarError::NotPresent)) => detect(),
         (None, Err(std::env::VarError::NotUnicode(_))) => {
-            return Err(format!(
-                "{SIMD_ENV}: not valid UTF-8 (one of auto, baseline, avx2)"
-            ))
+            return Err(format!("{SIMD_ENV}: not valid UTF-8 ({})", level_names()))
         }
     };
     level(simd)

@@ -81,12 +81,7 @@ pub(crate) fn geometry_pass<const D: usize, E: Effects, X: Executor>(
 ) {
     let nb = params.nbrs;
     let pg = PairGeometry::new::<E>(params);
-    let (kernel, art) = (pg.kernel, pg.art);
-    // the vectorised loop: AVX2 where the CPU has it, for the polynomial kernels, without
-    // periodic images (`crate::simd`)
-    #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
-    let vector =
-        params.simd.avx2() && pg.periodic.is_none() && crate::simd::avx2::has_geometry(kernel);
+    let art = pg.art;
     exec.run(
         (
             Rows {
@@ -104,19 +99,10 @@ pub(crate) fn geometry_pass<const D: usize, E: Effects, X: Executor>(
                 let (xi, hi) = (x[i], h[i]);
                 let fk: &mut [Real] = if art.is_some() { fs.of(k) } else { &mut [] };
                 let (gk, owned) = (gs.of(k), nb.owned(i));
-                // the vectorised loop does whole groups of four; this loop the rest
-                let mut done = 0;
-                #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
-                if vector {
-                    // SAFETY: `params.simd` vouches for AVX2 (`SimdLevel::assume`), `vector`
-                    // for the kernel; the neighbour indices are in bounds of `x` and `h`
-                    // (the lists were built over them) and `gk`, `fk` are as long as `owned`
-                    done = unsafe {
-                        crate::simd::avx2::geometry_row::<D>(
-                            kernel, &xi, hi, x, h, owned, gk, fk, art,
-                        )
-                    };
-                }
+                // the vectorised loop where the CPU and the case allow it (`crate::simd`);
+                // this loop whatever it left
+                let done =
+                    crate::simd::geometry_row::<D>(params.simd, &pg, &xi, hi, x, h, owned, gk, fk);
                 for (q, (g, &j)) in gk.iter_mut().zip(owned).enumerate().skip(done) {
                     let (geo, f) = pg.of(&xi, hi, &x[j as usize], h[j as usize]);
                     *g = geo;

@@ -109,8 +109,8 @@ unsafe fn shape<const D: usize>(kernel: Kernel, q: __m256d) -> (__m256d, __m256d
 /// artificial-stress factors into `fac`. Returns how many pairs it did (all of them).
 ///
 /// # Safety
-/// The CPU must have AVX2; `kernel` must pass [`has_geometry`]; every index in `owned` must
-/// be in bounds of `x` and `h`; `out` (and `fac` with `art`) at least as long as `owned`.
+/// The CPU must have AVX2 and `kernel` must pass [`has_geometry`]. (The neighbour indices
+/// are checked against `x` and `h`; `out` and `fac` are indexed with bounds checks.)
 #[target_feature(enable = "avx2")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) unsafe fn geometry_row<const D: usize>(
@@ -135,7 +135,8 @@ pub(crate) unsafe fn geometry_row<const D: usize>(
         // a last, partial group repeats its last pair in the spare lanes (not stored)
         let lanes = (n - q0).min(4);
         let j: [i64; 4] = core::array::from_fn(|l| owned[q0 + l.min(lanes - 1)] as i64);
-        debug_assert!(j
+        // the gathers below read through raw pointers: every index checked
+        assert!(j
             .iter()
             .all(|&j| (j as usize) < x.len() && (j as usize) < h.len()));
         let jv = _mm256_set_epi64x(j[3], j[2], j[1], j[0]);

@@ -27,6 +27,36 @@ pub(crate) mod avx2;
 #[cfg(all(test, target_arch = "x86_64", not(feature = "f32")))]
 mod tests;
 
+/// The pair geometry of the pairs particle `i` (at `xi`, `hi`) owns, its neighbours
+/// `owned`, into `out` (and the artificial-stress factors into `fac`) by the vectorised loop
+/// where the level and the case allow it: AVX2, the cubic spline or Wendland C2 kernel, no
+/// periodic images. Returns how many of the pairs it did (0: none; the portable loop does
+/// the rest), each bitwise as [`PairGeometry::of`](crate::schemes::common::PairGeometry)
+/// gives it.
+#[inline(always)]
+#[allow(clippy::too_many_arguments, unused_variables)]
+pub(crate) fn geometry_row<const D: usize>(
+    level: SimdLevel,
+    pg: &crate::schemes::common::PairGeometry<D>,
+    xi: &crate::math::Vector<D>,
+    hi: crate::math::Real,
+    x: &[crate::math::Vector<D>],
+    h: &[crate::math::Real],
+    owned: &[u32],
+    out: &mut [crate::state::PairGeom<D>],
+    fac: &mut [crate::math::Real],
+) -> usize {
+    #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
+    if level.avx2() && pg.periodic.is_none() && avx2::has_geometry(pg.kernel) {
+        // SAFETY: `level` vouches for AVX2 (`SimdLevel::assume`) and the kernel is one the
+        // loop computes; it checks the neighbour indices and indexes `out`, `fac` checked
+        return unsafe {
+            avx2::geometry_row::<D>(pg.kernel, xi, hi, x, h, owned, out, fac, pg.art)
+        };
+    }
+    0
+}
+
 /// An instruction-set level of the vectorised loops.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Simd {
@@ -87,6 +117,10 @@ impl SimdLevel {
 
     /// True when the AVX2 loops may run.
     #[inline(always)]
+    #[cfg_attr(
+        not(all(target_arch = "x86_64", not(feature = "f32"))),
+        allow(dead_code)
+    )]
     pub(crate) fn avx2(self) -> bool {
         cfg!(target_arch = "x86_64") && !cfg!(feature = "f32") && matches!(self.0, Simd::Avx2)
     }
