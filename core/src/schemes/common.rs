@@ -277,6 +277,20 @@ pub(crate) fn solve_pairs<const D: usize, X: Executor, R: Send + Default>(
     exec: &X,
     solve: impl Fn(usize, &Pair<D>) -> R + Sync,
 ) {
+    solve_pair_rows(params, geom, recs, exec, |_, _, _, _| 0, solve);
+}
+
+/// [`solve_pairs`] with a row solver tried first: `row(i, geom, owned, out)` may solve the
+/// first pairs of `i`'s row itself (their geometry, neighbours and records) and returns how
+/// many it did, exactly as `solve` would have; `solve` does the rest.
+pub(crate) fn solve_pair_rows<const D: usize, X: Executor, R: Send + Default>(
+    params: &StepParams<'_, D>,
+    geom: &[PairGeom<D>],
+    recs: &mut [R],
+    exec: &X,
+    row: impl Fn(usize, &[PairGeom<D>], &[u32], &mut [R]) -> usize + Sync,
+    solve: impl Fn(usize, &Pair<D>) -> R + Sync,
+) {
     let nb = params.nbrs;
     exec.run(
         Rows {
@@ -287,8 +301,12 @@ pub(crate) fn solve_pairs<const D: usize, X: Executor, R: Send + Default>(
             for k in 0..chunk.len() {
                 let i = off + k;
                 let p0 = nb.pair_start[i] as usize;
-                for (q, (slot, &j)) in chunk.of(k).iter_mut().zip(nb.owned(i)).enumerate() {
-                    let g = &geom[p0 + q];
+                let owned = nb.owned(i);
+                let out = chunk.of(k);
+                let g = &geom[p0..p0 + out.len()];
+                let done = row(i, g, owned, out);
+                for (q, (slot, &j)) in out.iter_mut().zip(owned).enumerate().skip(done) {
+                    let g = &g[q];
                     *slot = if g.r > 0.0 {
                         let e = Entry {
                             j: j as usize,

@@ -15,7 +15,7 @@ pub(crate) fn has_geometry(kernel: Kernel) -> bool {
 
 #[target_feature(enable = "avx2")]
 #[inline]
-unsafe fn splat(x: Real) -> __m256d {
+pub(super) unsafe fn splat(x: Real) -> __m256d {
     _mm256_set1_pd(x)
 }
 
@@ -44,7 +44,7 @@ unsafe fn lt(a: __m256d, b: Real) -> __m256d {
 /// `a` where `m` is set, else `b`.
 #[target_feature(enable = "avx2")]
 #[inline]
-unsafe fn select(m: __m256d, a: __m256d, b: __m256d) -> __m256d {
+pub(super) unsafe fn select(m: __m256d, a: __m256d, b: __m256d) -> __m256d {
     _mm256_blendv_pd(b, a, m)
 }
 

@@ -13,10 +13,18 @@
 //! against the portable loop (`core/src/simd/tests.rs`), and `tests/tests/determinism.rs`
 //! compares whole runs.
 //!
-//! What is vectorised so far: the pair geometry (`schemes::common::geometry_pass` of the
-//! `pm` and `ts` families, which store it for their several pair passes; the cubic spline
-//! and Wendland C2 kernels, non-periodic runs), `avx2.rs`. (`av`, with one pair loop,
-//! computes the geometry in that loop.)
+//! What is vectorised so far:
+//! - the pair geometry (`schemes::common::geometry_pass` of the `pm` and `ts` families,
+//!   which store it for their several pair passes; the cubic spline and Wendland C2
+//!   kernels, non-periodic runs), `avx2.rs`. (`av`, with one pair loop, computes the
+//!   geometry in that loop.)
+//! - the star states of `ts1` and `ts2` (MUSCL reconstruction, the acoustic or two-shock
+//!   solver; the default time and dissipation options, the superbee and minmod limiters),
+//!   `avx2_star.rs`: each row's owner broadcast, its neighbours four per instruction. A lane
+//!   the vectorised path does not cover (a failed particle, an impedance that is not
+//!   positive and finite, a two-shock answer that is not finite) is solved again by the
+//!   portable code.
+//!
 //! A vectorised `av` pair loop that filled its lanes from the per-particle arrays (about
 //! twenty scalar loads per neighbour) was bitwise right but 27 % slower than the portable
 //! loop on the colliding rings: the loop is bound by those scattered loads, not by its
@@ -24,6 +32,10 @@
 
 #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
 pub(crate) mod avx2;
+#[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
+mod avx2_star;
+#[cfg(all(test, target_arch = "x86_64", not(feature = "f32")))]
+mod star_tests;
 #[cfg(all(test, target_arch = "x86_64", not(feature = "f32")))]
 mod tests;
 
@@ -52,6 +64,33 @@ pub(crate) fn geometry_row<const D: usize>(
         // loop computes; it checks the neighbour indices and indexes `out`, `fac` checked
         return unsafe {
             avx2::geometry_row::<D>(pg.kernel, xi, hi, x, h, owned, out, fac, pg.art)
+        };
+    }
+    0
+}
+
+/// The star states of the pairs particle `i` owns (`ts1`, `ts2`: its neighbours `owned`,
+/// their geometry `geom`) into `out` by the vectorised loop where the level and the step's
+/// options allow it (AVX2; the options `avx2_star::covers` lists). Returns how many pairs
+/// it did (0: none; the portable loop does the rest), each bitwise as
+/// [`crate::schemes::ts::pairs::star`] gives it (`p* = 0` unless `with_p`).
+#[inline(always)]
+#[allow(clippy::too_many_arguments, unused_variables)]
+pub(crate) fn ts_star_row<const D: usize, E: crate::effects::Effects>(
+    sys: &crate::state::System<'_, D>,
+    grad: &[crate::state::Gradients<D>],
+    params: &crate::state::StepParams<'_, D>,
+    i: usize,
+    geom: &[crate::state::PairGeom<D>],
+    owned: &[u32],
+    out: &mut [crate::state::TsStar],
+    with_p: bool,
+) -> usize {
+    #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
+    if params.simd.avx2() && avx2_star::covers(params) {
+        // SAFETY: `params.simd` vouches for AVX2 (`SimdLevel::assume`) and `covers` holds
+        return unsafe {
+            avx2_star::star_row::<D, E>(sys, grad, params, i, geom, owned, out, with_p)
         };
     }
     0

@@ -50,7 +50,7 @@
 mod gradients;
 mod leapfrog;
 mod options;
-mod pairs;
+pub(crate) mod pairs;
 mod records;
 
 use gradients::front_gradient_pass;

@@ -8,7 +8,7 @@ use crate::math::{inverse, real, Matrix, Real, Sym3, Vector};
 use crate::riemann::low_dissipation::{blend, central};
 use crate::riemann::{pressure_star, two_shock_star, PressureSide, ShockSide};
 use crate::schemes::artificial_stress::pair_acceleration;
-use crate::schemes::common::{failed, for_each_pair, outer, pair_pressure, solve_pairs};
+use crate::schemes::common::{failed, for_each_pair, outer, pair_pressure, solve_pair_rows};
 use crate::state::{
     Aux, Gradients, MusclTime, PairGeom, PairSums, RiemannSolver, StepParams, System, TsStar,
 };
@@ -46,10 +46,7 @@ pub(super) fn continuity_pass<const D: usize, E: Effects, X: Executor>(
     exec: &X,
 ) {
     // each pair's contact velocity once, on the owner's side
-    solve_pairs::<D, X, TsStar>(params, geom, stars, exec, |i, pr| {
-        let (u, _) = star::<D, E>(sys, grad, params, i, pr.j, &pr.n, pr.r);
-        TsStar { u, p: 0.0 }
-    });
+    solve_stars::<D, E, X>(sys, grad, geom, stars, params, exec, false);
     let stars: &[TsStar] = stars;
     exec.run(sums, |off, chunk: &mut [PairSums<D>]| {
         for (k, out) in chunk.iter_mut().enumerate() {
@@ -86,10 +83,41 @@ pub(super) fn continuity_pass<const D: usize, E: Effects, X: Executor>(
     });
 }
 
+/// Every pair's star state once, on its owner's side ([`star`]; `p* = 0` unless `with_p`),
+/// a row four pairs at a time where the SIMD level and the options allow
+/// ([`crate::simd::ts_star_row`]), bitwise the same.
+#[allow(clippy::too_many_arguments)]
+fn solve_stars<const D: usize, E: Effects, X: Executor>(
+    sys: &System<'_, D>,
+    grad: &[Gradients<D>],
+    geom: &[PairGeom<D>],
+    stars: &mut [TsStar],
+    params: &StepParams<'_, D>,
+    exec: &X,
+    with_p: bool,
+) {
+    solve_pair_rows::<D, X, TsStar>(
+        params,
+        geom,
+        stars,
+        exec,
+        |i, geom, owned, out| {
+            crate::simd::ts_star_row::<D, E>(sys, grad, params, i, geom, owned, out, with_p)
+        },
+        |i, pr| {
+            let (u, p) = star::<D, E>(sys, grad, params, i, pr.j, &pr.n, pr.r);
+            TsStar {
+                u,
+                p: if with_p { p } else { 0.0 },
+            }
+        },
+    );
+}
+
 /// The hydrodynamic star state `(u*, P*)` of pair (i, j) along `n`.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-pub(super) fn star<const D: usize, E: Effects>(
+pub(crate) fn star<const D: usize, E: Effects>(
     sys: &System<'_, D>,
     grad: &[Gradients<D>],
     params: &StepParams<'_, D>,
@@ -319,10 +347,7 @@ pub(super) fn hydro_pass<const D: usize, E: Effects, X: Executor>(
     params: &StepParams<'_, D>,
     exec: &X,
 ) {
-    solve_pairs::<D, X, TsStar>(params, geom, stars, exec, |i, pr| {
-        let (u, p) = star::<D, E>(sys, grad, params, i, pr.j, &pr.n, pr.r);
-        TsStar { u, p }
-    });
+    solve_stars::<D, E, X>(sys, grad, geom, stars, params, exec, true);
     let stars: &[TsStar] = stars;
     exec.run(sums, |off, chunk: &mut [PairSums<D>]| {
         for (k, out) in chunk.iter_mut().enumerate() {

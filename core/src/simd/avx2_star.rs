@@ -1,0 +1,479 @@
+//! The AVX2 star states of the time-split family's pairs (`ts1`, `ts2`): four pairs of one
+//! row per instruction, each lane doing the portable [`star`]'s IEEE operations in its
+//! order (module docs of [`super`]). The owner's values are broadcast once per row; the
+//! neighbours' are loaded lane by lane.
+//!
+//! Covered: the default time and dissipation options (`muscl_time = "none"`,
+//! `dissipation = "full"`), the superbee and minmod limiters, the acoustic and two-shock
+//! solvers. A lane the vectorised path does not cover (a failed particle, an impedance
+//! that is not positive and finite, a two-shock answer that is not finite) is solved again
+//! by the portable [`star`]; every other case runs the portable loop ([`covers`]).
+
+use core::arch::x86_64::*;
+
+use super::avx2::{select, splat};
+use crate::effects::{EffectSet, Effects};
+use crate::limiter::Limiter;
+use crate::math::Real;
+use crate::riemann::Dissipation;
+use crate::schemes::common::failed;
+use crate::schemes::ts::pairs::star;
+use crate::state::{Gradients, MusclTime, PairGeom, RiemannSolver, StepParams, System, TsStar};
+
+/// Whether [`star_row`] covers the options of this step.
+#[inline(always)]
+pub(crate) fn covers<const D: usize>(params: &StepParams<'_, D>) -> bool {
+    let o = &params.options;
+    o.muscl_time == MusclTime::None
+        && o.dissipation == Dissipation::Full
+        && matches!(o.limiter, Limiter::Superbee | Limiter::Minmod)
+}
+
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn add(a: __m256d, b: __m256d) -> __m256d {
+    _mm256_add_pd(a, b)
+}
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn sub(a: __m256d, b: __m256d) -> __m256d {
+    _mm256_sub_pd(a, b)
+}
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn mul(a: __m256d, b: __m256d) -> __m256d {
+    _mm256_mul_pd(a, b)
+}
+/// `math::real::max`: `a` if `a > b`, else `b` (`maxpd`'s rule exactly).
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn max(a: __m256d, b: __m256d) -> __m256d {
+    _mm256_max_pd(a, b)
+}
+/// `math::real::min`: `a` if `a < b`, else `b` (`minpd`'s rule exactly).
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn min(a: __m256d, b: __m256d) -> __m256d {
+    _mm256_min_pd(a, b)
+}
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn gt(a: __m256d, b: __m256d) -> __m256d {
+    _mm256_cmp_pd::<_CMP_GT_OQ>(a, b)
+}
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn lt(a: __m256d, b: __m256d) -> __m256d {
+    _mm256_cmp_pd::<_CMP_LT_OQ>(a, b)
+}
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn and(a: __m256d, b: __m256d) -> __m256d {
+    _mm256_and_pd(a, b)
+}
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn or(a: __m256d, b: __m256d) -> __m256d {
+    _mm256_or_pd(a, b)
+}
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn not(a: __m256d) -> __m256d {
+    _mm256_xor_pd(a, _mm256_castsi256_pd(_mm256_set1_epi64x(-1)))
+}
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn neg(a: __m256d) -> __m256d {
+    _mm256_xor_pd(a, splat(-0.0))
+}
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn load(a: &[Real; 4]) -> __m256d {
+    _mm256_loadu_pd(a.as_ptr())
+}
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn store(a: __m256d) -> [Real; 4] {
+    let mut out = [0.0; 4];
+    _mm256_storeu_pd(out.as_mut_ptr(), a);
+    out
+}
+
+/// `math::real::abs`: `-x` if `x < 0`, else `x` (so `-0` stays `-0`).
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn abs(x: __m256d) -> __m256d {
+    select(lt(x, _mm256_setzero_pd()), neg(x), x)
+}
+
+/// `Vector::dot` in nalgebra's order: `(0 + a0 b0) + a1 b1 + …`.
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn dot<const D: usize>(a: &[__m256d; 3], b: &[__m256d; 3]) -> __m256d {
+    let mut s = _mm256_setzero_pd();
+    for k in 0..D {
+        s = add(s, mul(a[k], b[k]));
+    }
+    s
+}
+
+/// [`Limiter::limit`] of superbee (`superbee`) or minmod, lane by lane.
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn limit(superbee: bool, a: __m256d, b: __m256d) -> __m256d {
+    let zero = _mm256_setzero_pd();
+    let same_sign = gt(mul(a, b), zero);
+    let (p, q) = (abs(a), abs(b));
+    let m = if superbee {
+        let two = splat(2.0);
+        max(min(mul(two, q), p), min(q, mul(two, p)))
+    } else {
+        min(p, q)
+    };
+    // m.copysign(a)
+    let sign = splat(-0.0);
+    let signed = or(_mm256_andnot_pd(sign, m), and(sign, a));
+    and(same_sign, signed)
+}
+
+/// [`crate::limiter::minmod`], lane by lane.
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn minmod(a: __m256d, b: __m256d) -> __m256d {
+    let zero = _mm256_setzero_pd();
+    let pos = and(gt(a, zero), gt(b, zero));
+    let negs = and(lt(a, zero), lt(b, zero));
+    select(pos, min(a, b), select(negs, max(a, b), zero))
+}
+
+/// `ts::pairs::reconstruct` with `f_i = f_j = 1`.
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn reconstruct(
+    superbee: bool,
+    qi: __m256d,
+    qj: __m256d,
+    gi: __m256d,
+    gj: __m256d,
+    half_r: __m256d,
+) -> (__m256d, __m256d) {
+    let half_jump = mul(splat(0.5), sub(qj, qi));
+    // half_r * f_i * limit with f_i = 1: (half_r * 1) * limit, and half_r * 1 = half_r
+    let ext_i = minmod(mul(half_r, limit(superbee, gi, gj)), half_jump);
+    let ext_j = minmod(mul(half_r, limit(superbee, gj, gi)), half_jump);
+    (add(qi, ext_i), sub(qj, ext_j))
+}
+
+/// The slopes along `n` of `ts::pairs::riemann_states`: `n . (grad v n)`, `grad p . n`,
+/// `grad rho . n`, with `grad v n` in nalgebra's gemv order (column 0 times `n_0`, then
+/// each further column times its component, added on). `gv[b][a]` is `dv_a/dx_b`.
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn slopes<const D: usize>(
+    n: &[__m256d; 3],
+    gv: &[[__m256d; 3]; 3],
+    gp: &[__m256d; 3],
+    gr: &[__m256d; 3],
+) -> [__m256d; 3] {
+    let mut gvn = [_mm256_setzero_pd(); 3];
+    for b in 0..D {
+        for a in 0..D {
+            let t = mul(gv[b][a], n[b]);
+            gvn[a] = if b == 0 { t } else { add(t, gvn[a]) };
+        }
+    }
+    [dot::<D>(n, &gvn), dot::<D>(gp, n), dot::<D>(gr, n)]
+}
+
+/// One side of the Riemann problem in four lanes.
+#[derive(Clone, Copy)]
+struct Side {
+    u: __m256d,
+    p: __m256d,
+    rho: __m256d,
+    c: __m256d,
+    /// `ShockSide::slope`: the Hugoniot slope, or 0 where negative or not finite.
+    s: __m256d,
+}
+
+/// `ShockSide::hugoniot`: `rho (c + s max(w, 0)) w`.
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn hugoniot(k: &Side, w: __m256d) -> __m256d {
+    mul(
+        mul(k.rho, add(k.c, mul(k.s, max(w, _mm256_setzero_pd())))),
+        w,
+    )
+}
+
+/// [`crate::riemann::pressure_star`] (the acoustic solver with `s = -p`) with impedances
+/// `zl`, `zr`; lanes where `zl + zr` is not positive and finite take the mean of the sides.
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn pressure_star(
+    ul: __m256d,
+    pl: __m256d,
+    zl: __m256d,
+    ur: __m256d,
+    pr: __m256d,
+    zr: __m256d,
+) -> (__m256d, __m256d) {
+    let (sl, sr) = (neg(pl), neg(pr));
+    let zs = add(zl, zr);
+    let ok = and(gt(zs, _mm256_setzero_pd()), finite(zs));
+    let inv = _mm256_div_pd(splat(1.0), zs);
+    let u = mul(sub(add(add(mul(zl, ul), mul(zr, ur)), sr), sl), inv);
+    let s = mul(
+        add(add(mul(zr, sl), mul(zl, sr)), mul(mul(zl, zr), sub(ur, ul))),
+        inv,
+    );
+    let half = splat(0.5);
+    let u = select(ok, u, mul(half, add(ul, ur)));
+    let s = select(ok, s, mul(half, add(sl, sr)));
+    (u, neg(s))
+}
+
+/// Lanes whose value is finite.
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn finite(x: __m256d) -> __m256d {
+    // |x| < inf (false for inf and NaN)
+    lt(_mm256_andnot_pd(splat(-0.0), x), splat(Real::INFINITY))
+}
+
+/// `f(u) = p_l + W_l(u_l - u) - p_r - W_r(u - u_r)` of the two-shock solver.
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn gap(l: &Side, r: &Side, u: __m256d) -> __m256d {
+    sub(
+        sub(add(l.p, hugoniot(l, sub(l.u, u))), r.p),
+        hugoniot(r, sub(u, r.u)),
+    )
+}
+
+/// [`crate::riemann::two_shock_star`] where both impedances are usable; returns the star
+/// state and the lanes the portable solver must redo (an impedance not positive and
+/// finite, or an answer that is not finite: its acoustic fallbacks).
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn two_shock(l: &Side, r: &Side) -> (__m256d, __m256d, __m256d) {
+    let zero = _mm256_setzero_pd();
+    let (zl, zr) = (mul(l.rho, l.c), mul(r.rho, r.c));
+    let usable_l = and(gt(zl, zero), finite(zl));
+    let usable_r = and(gt(zr, zero), finite(zr));
+    let bad = not(and(usable_l, usable_r));
+    let ordered = _mm256_cmp_pd::<_CMP_LE_OQ>(l.u, r.u);
+    let (lo, hi) = (select(ordered, l.u, r.u), select(ordered, r.u, l.u));
+    let (f_lo, f_hi) = (gap(l, r, lo), gap(l, r, hi));
+    let (kl_shock, kr_shock) = (mul(l.rho, l.s), mul(r.rho, r.s));
+    let below = _mm256_cmp_pd::<_CMP_LE_OQ>(f_lo, zero);
+    let above = _mm256_andnot_pd(below, _mm256_cmp_pd::<_CMP_GE_OQ>(f_hi, zero));
+    let two = _mm256_andnot_pd(or(below, above), lt(r.u, l.u));
+    let about_hi = or(above, and(two, gt(kl_shock, kr_shock)));
+    let (u0, f0) = (select(about_hi, hi, lo), select(about_hi, f_hi, f_lo));
+    let kl = and(or(below, two), kl_shock);
+    let kr = and(or(above, two), kr_shock);
+    let two_v = splat(2.0);
+    let b = add(
+        add(add(zl, zr), mul(mul(two_v, kl), sub(l.u, u0))),
+        mul(mul(two_v, kr), sub(u0, r.u)),
+    );
+    let a = sub(kl, kr);
+    let disc = max(sub(mul(b, b), mul(mul(splat(4.0), a), f0)), zero);
+    let d = _mm256_div_pd(mul(two_v, f0), add(b, _mm256_sqrt_pd(disc)));
+    let u = add(u0, d);
+    let p = mul(
+        splat(0.5),
+        add(
+            add(add(l.p, hugoniot(l, sub(l.u, u))), r.p),
+            hugoniot(r, sub(u, r.u)),
+        ),
+    );
+    let redo = or(bad, not(and(finite(u), finite(p))));
+    (u, p, redo)
+}
+
+/// The star states of the pairs particle `i` owns (its neighbours `owned`, their stored
+/// geometry `geom`), four at a time, as the portable [`star`] gives them: `(u*, p*)` into
+/// `out` (`p* = 0` unless `with_p`), the default record for a pair outside the support.
+/// Returns how many pairs it did (all of them).
+///
+/// # Safety
+/// The CPU must have AVX2, and the step's options must pass [`covers`]. (The neighbour
+/// indices are checked; everything is indexed with bounds checks.)
+#[target_feature(enable = "avx2")]
+#[allow(clippy::too_many_arguments)]
+pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
+    sys: &System<'_, D>,
+    grad: &[Gradients<D>],
+    params: &StepParams<'_, D>,
+    i: usize,
+    geom: &[PairGeom<D>],
+    owned: &[u32],
+    out: &mut [TsStar],
+    with_p: bool,
+) -> usize {
+    let n = owned.len().min(geom.len()).min(out.len());
+    let zero = _mm256_setzero_pd();
+    let superbee = params.options.limiter == Limiter::Superbee;
+    let two_shock_solver = params.options.riemann == RiemannSolver::TwoShock;
+    let damage = E::RUNTIME.contains(EffectSet::DAMAGE);
+    let mats = params.materials;
+    let slope = |k: usize| {
+        // ShockSide::slope of the material's Hugoniot slope
+        let s = mats[sys.mat[k] as usize].eos.hugoniot_slope();
+        if s.is_finite() {
+            crate::math::real::max(s, 0.0)
+        } else {
+            0.0
+        }
+    };
+    // the owner's values, broadcast
+    let vi: [__m256d; 3] = core::array::from_fn(|a| if a < D { splat(sys.v[i][a]) } else { zero });
+    let (pi, rhoi, ci) = (splat(sys.p[i]), splat(sys.rho[i]), splat(sys.c[i]));
+    let si = if two_shock_solver {
+        splat(slope(i))
+    } else {
+        zero
+    };
+    // the owner's gradients, broadcast (read only with MUSCL)
+    let gi = if E::MUSCL {
+        grad[i]
+    } else {
+        Gradients::default()
+    };
+    let gvi: [[__m256d; 3]; 3] = core::array::from_fn(|b| {
+        core::array::from_fn(|a| {
+            if a < D && b < D {
+                splat(gi.v[(a, b)])
+            } else {
+                zero
+            }
+        })
+    });
+    let gpi: [__m256d; 3] = core::array::from_fn(|a| if a < D { splat(gi.p[a]) } else { zero });
+    let gri: [__m256d; 3] = core::array::from_fn(|a| if a < D { splat(gi.rho[a]) } else { zero });
+    let failed_i = failed::<D, E>(sys, i);
+    let mut q0 = 0;
+    while q0 < n {
+        // a last, partial group repeats its last pair in the spare lanes (not stored)
+        let lanes = (n - q0).min(4);
+        let lane = |l: usize| q0 + l.min(lanes - 1);
+        let js: [usize; 4] = core::array::from_fn(|l| owned[lane(l)] as usize);
+        // four lanes of a per-neighbour value: `lanes!(|l, j| value)`
+        macro_rules! lanes {
+            (|$l:ident, $j:ident| $e:expr) => {
+                load(&core::array::from_fn(|$l| {
+                    let $j = js[$l];
+                    let _ = $j;
+                    $e
+                }))
+            };
+        }
+        let nv: [__m256d; 3] = core::array::from_fn(|a| {
+            if a < D {
+                lanes!(|l, j| geom[lane(l)].n[a])
+            } else {
+                zero
+            }
+        });
+        let r = lanes!(|l, j| geom[lane(l)].r);
+        let vj: [__m256d; 3] = core::array::from_fn(|a| {
+            if a < D {
+                lanes!(|l, j| sys.v[j][a])
+            } else {
+                zero
+            }
+        });
+        let pj = lanes!(|l, j| sys.p[j]);
+        let rhoj = lanes!(|l, j| sys.rho[j]);
+        let cj = lanes!(|l, j| sys.c[j]);
+        // first order: (v . n, p, rho) of each side
+        let (ui, uj) = (dot::<D>(&vi, &nv), dot::<D>(&vj, &nv));
+        let (mut l, mut rr) = ([ui, pi, rhoi], [uj, pj, rhoj]);
+        if E::MUSCL {
+            // the neighbours' gradients, per lane (the owner's are broadcast below)
+            let gvj: [[__m256d; 3]; 3] = core::array::from_fn(|b| {
+                core::array::from_fn(|a| {
+                    if a < D && b < D {
+                        lanes!(|l, j| grad[j].v[(a, b)])
+                    } else {
+                        zero
+                    }
+                })
+            });
+            let gpj: [__m256d; 3] = core::array::from_fn(|a| {
+                if a < D {
+                    lanes!(|l, j| grad[j].p[a])
+                } else {
+                    zero
+                }
+            });
+            let grj: [__m256d; 3] = core::array::from_fn(|a| {
+                if a < D {
+                    lanes!(|l, j| grad[j].rho[a])
+                } else {
+                    zero
+                }
+            });
+            let own = slopes::<D>(&nv, &gvi, &gpi, &gri);
+            let theirs = slopes::<D>(&nv, &gvj, &gpj, &grj);
+            let half_r = mul(splat(0.5), r);
+            let mut ml = [zero; 3];
+            let mut mr = [zero; 3];
+            for q in 0..3 {
+                (ml[q], mr[q]) = reconstruct(superbee, l[q], rr[q], own[q], theirs[q], half_r);
+            }
+            // a reconstructed density must stay positive; otherwise first order
+            let keep = and(gt(ml[2], zero), gt(mr[2], zero));
+            for q in 0..3 {
+                l[q] = select(keep, ml[q], l[q]);
+                rr[q] = select(keep, mr[q], rr[q]);
+            }
+        }
+        let [ul, pl, rl] = l;
+        let [ur, pr, rhor] = rr;
+        let (us, ps, redo) = if two_shock_solver {
+            let sj = lanes!(|l, j| slope(j));
+            two_shock(
+                &Side {
+                    u: ul,
+                    p: pl,
+                    rho: rl,
+                    c: ci,
+                    s: si,
+                },
+                &Side {
+                    u: ur,
+                    p: pr,
+                    rho: rhor,
+                    c: cj,
+                    s: sj,
+                },
+            )
+        } else {
+            let (u, p) = pressure_star(ul, pl, mul(rl, ci), ur, pr, mul(rhor, cj));
+            (u, p, zero)
+        };
+        let (us, ps, redo, r) = (store(us), store(ps), store(redo), store(r));
+        for l in 0..lanes {
+            let (q, j) = (q0 + l, js[l]);
+            out[q] = if r[l] > 0.0 {
+                let (u, p) = if redo[l] != 0.0 || (damage && (failed_i || failed::<D, E>(sys, j))) {
+                    let g = &geom[q];
+                    star::<D, E>(sys, grad, params, i, j, &g.n, g.r)
+                } else {
+                    (us[l], ps[l])
+                };
+                TsStar {
+                    u,
+                    p: if with_p { p } else { 0.0 },
+                }
+            } else {
+                TsStar::default()
+            };
+        }
+        q0 += lanes;
+    }
+    n
+}
