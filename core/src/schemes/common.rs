@@ -269,20 +269,10 @@ pub(crate) fn for_each_pair<const D: usize>(
 
 /// Solves every pair once, on the side of its owner: `recs[p] = solve(i, &pair)` for each
 /// pair `p` owned by `i` inside the kernel support (`pair` seen from `i`, the left side);
-/// pairs outside the support get the default (zero) record.
-pub(crate) fn solve_pairs<const D: usize, X: Executor, R: Send + Default>(
-    params: &StepParams<'_, D>,
-    geom: &[PairGeom<D>],
-    recs: &mut [R],
-    exec: &X,
-    solve: impl Fn(usize, &Pair<D>) -> R + Sync,
-) {
-    solve_pair_rows(params, geom, recs, exec, |_, _, _, _| 0, solve);
-}
-
-/// [`solve_pairs`] with a row solver tried first: `row(i, geom, owned, out)` may solve the
-/// first pairs of `i`'s row itself (their geometry, neighbours and records) and returns how
-/// many it did, exactly as `solve` would have; `solve` does the rest.
+/// pairs outside the support get the default (zero) record. A row solver is tried first:
+/// `row(i, geom, owned, out)` may solve the first pairs of `i`'s row itself (a vectorised
+/// loop, [`crate::simd`]; their geometry, neighbours and records) and returns how many it
+/// did, exactly as `solve` would have; `solve` does the rest.
 pub(crate) fn solve_pair_rows<const D: usize, X: Executor, R: Send + Default>(
     params: &StepParams<'_, D>,
     geom: &[PairGeom<D>],

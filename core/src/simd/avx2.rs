@@ -37,7 +37,7 @@ unsafe fn powi(x: __m256d, n: u32) -> __m256d {
 /// Lanes where `a < b`.
 #[target_feature(enable = "avx2")]
 #[inline]
-unsafe fn lt(a: __m256d, b: Real) -> __m256d {
+unsafe fn lt_s(a: __m256d, b: Real) -> __m256d {
     _mm256_cmp_pd::<_CMP_LT_OQ>(a, splat(b))
 }
 
@@ -67,7 +67,7 @@ unsafe fn shape<const D: usize>(kernel: Kernel, q: __m256d) -> (__m256d, __m256d
             let t = _mm256_sub_pd(splat(2.0), q);
             let f2 = _mm256_mul_pd(_mm256_mul_pd(_mm256_mul_pd(splat(0.25), t), t), t);
             let d2 = _mm256_mul_pd(_mm256_mul_pd(splat(-0.75), t), t);
-            let (m1, m2) = (lt(q, 1.0), lt(q, 2.0));
+            let (m1, m2) = (lt_s(q, 1.0), lt_s(q, 2.0));
             (
                 select(m1, f1, select(m2, f2, zero)),
                 select(m1, d1, select(m2, d2, zero)),
@@ -95,7 +95,7 @@ unsafe fn shape<const D: usize>(kernel: Kernel, q: __m256d) -> (__m256d, __m256d
                     _mm256_mul_pd(_mm256_mul_pd(_mm256_mul_pd(splat(-5.0), q), t2), t),
                 )
             };
-            let m = lt(q, 2.0);
+            let m = lt_s(q, 2.0);
             (select(m, f, zero), select(m, d, zero))
         }
         // not reached: `has_geometry` is checked first
@@ -198,4 +198,132 @@ pub(crate) unsafe fn geometry_row<const D: usize>(
         q0 += lanes;
     }
     n
+}
+
+// The lane arithmetic of the pair loops: each function is one IEEE operation per lane,
+// or the portable helper's rule exactly (named in its documentation).
+
+#[target_feature(enable = "avx2")]
+#[inline]
+pub(super) unsafe fn add(a: __m256d, b: __m256d) -> __m256d {
+    _mm256_add_pd(a, b)
+}
+#[target_feature(enable = "avx2")]
+#[inline]
+pub(super) unsafe fn sub(a: __m256d, b: __m256d) -> __m256d {
+    _mm256_sub_pd(a, b)
+}
+#[target_feature(enable = "avx2")]
+#[inline]
+pub(super) unsafe fn mul(a: __m256d, b: __m256d) -> __m256d {
+    _mm256_mul_pd(a, b)
+}
+/// `math::real::max`: `a` if `a > b`, else `b` (`maxpd`'s rule exactly).
+#[target_feature(enable = "avx2")]
+#[inline]
+pub(super) unsafe fn max(a: __m256d, b: __m256d) -> __m256d {
+    _mm256_max_pd(a, b)
+}
+/// `math::real::min`: `a` if `a < b`, else `b` (`minpd`'s rule exactly).
+#[target_feature(enable = "avx2")]
+#[inline]
+pub(super) unsafe fn min(a: __m256d, b: __m256d) -> __m256d {
+    _mm256_min_pd(a, b)
+}
+#[target_feature(enable = "avx2")]
+#[inline]
+pub(super) unsafe fn gt(a: __m256d, b: __m256d) -> __m256d {
+    _mm256_cmp_pd::<_CMP_GT_OQ>(a, b)
+}
+#[target_feature(enable = "avx2")]
+#[inline]
+pub(super) unsafe fn lt(a: __m256d, b: __m256d) -> __m256d {
+    _mm256_cmp_pd::<_CMP_LT_OQ>(a, b)
+}
+#[target_feature(enable = "avx2")]
+#[inline]
+pub(super) unsafe fn and(a: __m256d, b: __m256d) -> __m256d {
+    _mm256_and_pd(a, b)
+}
+#[target_feature(enable = "avx2")]
+#[inline]
+pub(super) unsafe fn or(a: __m256d, b: __m256d) -> __m256d {
+    _mm256_or_pd(a, b)
+}
+#[target_feature(enable = "avx2")]
+#[inline]
+pub(super) unsafe fn not(a: __m256d) -> __m256d {
+    _mm256_xor_pd(a, _mm256_castsi256_pd(_mm256_set1_epi64x(-1)))
+}
+#[target_feature(enable = "avx2")]
+#[inline]
+pub(super) unsafe fn neg(a: __m256d) -> __m256d {
+    _mm256_xor_pd(a, splat(-0.0))
+}
+#[target_feature(enable = "avx2")]
+#[inline]
+pub(super) unsafe fn load(a: &[Real; 4]) -> __m256d {
+    _mm256_loadu_pd(a.as_ptr())
+}
+#[target_feature(enable = "avx2")]
+#[inline]
+pub(super) unsafe fn store(a: __m256d) -> [Real; 4] {
+    let mut out = [0.0; 4];
+    _mm256_storeu_pd(out.as_mut_ptr(), a);
+    out
+}
+
+/// `math::real::abs`: `-x` if `x < 0`, else `x` (so `-0` stays `-0`).
+#[target_feature(enable = "avx2")]
+#[inline]
+pub(super) unsafe fn abs(x: __m256d) -> __m256d {
+    select(lt(x, _mm256_setzero_pd()), neg(x), x)
+}
+
+/// `Vector::dot` in nalgebra's order: `(0 + a0 b0) + a1 b1 + …`.
+#[target_feature(enable = "avx2")]
+#[inline]
+pub(super) unsafe fn dot<const D: usize>(a: &[__m256d; 3], b: &[__m256d; 3]) -> __m256d {
+    let mut s = _mm256_setzero_pd();
+    for k in 0..D {
+        s = add(s, mul(a[k], b[k]));
+    }
+    s
+}
+
+/// [`Limiter::limit`] of superbee (`superbee`) or minmod, lane by lane.
+#[target_feature(enable = "avx2")]
+#[inline]
+pub(super) unsafe fn limit(superbee: bool, a: __m256d, b: __m256d) -> __m256d {
+    let zero = _mm256_setzero_pd();
+    let same_sign = gt(mul(a, b), zero);
+    let (p, q) = (abs(a), abs(b));
+    let m = if superbee {
+        let two = splat(2.0);
+        max(min(mul(two, q), p), min(q, mul(two, p)))
+    } else {
+        min(p, q)
+    };
+    // m.copysign(a)
+    let sign = splat(-0.0);
+    let signed = or(_mm256_andnot_pd(sign, m), and(sign, a));
+    and(same_sign, signed)
+}
+
+/// [`crate::limiter::minmod`], lane by lane.
+#[target_feature(enable = "avx2")]
+#[inline]
+pub(super) unsafe fn minmod(a: __m256d, b: __m256d) -> __m256d {
+    let zero = _mm256_setzero_pd();
+    let pos = and(gt(a, zero), gt(b, zero));
+    let negs = and(lt(a, zero), lt(b, zero));
+    select(pos, min(a, b), select(negs, max(a, b), zero))
+}
+
+/// Lanes whose value is finite.
+#[target_feature(enable = "avx2")]
+#[inline]
+pub(super) unsafe fn finite(x: __m256d) -> __m256d {
+    // |x| < inf (false for inf and NaN)
+    lt(_mm256_andnot_pd(splat(-0.0), x), splat(Real::INFINITY))
 }

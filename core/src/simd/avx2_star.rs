@@ -11,14 +11,25 @@
 
 use core::arch::x86_64::*;
 
-use super::avx2::{select, splat};
+use super::avx2::{
+    add, and, dot, finite, gt, limit, load, lt, max, minmod, mul, neg, not, or, select, splat,
+    store, sub,
+};
 use crate::effects::{EffectSet, Effects};
 use crate::limiter::Limiter;
-use crate::math::Real;
 use crate::riemann::Dissipation;
 use crate::schemes::common::failed;
 use crate::schemes::ts::pairs::star;
 use crate::state::{Gradients, MusclTime, PairGeom, RiemannSolver, StepParams, System, TsStar};
+
+/// Whether [`star_row`] pays for this step's scheme: the first-order star with the
+/// acoustic solver is too light for the lanes' loads (measured on the colliding rings,
+/// `ts1`: 1.01 to 1.19 times the portable loop's time); the two-shock solver or the
+/// reconstruction is not (docs/performance.md).
+#[inline(always)]
+pub(crate) fn pays<const D: usize, E: Effects>(params: &StepParams<'_, D>) -> bool {
+    E::MUSCL || params.options.riemann == RiemannSolver::TwoShock
+}
 
 /// Whether [`star_row`] covers the options of this step.
 #[inline(always)]
@@ -27,123 +38,6 @@ pub(crate) fn covers<const D: usize>(params: &StepParams<'_, D>) -> bool {
     o.muscl_time == MusclTime::None
         && o.dissipation == Dissipation::Full
         && matches!(o.limiter, Limiter::Superbee | Limiter::Minmod)
-}
-
-#[target_feature(enable = "avx2")]
-#[inline]
-unsafe fn add(a: __m256d, b: __m256d) -> __m256d {
-    _mm256_add_pd(a, b)
-}
-#[target_feature(enable = "avx2")]
-#[inline]
-unsafe fn sub(a: __m256d, b: __m256d) -> __m256d {
-    _mm256_sub_pd(a, b)
-}
-#[target_feature(enable = "avx2")]
-#[inline]
-unsafe fn mul(a: __m256d, b: __m256d) -> __m256d {
-    _mm256_mul_pd(a, b)
-}
-/// `math::real::max`: `a` if `a > b`, else `b` (`maxpd`'s rule exactly).
-#[target_feature(enable = "avx2")]
-#[inline]
-unsafe fn max(a: __m256d, b: __m256d) -> __m256d {
-    _mm256_max_pd(a, b)
-}
-/// `math::real::min`: `a` if `a < b`, else `b` (`minpd`'s rule exactly).
-#[target_feature(enable = "avx2")]
-#[inline]
-unsafe fn min(a: __m256d, b: __m256d) -> __m256d {
-    _mm256_min_pd(a, b)
-}
-#[target_feature(enable = "avx2")]
-#[inline]
-unsafe fn gt(a: __m256d, b: __m256d) -> __m256d {
-    _mm256_cmp_pd::<_CMP_GT_OQ>(a, b)
-}
-#[target_feature(enable = "avx2")]
-#[inline]
-unsafe fn lt(a: __m256d, b: __m256d) -> __m256d {
-    _mm256_cmp_pd::<_CMP_LT_OQ>(a, b)
-}
-#[target_feature(enable = "avx2")]
-#[inline]
-unsafe fn and(a: __m256d, b: __m256d) -> __m256d {
-    _mm256_and_pd(a, b)
-}
-#[target_feature(enable = "avx2")]
-#[inline]
-unsafe fn or(a: __m256d, b: __m256d) -> __m256d {
-    _mm256_or_pd(a, b)
-}
-#[target_feature(enable = "avx2")]
-#[inline]
-unsafe fn not(a: __m256d) -> __m256d {
-    _mm256_xor_pd(a, _mm256_castsi256_pd(_mm256_set1_epi64x(-1)))
-}
-#[target_feature(enable = "avx2")]
-#[inline]
-unsafe fn neg(a: __m256d) -> __m256d {
-    _mm256_xor_pd(a, splat(-0.0))
-}
-#[target_feature(enable = "avx2")]
-#[inline]
-unsafe fn load(a: &[Real; 4]) -> __m256d {
-    _mm256_loadu_pd(a.as_ptr())
-}
-#[target_feature(enable = "avx2")]
-#[inline]
-unsafe fn store(a: __m256d) -> [Real; 4] {
-    let mut out = [0.0; 4];
-    _mm256_storeu_pd(out.as_mut_ptr(), a);
-    out
-}
-
-/// `math::real::abs`: `-x` if `x < 0`, else `x` (so `-0` stays `-0`).
-#[target_feature(enable = "avx2")]
-#[inline]
-unsafe fn abs(x: __m256d) -> __m256d {
-    select(lt(x, _mm256_setzero_pd()), neg(x), x)
-}
-
-/// `Vector::dot` in nalgebra's order: `(0 + a0 b0) + a1 b1 + …`.
-#[target_feature(enable = "avx2")]
-#[inline]
-unsafe fn dot<const D: usize>(a: &[__m256d; 3], b: &[__m256d; 3]) -> __m256d {
-    let mut s = _mm256_setzero_pd();
-    for k in 0..D {
-        s = add(s, mul(a[k], b[k]));
-    }
-    s
-}
-
-/// [`Limiter::limit`] of superbee (`superbee`) or minmod, lane by lane.
-#[target_feature(enable = "avx2")]
-#[inline]
-unsafe fn limit(superbee: bool, a: __m256d, b: __m256d) -> __m256d {
-    let zero = _mm256_setzero_pd();
-    let same_sign = gt(mul(a, b), zero);
-    let (p, q) = (abs(a), abs(b));
-    let m = if superbee {
-        let two = splat(2.0);
-        max(min(mul(two, q), p), min(q, mul(two, p)))
-    } else {
-        min(p, q)
-    };
-    // m.copysign(a)
-    let sign = splat(-0.0);
-    let signed = or(_mm256_andnot_pd(sign, m), and(sign, a));
-    and(same_sign, signed)
-}
-
-/// [`crate::limiter::minmod`], lane by lane.
-#[target_feature(enable = "avx2")]
-#[inline]
-unsafe fn minmod(a: __m256d, b: __m256d) -> __m256d {
-    let zero = _mm256_setzero_pd();
-    let pos = and(gt(a, zero), gt(b, zero));
-    let negs = and(lt(a, zero), lt(b, zero));
-    select(pos, min(a, b), select(negs, max(a, b), zero))
 }
 
 /// `ts::pairs::reconstruct` with `f_i = f_j = 1`.
@@ -231,14 +125,6 @@ unsafe fn pressure_star(
     let u = select(ok, u, mul(half, add(ul, ur)));
     let s = select(ok, s, mul(half, add(sl, sr)));
     (u, neg(s))
-}
-
-/// Lanes whose value is finite.
-#[target_feature(enable = "avx2")]
-#[inline]
-unsafe fn finite(x: __m256d) -> __m256d {
-    // |x| < inf (false for inf and NaN)
-    lt(_mm256_andnot_pd(splat(-0.0), x), splat(Real::INFINITY))
 }
 
 /// `f(u) = p_l + W_l(u_l - u) - p_r - W_r(u - u_r)` of the two-shock solver.

@@ -33,7 +33,9 @@
 #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
 pub(crate) mod avx2;
 #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
-mod avx2_star;
+pub(crate) mod avx2_pm;
+#[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
+pub(crate) mod avx2_star;
 #[cfg(all(test, target_arch = "x86_64", not(feature = "f32")))]
 mod star_tests;
 #[cfg(all(test, target_arch = "x86_64", not(feature = "f32")))]
@@ -71,7 +73,7 @@ pub(crate) fn geometry_row<const D: usize>(
 
 /// The star states of the pairs particle `i` owns (`ts1`, `ts2`: its neighbours `owned`,
 /// their geometry `geom`) into `out` by the vectorised loop where the level and the step's
-/// options allow it (AVX2; the options `avx2_star::covers` lists). Returns how many pairs
+/// options allow it and it pays (AVX2; `avx2_star::covers` and `pays`). Returns how many pairs
 /// it did (0: none; the portable loop does the rest), each bitwise as
 /// [`crate::schemes::ts::pairs::star`] gives it (`p* = 0` unless `with_p`).
 #[inline(always)]
@@ -87,10 +89,39 @@ pub(crate) fn ts_star_row<const D: usize, E: crate::effects::Effects>(
     with_p: bool,
 ) -> usize {
     #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
-    if params.simd.avx2() && avx2_star::covers(params) {
+    if params.simd.avx2() && avx2_star::covers(params) && avx2_star::pays::<D, E>(params) {
         // SAFETY: `params.simd` vouches for AVX2 (`SimdLevel::assume`) and `covers` holds
         return unsafe {
             avx2_star::star_row::<D, E>(sys, grad, params, i, geom, owned, out, with_p)
+        };
+    }
+    0
+}
+
+/// The star states of the pairs particle `i` owns (`pm`, `tkc`: its neighbours `owned`,
+/// their geometry `geom`) into `out` by the vectorised loop where the level and the step's
+/// options allow it and it pays (AVX2; `avx2_pm::covers` and `pays`). Returns how many pairs it
+/// did (0: none; the portable loop does the rest), each bitwise as
+/// [`crate::schemes::pm::pairs::pair_star`] gives it.
+#[inline(always)]
+#[allow(clippy::too_many_arguments, unused_variables)]
+pub(crate) fn pm_star_row<const D: usize, E: crate::effects::Effects>(
+    sys: &crate::state::System<'_, D>,
+    aux: &[crate::state::Aux],
+    corr: &[crate::state::Correction<D>],
+    grad: &[crate::state::Gradients<D>],
+    grad_s: &[[crate::math::Vector<D>; 6]],
+    params: &crate::state::StepParams<'_, D>,
+    i: usize,
+    geom: &[crate::state::PairGeom<D>],
+    owned: &[u32],
+    out: &mut [crate::state::PmStar<D>],
+) -> usize {
+    #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
+    if params.simd.avx2() && avx2_pm::covers(params) && avx2_pm::pays::<E>() {
+        // SAFETY: `params.simd` vouches for AVX2 (`SimdLevel::assume`) and `covers` holds
+        return unsafe {
+            avx2_pm::star_row::<D, E>(sys, aux, corr, grad, grad_s, params, i, geom, owned, out)
         };
     }
     0

@@ -38,10 +38,10 @@
 //! problems do not dissipate it; `W r_ji` is normal to `n`, so the longitudinal problem
 //! is unchanged.
 
-mod gradients;
+pub(crate) mod gradients;
 mod leapfrog;
 mod options;
-mod pairs;
+pub(crate) mod pairs;
 mod particles;
 mod records;
 mod volume;

@@ -9,7 +9,7 @@ use crate::math::{Matrix, Real, Sym3, Vector};
 use crate::riemann::low_dissipation::central_vector;
 use crate::riemann::{acoustic_star_vector, elastic_star_vector, two_shock_star, ShockSide};
 use crate::schemes::artificial_stress::pair_acceleration;
-use crate::schemes::common::{cauchy, failed, for_each_pair, outer, solve_pairs, Pair};
+use crate::schemes::common::{cauchy, failed, for_each_pair, outer, solve_pair_rows, Pair};
 use crate::state::{
     Aux, Correction, Gradients, PairGeom, PairSums, PmStar, RiemannSolver, SpecificVolume,
     StepParams, System, Workspace,
@@ -123,9 +123,18 @@ pub(super) fn pair_pass<
     let geom: &[PairGeom<D>] = ws.geom;
     let art: &[Matrix<D>] = ws.art;
     let (fac, aux): (&[Real], &[Aux]) = (ws.fac, ws.aux);
-    solve_pairs::<D, X, PmStar<D>>(params, geom, ws.pm_star, exec, |i, pr| {
-        pair_star::<D, E>(sys, aux, corr, grad, grad_s, params, i, pr)
-    });
+    solve_pair_rows::<D, X, PmStar<D>>(
+        params,
+        geom,
+        ws.pm_star,
+        exec,
+        |i, geom, owned, out| {
+            crate::simd::pm_star_row::<D, E>(
+                sys, aux, corr, grad, grad_s, params, i, geom, owned, out,
+            )
+        },
+        |i, pr| pair_star::<D, E>(sys, aux, corr, grad, grad_s, params, i, pr),
+    );
     let stars: &[PmStar<D>] = ws.pm_star;
     // options.specific_volume: the kernel product's <s^2> per h_i h_j (super::volume)
     let mu = match params.options.specific_volume {
@@ -186,7 +195,7 @@ pub(super) struct GatherCtx<'a, const D: usize> {
 /// Riemann problem, and no tension across the contact of a failed particle.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-pub(super) fn pair_star<const D: usize, E: Effects>(
+pub(crate) fn pair_star<const D: usize, E: Effects>(
     sys: &System<'_, D>,
     aux: &[Aux],
     corr: &[Correction<D>],

@@ -1,0 +1,537 @@
+//! The AVX2 star states of the contact family's pairs (`pm`, `tkc`): four pairs of one row
+//! per instruction, each lane doing the portable [`pair_star`]'s IEEE operations in its
+//! order (module docs of [`super`]): the rotation of `options.objective`, the corrected
+//! traction axis, the MUSCL reconstruction in the pair's frame and the acoustic elastic
+//! Riemann problem. The owner's values are broadcast once per row; the neighbours' are
+//! loaded lane by lane.
+//!
+//! Covered: the acoustic solver with full dissipation on every channel and the minmod or
+//! superbee limiter ([`covers`]). A lane with a failed particle is solved again by the
+//! portable [`pair_star`].
+
+use core::arch::x86_64::*;
+
+use super::avx2::{
+    add, and, dot, finite, gt, limit, load, minmod, mul, neg, select, splat, store, sub,
+};
+use crate::effects::Effects;
+use crate::limiter::Limiter;
+use crate::math::Real;
+use crate::riemann::Dissipation;
+use crate::schemes::common::{failed, Pair};
+use crate::schemes::pm::gradients::objective;
+use crate::schemes::pm::pairs::pair_star;
+use crate::state::{
+    Aux, Correction, Gradients, PairGeom, PmStar, RiemannSolver, StepParams, System,
+};
+
+/// Whether [`star_row`] pays for this step's scheme: the first-order star (`pm`) is too
+/// light for the lanes' loads (measured on the colliding rings: 1.01 to 1.14 times the
+/// portable loop's time); the reconstruction (`tkc`) is not (docs/performance.md).
+#[inline(always)]
+pub(crate) fn pays<E: Effects>() -> bool {
+    E::MUSCL
+}
+
+/// Whether [`star_row`] covers the options of this step.
+#[inline(always)]
+pub(crate) fn covers<const D: usize>(params: &StepParams<'_, D>) -> bool {
+    let o = &params.options;
+    o.riemann == RiemannSolver::Acoustic
+        && o.dissipation == Dissipation::Full
+        && o.transverse_dissipation == Dissipation::Full
+        && matches!(o.limiter, Limiter::Superbee | Limiter::Minmod)
+}
+
+/// Four lanes of a `D`-vector (components past `D` unused).
+type V = [__m256d; 3];
+/// Four lanes of a `D x D` matrix, by columns: `m[b][a]` is element `(a, b)`.
+type M = [[__m256d; 3]; 3];
+
+/// `m x` in nalgebra's gemv order: column 0 times `x_0`, then each further column times
+/// its component, added on.
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn gemv<const D: usize>(m: &M, x: &V) -> V {
+    let mut out = [_mm256_setzero_pd(); 3];
+    for b in 0..D {
+        for a in 0..D {
+            let t = mul(m[b][a], x[b]);
+            out[a] = if b == 0 { t } else { add(t, out[a]) };
+        }
+    }
+    out
+}
+
+/// `v * s`, component by component.
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn scale<const D: usize>(v: &V, s: __m256d) -> V {
+    let mut out = *v;
+    for a in 0..D {
+        out[a] = mul(v[a], s);
+    }
+    out
+}
+
+/// `muscl_pair` of `pm::pairs`: minmod (`phi + minmod(...)/2`), or superbee with each
+/// extrapolation bounded by half the pair difference.
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn muscl_pair(
+    superbee: bool,
+    phi_i: __m256d,
+    phi_j: __m256d,
+    gi: __m256d,
+    gj: __m256d,
+) -> (__m256d, __m256d) {
+    let half = splat(0.5);
+    let d = sub(phi_j, phi_i);
+    if superbee {
+        let half_jump = mul(half, d);
+        (
+            add(phi_i, minmod(mul(half, limit(true, gi, d)), half_jump)),
+            sub(phi_j, minmod(mul(half, limit(true, gj, d)), half_jump)),
+        )
+    } else {
+        (
+            add(phi_i, mul(half, limit(false, gi, d))),
+            sub(phi_j, mul(half, limit(false, gj, d))),
+        )
+    }
+}
+
+/// `muscl_frame` of `pm::pairs`: the reconstruction component by component in the basis
+/// `basis` (`pair_basis`: in 2D `n` and its normal, otherwise the scene's axes).
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn muscl_frame<const D: usize>(
+    superbee: bool,
+    basis: &[V; 3],
+    wi: &V,
+    wj: &V,
+    di: &V,
+    dj: &V,
+) -> (V, V) {
+    let zero = _mm256_setzero_pd();
+    let (mut l, mut r) = ([zero; 3], [zero; 3]);
+    for e in basis.iter().take(D) {
+        let (a, b) = muscl_pair(
+            superbee,
+            dot::<D>(wi, e),
+            dot::<D>(wj, e),
+            dot::<D>(di, e),
+            dot::<D>(dj, e),
+        );
+        for c in 0..D {
+            l[c] = add(l[c], mul(e[c], a));
+            r[c] = add(r[c], mul(e[c], b));
+        }
+    }
+    (l, r)
+}
+
+/// `Sym3::dot_vec`: row `a` is `(0 + s_a0 x_0) + s_a1 x_1 + …`; `s[a][b]` is the
+/// component `(a, b)`.
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn sym_dot<const D: usize>(s: &M, x: &V) -> V {
+    let mut out = [_mm256_setzero_pd(); 3];
+    for (a, o) in out.iter_mut().enumerate().take(D) {
+        for b in 0..D {
+            *o = add(*o, mul(s[a][b], x[b]));
+        }
+    }
+    out
+}
+
+/// The Voigt index of the component `(a, b)` of a `Sym3` (`xx yy zz xy xz yz`).
+const fn voigt(a: usize, b: usize) -> usize {
+    match (a, b) {
+        (0, 0) => 0,
+        (1, 1) => 1,
+        (2, 2) => 2,
+        (0, 1) | (1, 0) => 3,
+        (0, 2) | (2, 0) => 4,
+        _ => 5,
+    }
+}
+
+/// `acoustic_star` along the axis: `(u*, s*)`, the mean of the sides where `z_l + z_r` is
+/// not positive and finite.
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn acoustic(
+    ul: __m256d,
+    sl: __m256d,
+    zl: __m256d,
+    ur: __m256d,
+    sr: __m256d,
+    zr: __m256d,
+) -> (__m256d, __m256d) {
+    let zs = add(zl, zr);
+    let ok = and(gt(zs, _mm256_setzero_pd()), finite(zs));
+    let inv = _mm256_div_pd(splat(1.0), zs);
+    let u = mul(sub(add(add(mul(zl, ul), mul(zr, ur)), sr), sl), inv);
+    let s = mul(
+        add(add(mul(zr, sl), mul(zl, sr)), mul(mul(zl, zr), sub(ur, ul))),
+        inv,
+    );
+    let half = splat(0.5);
+    (
+        select(ok, u, mul(half, add(ul, ur))),
+        select(ok, s, mul(half, add(sl, sr))),
+    )
+}
+
+/// `acoustic_star_vector`: the normal problem with the longitudinal impedances, the
+/// tangential one with the transverse impedances; `(V*, T*)`.
+#[target_feature(enable = "avx2")]
+#[inline]
+#[allow(clippy::too_many_arguments)]
+unsafe fn star_vector<const D: usize>(
+    n: &V,
+    v_l: &V,
+    t_l: &V,
+    zl_long: __m256d,
+    zl_trans: __m256d,
+    v_r: &V,
+    t_r: &V,
+    zr_long: __m256d,
+    zr_trans: __m256d,
+) -> (V, V) {
+    let zero = _mm256_setzero_pd();
+    let (vln, tln, vrn, trn) = (
+        dot::<D>(v_l, n),
+        dot::<D>(t_l, n),
+        dot::<D>(v_r, n),
+        dot::<D>(t_r, n),
+    );
+    let (u_n, s_n) = acoustic(vln, tln, zl_long, vrn, trn, zr_long);
+    let zs = add(zl_trans, zr_trans);
+    let ok = and(gt(zs, zero), finite(zs));
+    let inv = _mm256_div_pd(splat(1.0), zs);
+    let zz = mul(zl_trans, zr_trans);
+    let half = splat(0.5);
+    let (mut vs, mut ts) = ([zero; 3], [zero; 3]);
+    for a in 0..D {
+        let vlt = sub(v_l[a], mul(n[a], vln));
+        let tlt = sub(t_l[a], mul(n[a], tln));
+        let vrt = sub(v_r[a], mul(n[a], vrn));
+        let trt = sub(t_r[a], mul(n[a], trn));
+        let v_t = mul(
+            sub(add(add(mul(vlt, zl_trans), mul(vrt, zr_trans)), trt), tlt),
+            inv,
+        );
+        let t_t = mul(
+            add(
+                add(mul(tlt, zr_trans), mul(trt, zl_trans)),
+                mul(sub(vrt, vlt), zz),
+            ),
+            inv,
+        );
+        let v_t = select(ok, v_t, mul(add(vlt, vrt), half));
+        let t_t = and(ok, t_t);
+        vs[a] = add(mul(n[a], u_n), v_t);
+        ts[a] = add(mul(n[a], s_n), t_t);
+    }
+    (vs, ts)
+}
+
+/// The star states of the pairs particle `i` owns (its neighbours `owned`, their stored
+/// geometry `geom`), four at a time, as the portable [`pair_star`] gives them, into `out`;
+/// the default record for a pair outside the support. Returns how many pairs it did (all).
+///
+/// # Safety
+/// The CPU must have AVX2, and the step's options must pass [`covers`]. (Everything is
+/// indexed with bounds checks.)
+#[target_feature(enable = "avx2")]
+#[allow(clippy::too_many_arguments)]
+pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
+    sys: &System<'_, D>,
+    aux: &[Aux],
+    corr: &[Correction<D>],
+    grad: &[Gradients<D>],
+    grad_s: &[[crate::math::Vector<D>; 6]],
+    params: &StepParams<'_, D>,
+    i: usize,
+    geom: &[PairGeom<D>],
+    owned: &[u32],
+    out: &mut [PmStar<D>],
+) -> usize {
+    let n_pairs = owned.len().min(geom.len()).min(out.len());
+    let zero = _mm256_setzero_pd();
+    let superbee = params.options.limiter == Limiter::Superbee;
+    let rotate = objective::<D, E>(params);
+    // the owner's values, broadcast
+    let bv = |f: &dyn Fn(usize) -> Real| -> V {
+        core::array::from_fn(|a| if a < D { splat(f(a)) } else { zero })
+    };
+    let bm = |f: &dyn Fn(usize, usize) -> Real| -> M {
+        core::array::from_fn(|b| {
+            core::array::from_fn(|a| if a < D && b < D { splat(f(a, b)) } else { zero })
+        })
+    };
+    let vi = bv(&|a| sys.v[i][a]);
+    let (rhoi, cli, cti, pi) = (
+        splat(sys.rho[i]),
+        splat(sys.cl[i]),
+        splat(aux[i].ct),
+        splat(sys.p[i]),
+    );
+    // the Cauchy stress S - P I (-P I without strength): off the diagonal S + (-0) = S
+    let sig = |k: usize, a: usize, b: usize| -> Real {
+        let p = sys.p[k];
+        if E::STRENGTH {
+            let s = sys.s[k].get(a, b);
+            s + if a == b { -p } else { -0.0 }
+        } else if a == b {
+            -p
+        } else {
+            0.0
+        }
+    };
+    let sig_i = bm(&|a, b| sig(i, a, b));
+    let gi = if E::MUSCL || rotate {
+        grad[i]
+    } else {
+        Gradients::default()
+    };
+    let li = if E::CORRECTION {
+        corr[i].l_inv
+    } else {
+        crate::math::Matrix::<D>::identity()
+    };
+    let li_m = bm(&|a, b| li[(a, b)]);
+    let wi_m = bm(&|a, b| gi.w[(a, b)]);
+    let gvi_m = bm(&|a, b| gi.v[(a, b)]);
+    let (g_rho_i, g_cl_i, g_ct_i, g_p_i) = (
+        bv(&|a| gi.rho[a]),
+        bv(&|a| gi.cl[a]),
+        bv(&|a| gi.ct[a]),
+        bv(&|a| gi.p[a]),
+    );
+    // the owner's stress gradients (Voigt component, axis), broadcast
+    let gs_i: [V; 6] = core::array::from_fn(|k| {
+        if E::MUSCL && E::STRENGTH {
+            bv(&|c| grad_s[i][k][c])
+        } else {
+            [zero; 3]
+        }
+    });
+    let mut q0 = 0;
+    while q0 < n_pairs {
+        // a last, partial group repeats its last pair in the spare lanes (not stored)
+        let lanes = (n_pairs - q0).min(4);
+        let lane = |l: usize| q0 + l.min(lanes - 1);
+        let js: [usize; 4] = core::array::from_fn(|l| owned[lane(l)] as usize);
+        // four lanes of a per-neighbour value: `lanes!(|l, j| value)`
+        macro_rules! lanes {
+            (|$l:ident, $j:ident| $e:expr) => {
+                load(&core::array::from_fn(|$l| {
+                    let $j = js[$l];
+                    let _ = $j;
+                    $e
+                }))
+            };
+        }
+        macro_rules! vec_lanes {
+            (|$l:ident, $j:ident, $a:ident| $e:expr) => {
+                core::array::from_fn(|$a| if $a < D { lanes!(|$l, $j| $e) } else { zero })
+            };
+        }
+        macro_rules! mat_lanes {
+            (|$l:ident, $j:ident, $a:ident, $b:ident| $e:expr) => {
+                core::array::from_fn(|$b| {
+                    core::array::from_fn(|$a| {
+                        if $a < D && $b < D {
+                            lanes!(|$l, $j| $e)
+                        } else {
+                            zero
+                        }
+                    })
+                })
+            };
+        }
+        let n: V = vec_lanes!(|l, j, a| geom[lane(l)].n[a]);
+        let r = lanes!(|l, j| geom[lane(l)].r);
+        let vj: V = vec_lanes!(|l, j, a| sys.v[j][a]);
+        let rhoj = lanes!(|l, j| sys.rho[j]);
+        let clj = lanes!(|l, j| sys.cl[j]);
+        let ctj = lanes!(|l, j| aux[j].ct);
+        let rji = scale::<D>(&n, r);
+        let (mut v_l, mut v_r) = (vi, vj);
+        // options.objective: the pair's mean spin W = (W_i + W_j)/2, the velocities taken
+        // to the midpoint along it: v_i + W r_ji/2, v_j - W r_ji/2
+        let mut spin: M = [[zero; 3]; 3];
+        if rotate {
+            let wj_m: M = mat_lanes!(|l, j, a, b| grad[j].w[(a, b)]);
+            let half = splat(0.5);
+            for b in 0..D {
+                for a in 0..D {
+                    spin[b][a] = mul(add(wi_m[b][a], wj_m[b][a]), half);
+                }
+            }
+            let h = scale::<D>(&gemv::<D>(&spin, &rji), half);
+            for a in 0..D {
+                v_l[a] = add(v_l[a], h[a]);
+                v_r[a] = sub(v_r[a], h[a]);
+            }
+        }
+        // the traction axis: n, or with correction (L_i^-1 + L_j^-1) n / 2
+        let axis = if E::CORRECTION {
+            let lj_m: M = mat_lanes!(|l, j, a, b| corr[j].l_inv[(a, b)]);
+            let mut m = [[zero; 3]; 3];
+            for b in 0..D {
+                for a in 0..D {
+                    m[b][a] = add(li_m[b][a], lj_m[b][a]);
+                }
+            }
+            scale::<D>(&gemv::<D>(&m, &n), splat(0.5))
+        } else {
+            n
+        };
+        let sig_j: M = core::array::from_fn(|a| {
+            core::array::from_fn(|b| {
+                if a < D && b < D {
+                    lanes!(|l, j| sig(j, a, b))
+                } else {
+                    zero
+                }
+            })
+        });
+        // (the stress is symmetric: by rows or by columns alike)
+        let (mut t_l, mut t_r) = (sym_dot::<D>(&sig_i, &axis), sym_dot::<D>(&sig_j, &axis));
+        let (mut rho_l, mut rho_r) = (rhoi, rhoj);
+        let (mut cl_l, mut cl_r) = (cli, clj);
+        let (mut ct_l, mut ct_r) = (cti, ctj);
+        if E::MUSCL {
+            let g_rho_j: V = vec_lanes!(|l, j, a| grad[j].rho[a]);
+            let g_cl_j: V = vec_lanes!(|l, j, a| grad[j].cl[a]);
+            let g_ct_j: V = vec_lanes!(|l, j, a| grad[j].ct[a]);
+            (rho_l, rho_r) = muscl_pair(
+                superbee,
+                rhoi,
+                rhoj,
+                dot::<D>(&g_rho_i, &rji),
+                dot::<D>(&g_rho_j, &rji),
+            );
+            (cl_l, cl_r) = muscl_pair(
+                superbee,
+                cli,
+                clj,
+                dot::<D>(&g_cl_i, &rji),
+                dot::<D>(&g_cl_j, &rji),
+            );
+            (ct_l, ct_r) = muscl_pair(
+                superbee,
+                cti,
+                ctj,
+                dot::<D>(&g_ct_i, &rji),
+                dot::<D>(&g_ct_j, &rji),
+            );
+            // (grad v - W) r_ji of each side (less nothing without the rotation: x - 0 = x)
+            let gvj_m: M = mat_lanes!(|l, j, a, b| grad[j].v[(a, b)]);
+            let (mut gi_w, mut gj_w) = (gvi_m, gvj_m);
+            if rotate {
+                for b in 0..D {
+                    for a in 0..D {
+                        gi_w[b][a] = sub(gvi_m[b][a], spin[b][a]);
+                        gj_w[b][a] = sub(gvj_m[b][a], spin[b][a]);
+                    }
+                }
+            }
+            let (dvi, dvj) = (gemv::<D>(&gi_w, &rji), gemv::<D>(&gj_w, &rji));
+            // pair_basis: in 2D n and (-n_y, n_x), otherwise the scene's axes
+            let mut basis: [V; 3] = [[zero; 3]; 3];
+            if D == 2 {
+                basis[0] = n;
+                basis[1][0] = neg(n[1]);
+                basis[1][1] = n[0];
+            } else {
+                for (a, e) in basis.iter_mut().enumerate().take(D) {
+                    e[a] = splat(1.0);
+                }
+            }
+            (v_l, v_r) = muscl_frame::<D>(superbee, &basis, &v_l, &v_r, &dvi, &dvj);
+            if E::STRENGTH {
+                // the slopes of the traction: Sym3 of the stress gradients along r_ji
+                // (only the components a, b < D enter), dotted with the axis
+                let slope_i: M = core::array::from_fn(|a| {
+                    core::array::from_fn(|b| {
+                        if a < D && b < D {
+                            dot::<D>(&gs_i[voigt(a, b)], &rji)
+                        } else {
+                            zero
+                        }
+                    })
+                });
+                let slope_j: M = core::array::from_fn(|a| {
+                    core::array::from_fn(|b| {
+                        if a < D && b < D {
+                            let g: V = vec_lanes!(|l, j, c| grad_s[j][voigt(a, b)][c]);
+                            dot::<D>(&g, &rji)
+                        } else {
+                            zero
+                        }
+                    })
+                });
+                let (si, sj) = (sym_dot::<D>(&slope_i, &axis), sym_dot::<D>(&slope_j, &axis));
+                (t_l, t_r) = muscl_frame::<D>(superbee, &basis, &t_l, &t_r, &si, &sj);
+            } else {
+                let pj = lanes!(|l, j| sys.p[j]);
+                let g_p_j: V = vec_lanes!(|l, j, a| grad[j].p[a]);
+                let (pl, pr) = muscl_pair(
+                    superbee,
+                    pi,
+                    pj,
+                    dot::<D>(&g_p_i, &rji),
+                    dot::<D>(&g_p_j, &rji),
+                );
+                (t_l, t_r) = (scale::<D>(&axis, neg(pl)), scale::<D>(&axis, neg(pr)));
+            }
+        }
+        let (vs, ts) = star_vector::<D>(
+            &n,
+            &v_l,
+            &t_l,
+            mul(rho_l, cl_l),
+            mul(rho_l, ct_l),
+            &v_r,
+            &t_r,
+            mul(rho_r, cl_r),
+            mul(rho_r, ct_r),
+        );
+        let vs: [[Real; 4]; 3] = core::array::from_fn(|a| store(vs[a]));
+        let ts: [[Real; 4]; 3] = core::array::from_fn(|a| store(ts[a]));
+        let r = store(r);
+        let failed_i = failed::<D, E>(sys, i);
+        for l in 0..lanes {
+            let (q, j) = (q0 + l, js[l]);
+            out[q] = if r[l] > 0.0 {
+                if failed_i || failed::<D, E>(sys, j) {
+                    let g = &geom[q];
+                    let pr = Pair {
+                        j,
+                        r: g.r,
+                        n: g.n,
+                        dw: g.dw,
+                        grad: g.n * (-g.dw),
+                    };
+                    pair_star::<D, E>(sys, aux, corr, grad, grad_s, params, i, &pr)
+                } else {
+                    let mut st = PmStar::<D>::default();
+                    for a in 0..D {
+                        st.v[a] = vs[a][l];
+                        st.t[a] = ts[a][l];
+                    }
+                    st
+                }
+            } else {
+                PmStar::default()
+            };
+        }
+        q0 += lanes;
+    }
+    n_pairs
+}
