@@ -327,3 +327,90 @@ pub(super) unsafe fn finite(x: __m256d) -> __m256d {
     // |x| < inf (false for inf and NaN)
     lt(_mm256_andnot_pd(splat(-0.0), x), splat(Real::INFINITY))
 }
+
+// The two-shock solver of `crate::riemann::two_shock`, lane by lane (the ts and tkc stars).
+
+/// One side of the Riemann problem in four lanes.
+#[derive(Clone, Copy)]
+pub(super) struct Side {
+    pub u: __m256d,
+    pub p: __m256d,
+    pub rho: __m256d,
+    pub c: __m256d,
+    /// `ShockSide::slope`: the Hugoniot slope, or 0 where negative or not finite.
+    pub s: __m256d,
+}
+
+/// `ShockSide::hugoniot`: `rho (c + s max(w, 0)) w`.
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn hugoniot(k: &Side, w: __m256d) -> __m256d {
+    mul(
+        mul(k.rho, add(k.c, mul(k.s, max(w, _mm256_setzero_pd())))),
+        w,
+    )
+}
+
+/// `f(u) = p_l + W_l(u_l - u) - p_r - W_r(u - u_r)` of the two-shock solver.
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn gap(l: &Side, r: &Side, u: __m256d) -> __m256d {
+    sub(
+        sub(add(l.p, hugoniot(l, sub(l.u, u))), r.p),
+        hugoniot(r, sub(u, r.u)),
+    )
+}
+
+/// [`crate::riemann::two_shock_star`] where both impedances are usable; returns the star
+/// state and the lanes the portable solver must redo (an impedance not positive and
+/// finite, or an answer that is not finite: its acoustic fallbacks).
+#[target_feature(enable = "avx2")]
+#[inline]
+pub(super) unsafe fn two_shock(l: &Side, r: &Side) -> (__m256d, __m256d, __m256d) {
+    let zero = _mm256_setzero_pd();
+    let (zl, zr) = (mul(l.rho, l.c), mul(r.rho, r.c));
+    let usable_l = and(gt(zl, zero), finite(zl));
+    let usable_r = and(gt(zr, zero), finite(zr));
+    let bad = not(and(usable_l, usable_r));
+    let ordered = _mm256_cmp_pd::<_CMP_LE_OQ>(l.u, r.u);
+    let (lo, hi) = (select(ordered, l.u, r.u), select(ordered, r.u, l.u));
+    let (f_lo, f_hi) = (gap(l, r, lo), gap(l, r, hi));
+    let (kl_shock, kr_shock) = (mul(l.rho, l.s), mul(r.rho, r.s));
+    let below = _mm256_cmp_pd::<_CMP_LE_OQ>(f_lo, zero);
+    let above = _mm256_andnot_pd(below, _mm256_cmp_pd::<_CMP_GE_OQ>(f_hi, zero));
+    let two = _mm256_andnot_pd(or(below, above), lt(r.u, l.u));
+    let about_hi = or(above, and(two, gt(kl_shock, kr_shock)));
+    let (u0, f0) = (select(about_hi, hi, lo), select(about_hi, f_hi, f_lo));
+    let kl = and(or(below, two), kl_shock);
+    let kr = and(or(above, two), kr_shock);
+    let two_v = splat(2.0);
+    let b = add(
+        add(add(zl, zr), mul(mul(two_v, kl), sub(l.u, u0))),
+        mul(mul(two_v, kr), sub(u0, r.u)),
+    );
+    let a = sub(kl, kr);
+    let disc = max(sub(mul(b, b), mul(mul(splat(4.0), a), f0)), zero);
+    let d = _mm256_div_pd(mul(two_v, f0), add(b, _mm256_sqrt_pd(disc)));
+    let u = add(u0, d);
+    let p = mul(
+        splat(0.5),
+        add(
+            add(add(l.p, hugoniot(l, sub(l.u, u))), r.p),
+            hugoniot(r, sub(u, r.u)),
+        ),
+    );
+    let redo = or(bad, not(and(finite(u), finite(p))));
+    (u, p, redo)
+}
+
+/// `ShockSide::slope` of material `m`'s Hugoniot slope: the slope, or 0 where it is
+/// negative or not finite.
+#[inline(always)]
+pub(super) fn shock_slope(m: &crate::material::Material) -> Real {
+    let s = m.eos.hugoniot_slope();
+    if s.is_finite() {
+        crate::math::real::max(s, 0.0)
+    } else {
+        0.0
+    }
+}

@@ -5,14 +5,16 @@
 //! Riemann problem. The owner's values are broadcast once per row; the neighbours' are
 //! loaded lane by lane.
 //!
-//! Covered: the acoustic solver with full dissipation on every channel and the minmod or
-//! superbee limiter ([`covers`]). A lane with a failed particle is solved again by the
-//! portable [`pair_star`].
+//! Covered: the acoustic and two-shock solvers with full dissipation on every channel and
+//! the minmod or superbee limiter ([`covers`]). A lane with a failed particle, or whose
+//! two-shock answer falls back to the acoustic one (an impedance not positive and finite,
+//! an answer not finite), is solved again by the portable [`pair_star`].
 
 use core::arch::x86_64::*;
 
 use super::avx2::{
-    add, and, dot, finite, gt, limit, load, minmod, mul, neg, select, splat, store, sub,
+    add, and, dot, finite, gt, limit, load, minmod, mul, neg, select, shock_slope, splat, store,
+    sub, two_shock, Side,
 };
 use crate::effects::Effects;
 use crate::limiter::Limiter;
@@ -37,8 +39,7 @@ pub(crate) fn pays<E: Effects>() -> bool {
 #[inline(always)]
 pub(crate) fn covers<const D: usize>(params: &StepParams<'_, D>) -> bool {
     let o = &params.options;
-    o.riemann == RiemannSolver::Acoustic
-        && o.dissipation == Dissipation::Full
+    o.dissipation == Dissipation::Full
         && o.transverse_dissipation == Dissipation::Full
         && matches!(o.limiter, Limiter::Superbee | Limiter::Minmod)
 }
@@ -185,7 +186,9 @@ unsafe fn acoustic(
 }
 
 /// `acoustic_star_vector`: the normal problem with the longitudinal impedances, the
-/// tangential one with the transverse impedances; `(V*, T*)`.
+/// tangential one with the transverse impedances; `(V*, T*)` and the lanes the portable
+/// code must redo. With `shock` (each side's density, sound speed and slope) the normal
+/// problem is the two-shock one (`elastic_star_vector` with `two_shock_star`).
 #[target_feature(enable = "avx2")]
 #[inline]
 #[allow(clippy::too_many_arguments)]
@@ -199,7 +202,8 @@ unsafe fn star_vector<const D: usize>(
     t_r: &V,
     zr_long: __m256d,
     zr_trans: __m256d,
-) -> (V, V) {
+    shock: Option<(&Side, &Side)>,
+) -> (V, V, __m256d) {
     let zero = _mm256_setzero_pd();
     let (vln, tln, vrn, trn) = (
         dot::<D>(v_l, n),
@@ -207,7 +211,28 @@ unsafe fn star_vector<const D: usize>(
         dot::<D>(v_r, n),
         dot::<D>(t_r, n),
     );
-    let (u_n, s_n) = acoustic(vln, tln, zl_long, vrn, trn, zr_long);
+    // the longitudinal problem: acoustic, or the two-shock solver on pressures `-s`
+    let (u_n, s_n, redo) = match shock {
+        None => {
+            let (u, s) = acoustic(vln, tln, zl_long, vrn, trn, zr_long);
+            (u, s, zero)
+        }
+        Some((l, r)) => {
+            let (u, p, redo) = two_shock(
+                &Side {
+                    u: vln,
+                    p: neg(tln),
+                    ..*l
+                },
+                &Side {
+                    u: vrn,
+                    p: neg(trn),
+                    ..*r
+                },
+            );
+            (u, neg(p), redo)
+        }
+    };
     let zs = add(zl_trans, zr_trans);
     let ok = and(gt(zs, zero), finite(zs));
     let inv = _mm256_div_pd(splat(1.0), zs);
@@ -235,7 +260,7 @@ unsafe fn star_vector<const D: usize>(
         vs[a] = add(mul(n[a], u_n), v_t);
         ts[a] = add(mul(n[a], s_n), t_t);
     }
-    (vs, ts)
+    (vs, ts, redo)
 }
 
 /// The star states of the pairs particle `i` owns (its neighbours `owned`, their stored
@@ -263,6 +288,10 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
     let zero = _mm256_setzero_pd();
     let superbee = params.options.limiter == Limiter::Superbee;
     let rotate = objective::<D, E>(params);
+    let two_shock_solver = params.options.riemann == RiemannSolver::TwoShock;
+    let mats = params.materials;
+    let slope = |k: usize| shock_slope(&mats[sys.mat[k] as usize]);
+    let slope_i = splat(if two_shock_solver { slope(i) } else { 0.0 });
     // the owner's values, broadcast
     let bv = |f: &dyn Fn(usize) -> Real| -> V {
         core::array::from_fn(|a| if a < D { splat(f(a)) } else { zero })
@@ -491,7 +520,20 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
                 (t_l, t_r) = (scale::<D>(&axis, neg(pl)), scale::<D>(&axis, neg(pr)));
             }
         }
-        let (vs, ts) = star_vector::<D>(
+        let sides = two_shock_solver.then(|| {
+            let side = |rho, c, s| Side {
+                u: zero,
+                p: zero,
+                rho,
+                c,
+                s,
+            };
+            (
+                side(rho_l, cl_l, slope_i),
+                side(rho_r, cl_r, lanes!(|l, j| slope(j))),
+            )
+        });
+        let (vs, ts, redo) = star_vector::<D>(
             &n,
             &v_l,
             &t_l,
@@ -501,7 +543,9 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
             &t_r,
             mul(rho_r, cl_r),
             mul(rho_r, ct_r),
+            sides.as_ref().map(|(l, r)| (l, r)),
         );
+        let redo = store(redo);
         let vs: [[Real; 4]; 3] = core::array::from_fn(|a| store(vs[a]));
         let ts: [[Real; 4]; 3] = core::array::from_fn(|a| store(ts[a]));
         let r = store(r);
@@ -509,7 +553,7 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
         for l in 0..lanes {
             let (q, j) = (q0 + l, js[l]);
             out[q] = if r[l] > 0.0 {
-                if failed_i || failed::<D, E>(sys, j) {
+                if redo[l] != 0.0 || failed_i || failed::<D, E>(sys, j) {
                     let g = &geom[q];
                     let pr = Pair {
                         j,

@@ -12,8 +12,8 @@
 use core::arch::x86_64::*;
 
 use super::avx2::{
-    add, and, dot, finite, gt, limit, load, lt, max, minmod, mul, neg, not, or, select, splat,
-    store, sub,
+    add, and, dot, finite, gt, limit, load, minmod, mul, neg, select, shock_slope, splat, store,
+    sub, two_shock, Side,
 };
 use crate::effects::{EffectSet, Effects};
 use crate::limiter::Limiter;
@@ -79,27 +79,6 @@ unsafe fn slopes<const D: usize>(
     [dot::<D>(n, &gvn), dot::<D>(gp, n), dot::<D>(gr, n)]
 }
 
-/// One side of the Riemann problem in four lanes.
-#[derive(Clone, Copy)]
-struct Side {
-    u: __m256d,
-    p: __m256d,
-    rho: __m256d,
-    c: __m256d,
-    /// `ShockSide::slope`: the Hugoniot slope, or 0 where negative or not finite.
-    s: __m256d,
-}
-
-/// `ShockSide::hugoniot`: `rho (c + s max(w, 0)) w`.
-#[target_feature(enable = "avx2")]
-#[inline]
-unsafe fn hugoniot(k: &Side, w: __m256d) -> __m256d {
-    mul(
-        mul(k.rho, add(k.c, mul(k.s, max(w, _mm256_setzero_pd())))),
-        w,
-    )
-}
-
 /// [`crate::riemann::pressure_star`] (the acoustic solver with `s = -p`) with impedances
 /// `zl`, `zr`; lanes where `zl + zr` is not positive and finite take the mean of the sides.
 #[target_feature(enable = "avx2")]
@@ -125,58 +104,6 @@ unsafe fn pressure_star(
     let u = select(ok, u, mul(half, add(ul, ur)));
     let s = select(ok, s, mul(half, add(sl, sr)));
     (u, neg(s))
-}
-
-/// `f(u) = p_l + W_l(u_l - u) - p_r - W_r(u - u_r)` of the two-shock solver.
-#[target_feature(enable = "avx2")]
-#[inline]
-unsafe fn gap(l: &Side, r: &Side, u: __m256d) -> __m256d {
-    sub(
-        sub(add(l.p, hugoniot(l, sub(l.u, u))), r.p),
-        hugoniot(r, sub(u, r.u)),
-    )
-}
-
-/// [`crate::riemann::two_shock_star`] where both impedances are usable; returns the star
-/// state and the lanes the portable solver must redo (an impedance not positive and
-/// finite, or an answer that is not finite: its acoustic fallbacks).
-#[target_feature(enable = "avx2")]
-#[inline]
-unsafe fn two_shock(l: &Side, r: &Side) -> (__m256d, __m256d, __m256d) {
-    let zero = _mm256_setzero_pd();
-    let (zl, zr) = (mul(l.rho, l.c), mul(r.rho, r.c));
-    let usable_l = and(gt(zl, zero), finite(zl));
-    let usable_r = and(gt(zr, zero), finite(zr));
-    let bad = not(and(usable_l, usable_r));
-    let ordered = _mm256_cmp_pd::<_CMP_LE_OQ>(l.u, r.u);
-    let (lo, hi) = (select(ordered, l.u, r.u), select(ordered, r.u, l.u));
-    let (f_lo, f_hi) = (gap(l, r, lo), gap(l, r, hi));
-    let (kl_shock, kr_shock) = (mul(l.rho, l.s), mul(r.rho, r.s));
-    let below = _mm256_cmp_pd::<_CMP_LE_OQ>(f_lo, zero);
-    let above = _mm256_andnot_pd(below, _mm256_cmp_pd::<_CMP_GE_OQ>(f_hi, zero));
-    let two = _mm256_andnot_pd(or(below, above), lt(r.u, l.u));
-    let about_hi = or(above, and(two, gt(kl_shock, kr_shock)));
-    let (u0, f0) = (select(about_hi, hi, lo), select(about_hi, f_hi, f_lo));
-    let kl = and(or(below, two), kl_shock);
-    let kr = and(or(above, two), kr_shock);
-    let two_v = splat(2.0);
-    let b = add(
-        add(add(zl, zr), mul(mul(two_v, kl), sub(l.u, u0))),
-        mul(mul(two_v, kr), sub(u0, r.u)),
-    );
-    let a = sub(kl, kr);
-    let disc = max(sub(mul(b, b), mul(mul(splat(4.0), a), f0)), zero);
-    let d = _mm256_div_pd(mul(two_v, f0), add(b, _mm256_sqrt_pd(disc)));
-    let u = add(u0, d);
-    let p = mul(
-        splat(0.5),
-        add(
-            add(add(l.p, hugoniot(l, sub(l.u, u))), r.p),
-            hugoniot(r, sub(u, r.u)),
-        ),
-    );
-    let redo = or(bad, not(and(finite(u), finite(p))));
-    (u, p, redo)
 }
 
 /// The star states of the pairs particle `i` owns (its neighbours `owned`, their stored
@@ -205,15 +132,7 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
     let two_shock_solver = params.options.riemann == RiemannSolver::TwoShock;
     let damage = E::RUNTIME.contains(EffectSet::DAMAGE);
     let mats = params.materials;
-    let slope = |k: usize| {
-        // ShockSide::slope of the material's Hugoniot slope
-        let s = mats[sys.mat[k] as usize].eos.hugoniot_slope();
-        if s.is_finite() {
-            crate::math::real::max(s, 0.0)
-        } else {
-            0.0
-        }
-    };
+    let slope = |k: usize| shock_slope(&mats[sys.mat[k] as usize]);
     // the owner's values, broadcast
     let vi: [__m256d; 3] = core::array::from_fn(|a| if a < D { splat(sys.v[i][a]) } else { zero });
     let (pi, rhoi, ci) = (splat(sys.p[i]), splat(sys.rho[i]), splat(sys.c[i]));
