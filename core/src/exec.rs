@@ -99,6 +99,29 @@ impl<T: Send> Split for Optional<'_, T> {
     }
 }
 
+/// A per-particle array of fixed-width records (`width` elements each, `data.len()` a
+/// multiple of it): splitting at particle `mid` splits at its first element.
+#[derive(Debug)]
+pub struct Fixed<'a, T> {
+    /// Elements per particle.
+    pub width: usize,
+    /// The records, one after the other.
+    pub data: &'a mut [T],
+}
+
+impl<T: Send> Split for Fixed<'_, T> {
+    #[inline]
+    fn len(&self) -> usize {
+        self.data.len() / self.width
+    }
+    #[inline]
+    fn split_at(self, mid: usize) -> (Self, Self) {
+        let (a, b) = self.data.split_at_mut(mid * self.width);
+        let width = self.width;
+        (Fixed { width, data: a }, Fixed { width, data: b })
+    }
+}
+
 /// The rows of a compressed-row array over a run of particles: the records of the pairs
 /// each particle owns (see [`crate::neighbors`]), or its neighbours. `start` holds the
 /// run's row offsets (absolute, one more entry than particles) and `data` exactly the run's

@@ -103,6 +103,81 @@ unsafe fn shape<const D: usize>(kernel: Kernel, q: __m256d) -> (__m256d, __m256d
     }
 }
 
+/// The pair geometry of four pairs (i, j) in lanes, seen from i, exactly as
+/// [`PairGeometry::of`](crate::schemes::common::PairGeometry) computes it for a
+/// non-periodic run: zero (+0) outside the kernel support.
+#[derive(Clone, Copy)]
+pub(super) struct GeomLanes {
+    /// Unit vector from i to j (components past `D` unset).
+    pub n: [__m256d; 3],
+    pub r: __m256d,
+    pub dw: __m256d,
+    /// The artificial-stress factor (zero without).
+    pub f: __m256d,
+    /// The lanes inside the support.
+    pub inside: __m256d,
+    /// `h_ij = (h_i + h_j)/2`.
+    pub hij: __m256d,
+}
+
+/// [`GeomLanes`] of particle i (at `xi`, `hi`) and the neighbours at `xj`, `hj` (lanes);
+/// `kernel` must pass [`has_geometry`], `art` as [`geometry_row`] takes it.
+#[target_feature(enable = "avx2")]
+#[inline]
+pub(super) unsafe fn pair_lanes<const D: usize>(
+    kernel: Kernel,
+    xi: &Vector<D>,
+    hi: Real,
+    xj: &[__m256d; 3],
+    hj: __m256d,
+    art: Option<(Real, u32)>,
+) -> GeomLanes {
+    let zero = _mm256_setzero_pd();
+    // rij = xi - xj, r2 = |rij|² in nalgebra's order ((x0² + x1²) + x2²)
+    let mut rij = [zero; 3];
+    let mut r2 = zero;
+    for a in 0..D {
+        rij[a] = _mm256_sub_pd(splat(xi[a]), xj[a]);
+        let sq = _mm256_mul_pd(rij[a], rij[a]);
+        r2 = if a == 0 { sq } else { _mm256_add_pd(r2, sq) };
+    }
+    let hij = _mm256_mul_pd(splat(0.5), _mm256_add_pd(splat(hi), hj));
+    let rmax = _mm256_mul_pd(splat(kernel.support()), hij);
+    let inside = _mm256_and_pd(
+        _mm256_cmp_pd::<_CMP_LT_OQ>(r2, _mm256_mul_pd(rmax, rmax)),
+        _mm256_cmp_pd::<_CMP_GT_OQ>(r2, zero),
+    );
+    let r = _mm256_sqrt_pd(r2);
+    // Kernel::shape_dw: zero from r >= support h on (compared in r)
+    let beyond = _mm256_cmp_pd::<_CMP_GE_OQ>(r, rmax);
+    let inv_h = _mm256_div_pd(splat(1.0), hij);
+    let q = _mm256_mul_pd(r, inv_h);
+    let (f, df) = shape::<D>(kernel, q);
+    let norm = _mm256_mul_pd(splat(kernel.sigma(D)), powi(inv_h, D as u32));
+    let dw = _mm256_mul_pd(_mm256_mul_pd(norm, inv_h), df);
+    let (f, dw) = (select(beyond, zero, f), select(beyond, zero, dw));
+    // everything outside `inside` is the default (zero) geometry
+    let minus_inv_r = _mm256_div_pd(splat(-1.0), r);
+    let mut n = [zero; 3];
+    for (na, ra) in n.iter_mut().zip(&rij).take(D) {
+        *na = _mm256_and_pd(inside, _mm256_mul_pd(*ra, minus_inv_r));
+    }
+    let f = match art {
+        Some((inv_wref, exponent)) => {
+            _mm256_and_pd(inside, powi(_mm256_mul_pd(f, splat(inv_wref)), exponent))
+        }
+        None => zero,
+    };
+    GeomLanes {
+        n,
+        r: _mm256_and_pd(inside, r),
+        dw: _mm256_and_pd(inside, dw),
+        f,
+        inside,
+        hij,
+    }
+}
+
 /// The geometry of the pairs particle `i` owns (at `xi`, `hi`; its neighbours `owned`),
 /// four at a time, exactly as the portable `geometry_pass` computes them for a
 /// non-periodic run: into `out` and, with `art = Some((1/W_ref shape, n))`, the
@@ -125,11 +200,8 @@ pub(crate) unsafe fn geometry_row<const D: usize>(
     art: Option<(Real, u32)>,
 ) -> usize {
     let n = owned.len();
-    let support = kernel.support();
     let xp = x.as_ptr() as *const Real;
     let hp = h.as_ptr();
-    let sigma = kernel.sigma(D);
-    let zero = _mm256_setzero_pd();
     let mut q0 = 0;
     while q0 < n {
         // a last, partial group repeats its last pair in the spare lanes (not stored)
@@ -140,47 +212,23 @@ pub(crate) unsafe fn geometry_row<const D: usize>(
             .iter()
             .all(|&j| (j as usize) < x.len() && (j as usize) < h.len()));
         let jv = _mm256_set_epi64x(j[3], j[2], j[1], j[0]);
-        // rij = xi - xj, r2 = |rij|² in nalgebra's order ((x0² + x1²) + x2²)
-        let mut rij = [zero; 3];
-        let mut r2 = zero;
-        for (a, ra) in rij.iter_mut().enumerate().take(D) {
+        let mut xj = [_mm256_setzero_pd(); 3];
+        for (a, xa) in xj.iter_mut().enumerate().take(D) {
             let idx = _mm256_add_epi64(
                 _mm256_mul_epu32(jv, _mm256_set1_epi64x(D as i64)),
                 _mm256_set1_epi64x(a as i64),
             );
-            let xa = _mm256_i64gather_pd::<8>(xp, idx);
-            *ra = _mm256_sub_pd(splat(xi[a]), xa);
-            let sq = _mm256_mul_pd(*ra, *ra);
-            r2 = if a == 0 { sq } else { _mm256_add_pd(r2, sq) };
+            *xa = _mm256_i64gather_pd::<8>(xp, idx);
         }
         let hj = _mm256_i64gather_pd::<8>(hp, jv);
-        let hij = _mm256_mul_pd(splat(0.5), _mm256_add_pd(splat(hi), hj));
-        let rmax = _mm256_mul_pd(splat(support), hij);
-        let inside = _mm256_and_pd(
-            _mm256_cmp_pd::<_CMP_LT_OQ>(r2, _mm256_mul_pd(rmax, rmax)),
-            _mm256_cmp_pd::<_CMP_GT_OQ>(r2, zero),
-        );
-        let r = _mm256_sqrt_pd(r2);
-        // Kernel::shape_dw: zero from r >= support h on (compared in r)
-        let beyond = _mm256_cmp_pd::<_CMP_GE_OQ>(r, rmax);
-        let inv_h = _mm256_div_pd(splat(1.0), hij);
-        let q = _mm256_mul_pd(r, inv_h);
-        let (f, df) = shape::<D>(kernel, q);
-        let norm = _mm256_mul_pd(splat(sigma), powi(inv_h, D as u32));
-        let dw = _mm256_mul_pd(_mm256_mul_pd(norm, inv_h), df);
-        let (f, dw) = (select(beyond, zero, f), select(beyond, zero, dw));
-        // everything outside `inside` is the default (zero) geometry
-        let minus_inv_r = _mm256_div_pd(splat(-1.0), r);
+        let g = pair_lanes::<D>(kernel, xi, hi, &xj, hj, art);
         let mut n = [[0.0; 4]; 3];
-        for a in 0..D {
-            _mm256_storeu_pd(
-                n[a].as_mut_ptr(),
-                _mm256_and_pd(inside, _mm256_mul_pd(rij[a], minus_inv_r)),
-            );
+        for (na, ga) in n.iter_mut().zip(&g.n).take(D) {
+            _mm256_storeu_pd(na.as_mut_ptr(), *ga);
         }
         let (mut rr, mut ww) = ([0.0; 4], [0.0; 4]);
-        _mm256_storeu_pd(rr.as_mut_ptr(), _mm256_and_pd(inside, r));
-        _mm256_storeu_pd(ww.as_mut_ptr(), _mm256_and_pd(inside, dw));
+        _mm256_storeu_pd(rr.as_mut_ptr(), g.r);
+        _mm256_storeu_pd(ww.as_mut_ptr(), g.dw);
         for l in 0..lanes {
             let g = &mut out[q0 + l];
             for (ga, na) in g.n.iter_mut().zip(&n) {
@@ -189,10 +237,9 @@ pub(crate) unsafe fn geometry_row<const D: usize>(
             g.r = rr[l];
             g.dw = ww[l];
         }
-        if let Some((inv_wref, exponent)) = art {
-            let fa = _mm256_and_pd(inside, powi(_mm256_mul_pd(f, splat(inv_wref)), exponent));
+        if art.is_some() {
             let mut fl = [0.0; 4];
-            _mm256_storeu_pd(fl.as_mut_ptr(), fa);
+            _mm256_storeu_pd(fl.as_mut_ptr(), g.f);
             fac[q0..q0 + lanes].copy_from_slice(&fl[..lanes]);
         }
         q0 += lanes;

@@ -24,14 +24,21 @@
 //!   the vectorised path does not cover (a failed particle, an impedance that is not
 //!   positive and finite, a two-shock answer that is not finite) is solved again by the
 //!   portable code.
-//!
-//! A vectorised `av` pair loop that filled its lanes from the per-particle arrays (about
-//! twenty scalar loads per neighbour) was bitwise right but 27 % slower than the portable
-//! loop on the colliding rings: the loop is bound by those scattered loads, not by its
-//! arithmetic, so it waits for a compact neighbour record (docs/performance.md).
+//! - the star states of `tkc` (and `pm` with MUSCL): objective rotation, corrected
+//!   traction axis, MUSCL in the pair frame, the acoustic or two-shock solver,
+//!   `avx2_pm.rs`; the same fallbacks.
+//! - `av`'s pair loop (the cubic spline and Wendland C2 kernels, non-periodic runs),
+//!   `avx2_av.rs`. Its neighbours' fields come from one compact record per particle
+//!   (`Workspace::av_rec`, written once per rate evaluation), four records loaded four
+//!   reals at a time and transposed into lanes; each pair's terms are computed in lanes and
+//!   the particle's sums add them in its list's order. (A first version that filled the
+//!   lanes from the per-particle arrays, about twenty scalar loads per neighbour, was 27 %
+//!   slower than the portable loop: the loop is bound by those loads, not by arithmetic.)
 
 #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
 pub(crate) mod avx2;
+#[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
+pub(crate) mod avx2_av;
 #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
 pub(crate) mod avx2_pm;
 #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
@@ -69,6 +76,61 @@ pub(crate) fn geometry_row<const D: usize>(
         };
     }
     0
+}
+
+/// Whether [`av_row`] runs at this level with this geometry: AVX2, the cubic spline or
+/// Wendland C2 kernel, no periodic images (the caller then writes the neighbour records
+/// it reads).
+#[inline(always)]
+#[allow(unused_variables)]
+pub(crate) fn av_rows<const D: usize>(
+    level: SimdLevel,
+    pg: &crate::schemes::common::PairGeometry<D>,
+) -> bool {
+    #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
+    if level.avx2() && pg.periodic.is_none() && avx2::has_geometry(pg.kernel) {
+        return true;
+    }
+    false
+}
+
+/// The pair sums of particle `i` (`av`; what it brings to its pairs `own`) from its
+/// neighbours' records `rec` into `s` by the vectorised loop where [`av_rows`] holds.
+/// Returns whether it did them (false: the portable loop does), bitwise as the portable
+/// loop of `av`'s rates.
+#[inline(always)]
+#[allow(clippy::too_many_arguments, unused_variables)]
+pub(crate) fn av_row<const D: usize, E: crate::effects::Effects>(
+    params: &crate::state::StepParams<'_, D>,
+    pg: &crate::schemes::common::PairGeometry<D>,
+    rec: &[crate::math::Real],
+    i: usize,
+    own: &crate::schemes::av::pairs::Owner<D>,
+    alpha: crate::math::Real,
+    beta: crate::math::Real,
+    s: &mut crate::schemes::av::pairs::Sums<D>,
+) -> bool {
+    #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
+    if av_rows(params.simd, pg) {
+        let (row, owned) = (params.nbrs.of(i), params.nbrs.owned(i));
+        // SAFETY: `params.simd` vouches for AVX2 (`SimdLevel::assume`) and `av_rows` holds;
+        // the row checks its neighbours against `rec`
+        unsafe {
+            avx2_av::rates_row::<D, E>(
+                pg.kernel,
+                pg.art,
+                alpha,
+                beta,
+                rec,
+                row,
+                row.len() - owned.len(),
+                own,
+                s,
+            )
+        };
+        return true;
+    }
+    false
 }
 
 /// The star states of the pairs particle `i` owns (`ts1`, `ts2`: its neighbours `owned`,

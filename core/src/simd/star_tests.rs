@@ -41,7 +41,7 @@ impl Effects for Muscl {
     const SET: EffectSet = EffectSet::STRENGTH.union(EffectSet::MUSCL);
 }
 
-fn material(s1: Real) -> Material {
+pub(super) fn material(s1: Real) -> Material {
     Material {
         rho0: 6100.0,
         eos: Hugoniot {
@@ -75,13 +75,13 @@ impl Met {
 /// `n` jittered particles with scattered states and gradients: some gradients zero, some
 /// densities zero (where the reconstruction falls back to first order), some particles
 /// failed, some without sound speed; three materials, one with a negative Hugoniot slope.
-struct Scene<const D: usize> {
+pub(super) struct Scene<const D: usize> {
     x: Vec<Vector<D>>,
     h: Vec<Real>,
     v: Vec<Vector<D>>,
     m: Vec<Real>,
     mat: Vec<u16>,
-    rho: Vec<Real>,
+    pub(super) rho: Vec<Real>,
     e: Vec<Real>,
     p: Vec<Real>,
     c: Vec<Real>,
@@ -97,7 +97,7 @@ struct Scene<const D: usize> {
 
 const CAP: usize = 96;
 
-fn scene<const D: usize>(seed: u64) -> Scene<D> {
+pub(super) fn scene<const D: usize>(seed: u64) -> Scene<D> {
     let side = match D {
         1 => 100,
         2 => 9,
@@ -217,7 +217,7 @@ fn scene<const D: usize>(seed: u64) -> Scene<D> {
 
 /// Calls `f` with the scene's particles, the step's parameters (AVX2, the options
 /// `options`, the effects of `E` and damage) and every pair's geometry.
-fn with_pairs<const D: usize, E: Effects>(
+pub(super) fn with_pairs<const D: usize, E: Effects>(
     sc: &mut Scene<D>,
     options: SchemeOptions,
     f: impl FnOnce(&System<'_, D>, &StepParams<'_, D>, &[PairGeom<D>]),
@@ -242,7 +242,15 @@ fn with_pairs<const D: usize, E: Effects>(
         simd: avx2,
     };
     let mut geom = vec![PairGeom::<D>::default(); list.view().unordered_pairs()];
-    geometry_pass::<D, First, Serial>(&sc.x, &sc.h, &params, &mut geom, &mut [], &Serial);
+    let mut fac = vec![
+        0.0;
+        if params.has::<E>(EffectSet::ARTIFICIAL_STRESS) {
+            geom.len()
+        } else {
+            0
+        }
+    ];
+    geometry_pass::<D, First, Serial>(&sc.x, &sc.h, &params, &mut geom, &mut fac, &Serial);
     let sys = System {
         x: &mut sc.x,
         v: &mut sc.v,

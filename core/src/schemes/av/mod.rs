@@ -19,8 +19,8 @@
 //! [`super::artificial_stress`]), in the force and so in the energy rate.
 
 mod options;
-mod pairs;
-mod records;
+pub(crate) mod pairs;
+pub(crate) mod records;
 
 pub(crate) use options::reads;
 use pairs::rates;
@@ -32,7 +32,7 @@ use crate::schemes::common::halo_exchange;
 use crate::schemes::leapfrog;
 use crate::schemes::SchemeFamily;
 use crate::state::{Family, Layout, SchemeOptions, StepError, StepParams, System, Workspace};
-pub use records::AvRates;
+pub use records::{record_len, AvRates};
 
 /// The halo exchanges of an `av` step (see [`crate::halo`]). The step is: kick and drift
 /// (local), then the rate evaluation — the pair geometry (x, h), the per-particle aux

@@ -1,7 +1,8 @@
 //! The pair interactions of `av`: the rates of every particle from its neighbours.
 
+use super::records::{record_len, sym_at, RecordAt};
 use crate::effects::{EffectSet, Effects};
-use crate::exec::Executor;
+use crate::exec::{Executor, Fixed};
 use crate::math::{Matrix, Real, Sym3, Vector};
 use crate::schemes::artificial_stress::pair_acceleration;
 use crate::schemes::common::{
@@ -10,10 +11,47 @@ use crate::schemes::common::{
 use crate::schemes::common::{Pair, PairGeometry};
 use crate::state::{Aux, AvRates, StepParams, System, Workspace};
 
+/// The pair sums of one particle: `sum_j m_j t_ij`, `-1/2 sum_j m_j v_ij . t_ij`,
+/// `-sum_j V_j v_ij . grad_i W_ij` and `-sum_j V_j v_ij ⊗ grad_i W_ij` (module docs of
+/// [`super`]), summed in the order of the particle's list.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Sums<const D: usize> {
+    pub acc: Vector<D>,
+    pub de: Real,
+    pub div: Real,
+    pub grad_v: Matrix<D>,
+}
+
+impl<const D: usize> Sums<D> {
+    pub fn zero() -> Sums<D> {
+        Sums {
+            acc: Vector::<D>::zeros(),
+            de: 0.0,
+            div: 0.0,
+            grad_v: Matrix::<D>::zeros(),
+        }
+    }
+}
+
+/// What particle i brings to each of its pairs.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Owner<const D: usize> {
+    pub x: Vector<D>,
+    pub h: Real,
+    pub v: Vector<D>,
+    pub rho: Real,
+    pub cl: Real,
+    pub inv_rho: Real,
+    /// The pair Cauchy stress ([`cauchy`]).
+    pub sig: Sym3,
+    /// The artificial-stress tensor (zero without the effect).
+    pub art: Matrix<D>,
+}
+
 /// Evaluates the rates of every particle at the current state into `ws.av` (the
-/// artificial-stress tensors and per-particle aux of `ws` are its scratch; the pair
-/// geometry is computed in the loop, `PairGeometry::seen_from_i`).
-pub(super) fn rates<const D: usize, E: Effects, X: Executor>(
+/// artificial-stress tensors, per-particle aux and neighbour records of `ws` are its
+/// scratch; the pair geometry is computed in the loop, `PairGeometry::seen_from_i`).
+pub(crate) fn rates<const D: usize, E: Effects, X: Executor>(
     sys: &System<'_, D>,
     ws: &mut Workspace<'_, D>,
     params: &StepParams<'_, D>,
@@ -33,60 +71,113 @@ pub(super) fn rates<const D: usize, E: Effects, X: Executor>(
     // it on each side (issue 28: rings 1,336 -> 669 bytes per particle, step about 17 %
     // faster), and the result is bitwise the same (`PairGeometry::seen_from_i`)
     let pg = PairGeometry::<D>::new::<E>(params);
+    // the vectorised loop reads each neighbour's compact record: written here where it
+    // runs (and the caller gave the room)
+    let records =
+        crate::simd::av_rows(params.simd, &pg) && ws.av_rec.len() == aux.len() * record_len(D);
+    if records {
+        write_records::<D, E, X>(sys, aux, art, art_on, ws.av_rec, exec);
+    }
+    let rec: &[Real] = ws.av_rec;
     exec.run(rates, |off, chunk: &mut [AvRates<D>]| {
         for (k, out) in chunk.iter_mut().enumerate() {
             let i = off + k;
-            let sig_i = cauchy::<D, E>(sys, i);
-            let (vi, rhoi, hi, cli) = (sys.v[i], sys.rho[i], sys.h[i], sys.cl[i]);
-            let inv_i = aux[i].inv_rho;
-            let mut acc = Vector::<D>::zeros();
-            let mut de: Real = 0.0;
-            let mut div: Real = 0.0;
-            let mut grad_v = Matrix::<D>::zeros();
-            let xi = sys.x[i];
-            let mut body = |pr: &Pair<D>, f_art: Real| {
-                let j = pr.j;
-                let aj = aux[j];
-                let vij = vi - sys.v[j];
-                // (v_i - v_j).(x_i - x_j) = -r (v_ij . n)
-                let vr = -pr.r * vij.dot(&pr.n);
-                let mut pi_ij = 0.0;
-                if vr < 0.0 {
-                    let hij = 0.5 * (hi + sys.h[j]);
-                    let mu = hij * vr / (pr.r * pr.r + 0.01 * hij * hij);
-                    let cij = 0.5 * (cli + sys.cl[j]);
-                    pi_ij = (-alpha * cij * mu + beta * mu * mu) / (0.5 * (rhoi + sys.rho[j]));
-                }
-                let sig = sig_i + cauchy::<D, E>(sys, j);
-                let mut t = sig.dot_vec(&pr.grad) * (inv_i * aj.inv_rho) - pr.grad * pi_ij;
-                if art_on {
-                    t += pair_acceleration(1.0, f_art, &art[i], &art[j], &pr.grad);
-                }
-                let mj = sys.m[j];
-                acc += t * mj;
-                de -= 0.5 * mj * vij.dot(&t);
-                div -= aj.vol * vij.dot(&pr.grad);
-                if E::STRENGTH {
-                    grad_v -= outer(&vij, &pr.grad) * aj.vol;
-                }
+            let own = Owner {
+                x: sys.x[i],
+                h: sys.h[i],
+                v: sys.v[i],
+                rho: sys.rho[i],
+                cl: sys.cl[i],
+                inv_rho: aux[i].inv_rho,
+                sig: cauchy::<D, E>(sys, i),
+                art: if art_on { art[i] } else { Matrix::<D>::zeros() },
             };
-            params.nbrs.for_each(i, |e| {
-                let (pr, f_art) = pg.seen_from_i(sys.x, sys.h, &xi, hi, e);
-                body(&pr, f_art);
-            });
-            out.acc = acc;
-            out.de = de;
-            out.drho = -rhoi * div;
+            let mut s = Sums::<D>::zero();
+            let vectorised = records
+                && crate::simd::av_row::<D, E>(params, &pg, rec, i, &own, alpha, beta, &mut s);
+            if !vectorised {
+                let (vi, rhoi, hi, cli, inv_i) = (own.v, own.rho, own.h, own.cl, own.inv_rho);
+                let mut body = |pr: &Pair<D>, f_art: Real| {
+                    let j = pr.j;
+                    let aj = aux[j];
+                    let vij = vi - sys.v[j];
+                    // (v_i - v_j).(x_i - x_j) = -r (v_ij . n)
+                    let vr = -pr.r * vij.dot(&pr.n);
+                    let mut pi_ij = 0.0;
+                    if vr < 0.0 {
+                        let hij = 0.5 * (hi + sys.h[j]);
+                        let mu = hij * vr / (pr.r * pr.r + 0.01 * hij * hij);
+                        let cij = 0.5 * (cli + sys.cl[j]);
+                        pi_ij = (-alpha * cij * mu + beta * mu * mu) / (0.5 * (rhoi + sys.rho[j]));
+                    }
+                    let sig = own.sig + cauchy::<D, E>(sys, j);
+                    let mut t = sig.dot_vec(&pr.grad) * (inv_i * aj.inv_rho) - pr.grad * pi_ij;
+                    if art_on {
+                        t += pair_acceleration(1.0, f_art, &own.art, &art[j], &pr.grad);
+                    }
+                    let mj = sys.m[j];
+                    s.acc += t * mj;
+                    s.de -= 0.5 * mj * vij.dot(&t);
+                    s.div -= aj.vol * vij.dot(&pr.grad);
+                    if E::STRENGTH {
+                        s.grad_v -= outer(&vij, &pr.grad) * aj.vol;
+                    }
+                };
+                params.nbrs.for_each(i, |e| {
+                    let (pr, f_art) = pg.seen_from_i(sys.x, sys.h, &own.x, hi, e);
+                    body(&pr, f_art);
+                });
+            }
+            out.acc = s.acc;
+            out.de = s.de;
+            out.drho = -own.rho * s.div;
             out.rate = if E::STRENGTH {
-                equivalent_strain_rate(&grad_v)
+                equivalent_strain_rate(&s.grad_v)
             } else {
                 0.0
             };
             out.ds = if E::STRENGTH {
-                deviator_rate(&sys.s[i], &params.materials[sys.mat[i] as usize], &grad_v)
+                deviator_rate(&sys.s[i], &params.materials[sys.mat[i] as usize], &s.grad_v)
             } else {
                 Sym3::ZERO
             };
+        }
+    });
+}
+
+/// Writes every particle's neighbour record (`crate::state::Workspace::av_rec`): what
+/// its neighbours' pair loops read of it, exactly the values the portable loop reads
+/// (its Cauchy stress as [`cauchy`] gives it).
+fn write_records<const D: usize, E: Effects, X: Executor>(
+    sys: &System<'_, D>,
+    aux: &[Aux],
+    art: &[Matrix<D>],
+    art_on: bool,
+    rec: &mut [Real],
+    exec: &X,
+) {
+    let (at, width) = (RecordAt::of(D), record_len(D));
+    exec.run(Fixed { width, data: rec }, |off, chunk: Fixed<'_, Real>| {
+        for (k, r) in chunk.data.chunks_exact_mut(width).enumerate() {
+            let i = off + k;
+            for a in 0..D {
+                r[at.x + a] = sys.x[i][a];
+                r[at.v + a] = sys.v[i][a];
+            }
+            r[at.h] = sys.h[i];
+            r[at.rho] = sys.rho[i];
+            r[at.cl] = sys.cl[i];
+            r[at.inv_rho] = aux[i].inv_rho;
+            r[at.m] = sys.m[i];
+            let sig = cauchy::<D, E>(sys, i);
+            for a in 0..D {
+                for b in a..D {
+                    r[at.sig + sym_at(D, a, b)] = sig.get(a, b);
+                }
+                for b in 0..D {
+                    r[at.art + a * D + b] = if art_on { art[i][(a, b)] } else { 0.0 };
+                }
+            }
         }
     });
 }

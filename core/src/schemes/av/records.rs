@@ -40,3 +40,68 @@ impl<const D: usize> Default for AvRates<D> {
         }
     }
 }
+
+/// The reals of one particle's neighbour record ([`Workspace::av_rec`]) in `d`
+/// dimensions: the fields of [`RecordAt`], padded to whole groups of four (one AVX2 load
+/// each).
+///
+/// [`Workspace::av_rec`]: crate::state::Workspace::av_rec
+pub const fn record_len(d: usize) -> usize {
+    match d {
+        1 => 12,
+        2 => 16,
+        _ => 28,
+    }
+}
+
+/// Where each field of a neighbour record lies in `D` dimensions: what particle j gives
+/// the pair loop of `av`, written once per rate evaluation by [`write_records`] so that
+/// the loop reads one compact record per neighbour instead of a dozen arrays.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct RecordAt {
+    /// Position (D).
+    pub x: usize,
+    pub h: usize,
+    /// Velocity (D).
+    pub v: usize,
+    pub rho: usize,
+    pub cl: usize,
+    /// `1/rho` (`Aux::inv_rho`; the volume is `m` times it, as `Aux::vol`).
+    pub inv_rho: usize,
+    pub m: usize,
+    /// The `D x D` block of the pair's Cauchy stress (`cauchy`): [`sym_at`] of each
+    /// component.
+    pub sig: usize,
+    /// The artificial-stress tensor, `D x D` row by row (zero without the effect).
+    pub art: usize,
+}
+
+impl RecordAt {
+    pub const fn of(d: usize) -> RecordAt {
+        let sym = d * (d + 1) / 2;
+        RecordAt {
+            x: 0,
+            h: d,
+            v: d + 1,
+            rho: 2 * d + 1,
+            cl: 2 * d + 2,
+            inv_rho: 2 * d + 3,
+            m: 2 * d + 4,
+            sig: 2 * d + 5,
+            art: 2 * d + 5 + sym,
+        }
+    }
+}
+
+/// The place of stress component `(a, b)` in a record's `D x D` block: the diagonal
+/// first, then xy, xz, yz (Voigt's order).
+#[inline(always)]
+pub(crate) const fn sym_at(d: usize, a: usize, b: usize) -> usize {
+    let (a, b) = if a <= b { (a, b) } else { (b, a) };
+    if a == b {
+        a
+    } else {
+        // (0, 1) -> d, (0, 2) -> d + 1, (1, 2) -> d + 2
+        d + a + b - 1
+    }
+}
