@@ -277,7 +277,7 @@ mod runner {
                 corr: &mut [],
                 av: &mut [],
                 art: &mut [],
-                av_rec: &mut [],
+                rec: &mut [],
                 fac: &mut [],
                 aux,
                 geom: &mut geom[..pairs],

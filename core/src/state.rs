@@ -276,7 +276,17 @@ impl<const D: usize> Default for PairGeom<D> {
     }
 }
 
-pub use crate::schemes::av::{record_len as av_record_len, AvRates};
+pub use crate::schemes::av::AvRates;
+
+/// The reals per particle of [`Workspace::rec`] for a family in `d` dimensions (0: the
+/// family's vectorised loops read no records).
+pub const fn record_len(family: Family, d: usize) -> usize {
+    match family {
+        Family::Av => crate::schemes::av::record_len(d),
+        Family::Ts => crate::schemes::ts::record_len(d),
+        Family::Pm => 0,
+    }
+}
 pub use crate::schemes::pm::PmStar;
 pub use crate::schemes::ts::TsStar;
 
@@ -296,10 +306,11 @@ pub struct Workspace<'a, const D: usize> {
     pub av: &'a mut [AvRates<D>],
     /// Artificial stress tensors `R_i` (effect `artificial_stress`).
     pub art: &'a mut [Matrix<D>],
-    /// `av`'s neighbour records, [`av_record_len`]`(D)` reals per particle: what each
-    /// particle gives its neighbours' pair sums, in one place, for the vectorised pair loop
-    /// (`crate::simd`). Optional: empty, the portable loop runs.
-    pub av_rec: &'a mut [Real],
+    /// Neighbour records of the vectorised pair loops (`crate::simd`; `av` and `ts`),
+    /// [`record_len`]`(family, D)` reals per particle: what each particle gives its
+    /// neighbours' pairs, in one place. Scratch, written by the step where a vectorised
+    /// loop reads it; optional: empty (or another length), the portable loops run.
+    pub rec: &'a mut [Real],
     /// Pair geometry (all schemes), one per unordered pair of the lists.
     pub geom: &'a mut [PairGeom<D>],
     /// The artificial stress factor `f_ij^n` of each pair (effect `artificial_stress`).
@@ -369,12 +380,6 @@ impl<const D: usize> Workspace<'_, D> {
             ("corr", layout.corr, self.corr.len(), n),
             ("av", layout.av, self.av.len(), n),
             ("art", layout.art, self.art.len(), n),
-            (
-                "av_rec",
-                layout.av && !self.av_rec.is_empty(),
-                self.av_rec.len(),
-                n * av_record_len(D),
-            ),
             ("fac", layout.art && layout.geom, self.fac.len(), pairs),
             ("ts_star", layout.ts_star, self.ts_star.len(), pairs),
             ("pm_star", layout.pm_star, self.pm_star.len(), pairs),

@@ -195,7 +195,7 @@ fn run<const D: usize, E: Effects>(c: &Case) -> Result<Totals, StepError> {
             corr: &mut [],
             av: &mut [],
             art: &mut [],
-            av_rec: &mut [],
+            rec: &mut [],
             fac: &mut [],
             aux: &mut aux,
             geom: &mut geom[..pairs],

@@ -65,6 +65,8 @@ struct Grid<const D: usize> {
     ncell: [usize; D],
     /// Particles sorted by cell.
     sorted: Vec<u32>,
+    /// Their positions, in the same order (a cell's candidates are read in one sweep).
+    xs: Vec<Vector<D>>,
     /// Cell offsets into `sorted`.
     start: Vec<u32>,
     /// Neighbour cell offsets (-1, 0, 1 along each axis).
@@ -120,6 +122,7 @@ impl<const D: usize> Grid<D> {
             size,
             ncell,
             sorted: Vec::new(),
+            xs: Vec::new(),
             start: Vec::new(),
             offsets: Vec::new(),
             periodic: *periodic,
@@ -151,6 +154,7 @@ impl<const D: usize> Grid<D> {
             }
             offsets = next;
         }
+        g.xs = sorted.iter().map(|&i| x[i as usize]).collect();
         g.sorted = sorted;
         g.start = start;
         g.offsets = offsets;
@@ -174,8 +178,8 @@ impl<const D: usize> Grid<D> {
         f
     }
 
-    /// Calls `f(j)` for every particle in the cells around `xi` (each cell once, also when
-    /// a periodic axis has fewer than 3 cells).
+    /// Calls `f(k)` for every particle `sorted[k]` (at `xs[k]`) in the cells around `xi`
+    /// (each cell once, also when a periodic axis has fewer than 3 cells).
     #[inline]
     fn for_candidates(&self, xi: &Vector<D>, mut f: impl FnMut(usize)) {
         let ci = self.cell_of(xi);
@@ -199,8 +203,8 @@ impl<const D: usize> Grid<D> {
             }
             seen[nseen] = fl;
             nseen += 1;
-            for &j in &self.sorted[self.start[fl] as usize..self.start[fl + 1] as usize] {
-                f(j as usize);
+            for k in self.start[fl] as usize..self.start[fl + 1] as usize {
+                f(k);
             }
         }
     }
@@ -231,20 +235,40 @@ pub fn build<const D: usize>(
     let factor = support * (1.0 + skin);
     let hmax = h.iter().cloned().fold(0.0, f64::max);
     let grid = Grid::new(x, factor * hmax, periodic);
-    let near = |i: usize, j: usize| {
-        let d = periodic.min_image(x[i] - x[j]);
-        let r = factor * 0.5 * (h[i] + h[j]);
-        i != j && d.norm_squared() < r * r
-    };
-    // pass 1: row lengths
-    let counts: Vec<u32> = (0..n)
+    // the smoothing lengths in the grid's order, beside its positions
+    let hs: Vec<f64> = grid.sorted.iter().map(|&j| h[j as usize]).collect();
+    // one sweep over the candidates: each run of particles collects its rows (sorted by
+    // key), keeping at most capacity + 1 entries of a row (an overflow is an error: its
+    // count is all the message needs, and the memory stays bounded whatever the input)
+    const RUN: usize = 256;
+    let runs: Vec<(Vec<u32>, Vec<u32>)> = (0..n.div_ceil(RUN))
         .into_par_iter()
-        .map(|i| {
-            let mut c = 0u32;
-            grid.for_candidates(&x[i], |j| c += near(i, j) as u32);
-            c
+        .map(|run| {
+            let (a, b) = (run * RUN, ((run + 1) * RUN).min(n));
+            let mut counts = Vec::with_capacity(b - a);
+            let mut rows: Vec<u32> = Vec::with_capacity((b - a) * capacity.min(64));
+            for i in a..b {
+                let (xi, hi) = (x[i], h[i]);
+                let first = rows.len();
+                let mut c = 0u32;
+                grid.for_candidates(&xi, |k| {
+                    let d = periodic.min_image(xi - grid.xs[k]);
+                    let reach = factor * 0.5 * (hi + hs[k]);
+                    let j = grid.sorted[k];
+                    if j as usize != i && d.norm_squared() < reach * reach {
+                        c += 1;
+                        if c as usize <= capacity {
+                            rows.push(j);
+                        }
+                    }
+                });
+                rows[first..].sort_unstable_by_key(|&j| key[j as usize]);
+                counts.push(c);
+            }
+            (counts, rows)
         })
         .collect();
+    let counts: Vec<u32> = runs.iter().flat_map(|(c, _)| c.iter().copied()).collect();
     // the overflowing particle of lowest key (the message does not depend on the order)
     if let Some(i) = (0..n)
         .filter(|&i| counts[i] as usize > capacity)
@@ -265,30 +289,13 @@ pub fn build<const D: usize>(
         return Err(NeighborError::BadStorage);
     }
     lists.start[n] = total as u32;
-    // pass 2: rows, sorted by key
-    let exec = Rayon::default();
-    let mut index = vec![0u32; total as usize];
-    exec.run(
-        Rows {
-            start: &lists.start,
-            data: &mut index,
-        },
-        |off, mut rows: Rows<'_, u32>| {
-            for k in 0..rows.len() {
-                let i = off + k;
-                let row = rows.of(k);
-                let mut c = 0;
-                grid.for_candidates(&x[i], |j| {
-                    if near(i, j) {
-                        row[c] = j as u32;
-                        c += 1;
-                    }
-                });
-                row.sort_unstable_by_key(|&j| key[j as usize]);
-            }
-        },
-    );
+    let mut index = Vec::with_capacity(total as usize);
+    for (_, rows) in &runs {
+        index.extend_from_slice(rows);
+    }
+    drop(runs);
     lists.index = index;
+    let exec = Rayon::default();
     // pair numbering: the owner of a pair is its particle of lower key
     let k = |i: usize| key[i] as u64;
     let owned: Vec<u32> = (0..n)
@@ -339,9 +346,9 @@ pub fn nearest_distances<const D: usize>(x: &[Vector<D>], reach: f64) -> Vec<f64
         .into_par_iter()
         .map(|i| {
             let mut best = f64::INFINITY;
-            grid.for_candidates(&x[i], |j| {
-                if j != i {
-                    let d = (x[i] - x[j]).norm();
+            grid.for_candidates(&x[i], |k| {
+                if grid.sorted[k] as usize != i {
+                    let d = (x[i] - grid.xs[k]).norm();
                     if d < reach {
                         best = best.min(d);
                     }

@@ -203,7 +203,7 @@ fn run<F: SchemeFamily, E: Effects + Plasticity>(t_end: Real) -> (Real, Real, Re
             corr,
             av,
             art: &mut [],
-            av_rec: &mut [],
+            rec: &mut [],
             fac: &mut [],
             aux,
             geom: &mut geom[..pairs],

@@ -54,7 +54,7 @@ fn all_rates<const D: usize, E: Effects>(
         corr: &mut [],
         av: &mut av,
         art: &mut art,
-        av_rec: &mut rec,
+        rec: &mut rec,
         geom: &mut [],
         fac: &mut [],
         aux: &mut aux,

@@ -247,6 +247,28 @@ pub(crate) unsafe fn geometry_row<const D: usize>(
     n
 }
 
+/// Four records' reals `4 g .. 4 g + 4` (`p[l]` points at lane `l`'s record) as four lane
+/// vectors, one per real.
+#[target_feature(enable = "avx2")]
+#[inline]
+pub(super) unsafe fn transpose(p: &[*const Real; 4], g: usize) -> [__m256d; 4] {
+    let (a, b, c, d) = (
+        _mm256_loadu_pd(p[0].add(4 * g)),
+        _mm256_loadu_pd(p[1].add(4 * g)),
+        _mm256_loadu_pd(p[2].add(4 * g)),
+        _mm256_loadu_pd(p[3].add(4 * g)),
+    );
+    // [a0 b0 a2 b2], [a1 b1 a3 b3], [c0 d0 c2 d2], [c1 d1 c3 d3]
+    let (t0, t1) = (_mm256_unpacklo_pd(a, b), _mm256_unpackhi_pd(a, b));
+    let (t2, t3) = (_mm256_unpacklo_pd(c, d), _mm256_unpackhi_pd(c, d));
+    [
+        _mm256_permute2f128_pd::<0x20>(t0, t2),
+        _mm256_permute2f128_pd::<0x20>(t1, t3),
+        _mm256_permute2f128_pd::<0x31>(t0, t2),
+        _mm256_permute2f128_pd::<0x31>(t1, t3),
+    ]
+}
+
 // The lane arithmetic of the pair loops: each function is one IEEE operation per lane,
 // or the portable helper's rule exactly (named in its documentation).
 

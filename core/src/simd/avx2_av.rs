@@ -1,6 +1,6 @@
 //! `av`'s pair loop, four neighbours per AVX2 instruction (module docs of [`super`]).
 //!
-//! Each neighbour's fields come from its compact record (`Workspace::av_rec`): four
+//! Each neighbour's fields come from its compact record (`Workspace::rec`): four
 //! records are loaded four reals at a time and transposed into lanes, so a neighbour
 //! costs a few vector loads instead of a dozen scattered scalar ones. The lanes compute
 //! each pair's terms with the portable loop's operations in its order; the particle's
@@ -8,34 +8,12 @@
 
 use core::arch::x86_64::*;
 
-use super::avx2::{add, dot, lt, mul, neg, pair_lanes, select, splat, store, sub};
+use super::avx2::{add, dot, lt, mul, neg, pair_lanes, select, splat, store, sub, transpose};
 use crate::effects::Effects;
 use crate::kernel::Kernel;
 use crate::math::Real;
 use crate::schemes::av::pairs::{Owner, Sums};
 use crate::schemes::av::records::{record_len, sym_at, RecordAt};
-
-/// Four records' reals `4 g .. 4 g + 4` (`p[l]` points at lane `l`'s record) as four lane
-/// vectors, one per real.
-#[target_feature(enable = "avx2")]
-#[inline]
-unsafe fn transpose(p: &[*const Real; 4], g: usize) -> [__m256d; 4] {
-    let (a, b, c, d) = (
-        _mm256_loadu_pd(p[0].add(4 * g)),
-        _mm256_loadu_pd(p[1].add(4 * g)),
-        _mm256_loadu_pd(p[2].add(4 * g)),
-        _mm256_loadu_pd(p[3].add(4 * g)),
-    );
-    // [a0 b0 a2 b2], [a1 b1 a3 b3], [c0 d0 c2 d2], [c1 d1 c3 d3]
-    let (t0, t1) = (_mm256_unpacklo_pd(a, b), _mm256_unpackhi_pd(a, b));
-    let (t2, t3) = (_mm256_unpacklo_pd(c, d), _mm256_unpackhi_pd(c, d));
-    [
-        _mm256_permute2f128_pd::<0x20>(t0, t2),
-        _mm256_permute2f128_pd::<0x20>(t1, t3),
-        _mm256_permute2f128_pd::<0x31>(t0, t2),
-        _mm256_permute2f128_pd::<0x31>(t1, t3),
-    ]
-}
 
 /// The pair sums of particle `own` over its list `row` (entries from `lower` on are the
 /// pairs it owns), from the neighbours' records `rec`, into `s`: bitwise the portable

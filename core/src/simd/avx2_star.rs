@@ -1,7 +1,8 @@
 //! The AVX2 star states of the time-split family's pairs (`ts1`, `ts2`): four pairs of one
 //! row per instruction, each lane doing the portable [`star`]'s IEEE operations in its
 //! order (module docs of [`super`]). The owner's values are broadcast once per row; the
-//! neighbours' are loaded lane by lane.
+//! neighbours' come from their records ([`write_records`]), four records loaded four reals
+//! at a time and transposed into lanes.
 //!
 //! Covered: the default time and dissipation options (`muscl_time = "none"`,
 //! `dissipation = "full"`), the superbee and minmod limiters, the acoustic and two-shock
@@ -13,13 +14,16 @@ use core::arch::x86_64::*;
 
 use super::avx2::{
     add, and, dot, finite, gt, limit, load, minmod, mul, neg, select, shock_slope, splat, store,
-    sub, two_shock, Side,
+    sub, transpose, two_shock, Side,
 };
 use crate::effects::{EffectSet, Effects};
+use crate::exec::{Executor, Fixed};
 use crate::limiter::Limiter;
+use crate::math::Real;
 use crate::riemann::Dissipation;
 use crate::schemes::common::failed;
 use crate::schemes::ts::pairs::star;
+use crate::schemes::ts::records::{record_len, RecordAt};
 use crate::state::{Gradients, MusclTime, PairGeom, RiemannSolver, StepParams, System, TsStar};
 
 /// Whether [`star_row`] pays for this step's scheme: the first-order star with the
@@ -38,6 +42,43 @@ pub(crate) fn covers<const D: usize>(params: &StepParams<'_, D>) -> bool {
     o.muscl_time == MusclTime::None
         && o.dissipation == Dissipation::Full
         && matches!(o.limiter, Limiter::Superbee | Limiter::Minmod)
+}
+
+/// Writes every particle's neighbour record ([`RecordAt`]) for [`star_row`]: its velocity,
+/// pressure, density, sound speed, Hugoniot slope, whether it failed, and with MUSCL its
+/// gradients, exactly the values the portable [`star`] reads.
+pub(crate) fn write_records<const D: usize, E: Effects, X: Executor>(
+    sys: &System<'_, D>,
+    grad: &[Gradients<D>],
+    params: &StepParams<'_, D>,
+    rec: &mut [Real],
+    exec: &X,
+) {
+    let (at, width) = (RecordAt::of(D), record_len(D));
+    let mats = params.materials;
+    exec.run(Fixed { width, data: rec }, |off, chunk: Fixed<'_, Real>| {
+        for (k, r) in chunk.data.chunks_exact_mut(width).enumerate() {
+            let i = off + k;
+            for a in 0..D {
+                r[at.v + a] = sys.v[i][a];
+            }
+            r[at.p] = sys.p[i];
+            r[at.rho] = sys.rho[i];
+            r[at.c] = sys.c[i];
+            r[at.slope] = shock_slope(&mats[sys.mat[i] as usize]);
+            r[at.failed] = if failed::<D, E>(sys, i) { 1.0 } else { 0.0 };
+            if E::MUSCL {
+                let g = &grad[i];
+                for a in 0..D {
+                    for b in 0..D {
+                        r[at.grad_v + a * D + b] = g.v[(a, b)];
+                    }
+                    r[at.grad_p + a] = g.p[a];
+                    r[at.grad_rho + a] = g.rho[a];
+                }
+            }
+        }
+    });
 }
 
 /// `ts::pairs::reconstruct` with `f_i = f_j = 1`.
@@ -119,6 +160,7 @@ unsafe fn pressure_star(
 pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
     sys: &System<'_, D>,
     grad: &[Gradients<D>],
+    rec: &[Real],
     params: &StepParams<'_, D>,
     i: usize,
     geom: &[PairGeom<D>],
@@ -133,6 +175,13 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
     let damage = E::RUNTIME.contains(EffectSet::DAMAGE);
     let mats = params.materials;
     let slope = |k: usize| shock_slope(&mats[sys.mat[k] as usize]);
+    // the neighbours' records: the first-order fields, and the gradients with MUSCL
+    let (at, width) = (RecordAt::of(D), record_len(D));
+    let groups = if E::MUSCL {
+        width / 4
+    } else {
+        at.first_order.div_ceil(4)
+    };
     // the owner's values, broadcast
     let vi: [__m256d; 3] = core::array::from_fn(|a| if a < D { splat(sys.v[i][a]) } else { zero });
     let (pi, rhoi, ci) = (splat(sys.p[i]), splat(sys.rho[i]), splat(sys.c[i]));
@@ -165,34 +214,23 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
         let lanes = (n - q0).min(4);
         let lane = |l: usize| q0 + l.min(lanes - 1);
         let js: [usize; 4] = core::array::from_fn(|l| owned[lane(l)] as usize);
-        // four lanes of a per-neighbour value: `lanes!(|l, j| value)`
-        macro_rules! lanes {
-            (|$l:ident, $j:ident| $e:expr) => {
-                load(&core::array::from_fn(|$l| {
-                    let $j = js[$l];
-                    let _ = $j;
-                    $e
-                }))
-            };
+        // the loads below read through raw pointers: every record checked
+        assert!(js.iter().all(|&j| (j + 1) * width <= rec.len()));
+        let p: [*const Real; 4] = core::array::from_fn(|l| rec.as_ptr().add(js[l] * width));
+        let mut f = [zero; 24];
+        for g in 0..groups {
+            f[4 * g..4 * g + 4].copy_from_slice(&transpose(&p, g));
         }
         let nv: [__m256d; 3] = core::array::from_fn(|a| {
             if a < D {
-                lanes!(|l, j| geom[lane(l)].n[a])
+                load(&core::array::from_fn(|l| geom[lane(l)].n[a]))
             } else {
                 zero
             }
         });
-        let r = lanes!(|l, j| geom[lane(l)].r);
-        let vj: [__m256d; 3] = core::array::from_fn(|a| {
-            if a < D {
-                lanes!(|l, j| sys.v[j][a])
-            } else {
-                zero
-            }
-        });
-        let pj = lanes!(|l, j| sys.p[j]);
-        let rhoj = lanes!(|l, j| sys.rho[j]);
-        let cj = lanes!(|l, j| sys.c[j]);
+        let r = load(&core::array::from_fn(|l| geom[lane(l)].r));
+        let vj: [__m256d; 3] = core::array::from_fn(|a| if a < D { f[at.v + a] } else { zero });
+        let (pj, rhoj, cj) = (f[at.p], f[at.rho], f[at.c]);
         // first order: (v . n, p, rho) of each side
         let (ui, uj) = (dot::<D>(&vi, &nv), dot::<D>(&vj, &nv));
         let (mut l, mut rr) = ([ui, pi, rhoi], [uj, pj, rhoj]);
@@ -201,26 +239,16 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
             let gvj: [[__m256d; 3]; 3] = core::array::from_fn(|b| {
                 core::array::from_fn(|a| {
                     if a < D && b < D {
-                        lanes!(|l, j| grad[j].v[(a, b)])
+                        f[at.grad_v + a * D + b]
                     } else {
                         zero
                     }
                 })
             });
-            let gpj: [__m256d; 3] = core::array::from_fn(|a| {
-                if a < D {
-                    lanes!(|l, j| grad[j].p[a])
-                } else {
-                    zero
-                }
-            });
-            let grj: [__m256d; 3] = core::array::from_fn(|a| {
-                if a < D {
-                    lanes!(|l, j| grad[j].rho[a])
-                } else {
-                    zero
-                }
-            });
+            let gpj: [__m256d; 3] =
+                core::array::from_fn(|a| if a < D { f[at.grad_p + a] } else { zero });
+            let grj: [__m256d; 3] =
+                core::array::from_fn(|a| if a < D { f[at.grad_rho + a] } else { zero });
             let own = slopes::<D>(&nv, &gvi, &gpi, &gri);
             let theirs = slopes::<D>(&nv, &gvj, &gpj, &grj);
             let half_r = mul(splat(0.5), r);
@@ -239,7 +267,7 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
         let [ul, pl, rl] = l;
         let [ur, pr, rhor] = rr;
         let (us, ps, redo) = if two_shock_solver {
-            let sj = lanes!(|l, j| slope(j));
+            let sj = f[at.slope];
             two_shock(
                 &Side {
                     u: ul,
@@ -261,10 +289,11 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
             (u, p, zero)
         };
         let (us, ps, redo, r) = (store(us), store(ps), store(redo), store(r));
+        let failed_j = store(f[at.failed]);
         for l in 0..lanes {
             let (q, j) = (q0 + l, js[l]);
             out[q] = if r[l] > 0.0 {
-                let (u, p) = if redo[l] != 0.0 || (damage && (failed_i || failed::<D, E>(sys, j))) {
+                let (u, p) = if redo[l] != 0.0 || (damage && (failed_i || failed_j[l] != 0.0)) {
                     let g = &geom[q];
                     star::<D, E>(sys, grad, params, i, j, &g.n, g.r)
                 } else {

@@ -20,21 +20,24 @@
 //!   geometry in that loop.)
 //! - the star states of `ts1` and `ts2` (MUSCL reconstruction, the acoustic or two-shock
 //!   solver; the default time and dissipation options, the superbee and minmod limiters),
-//!   `avx2_star.rs`: each row's owner broadcast, its neighbours four per instruction. A lane
-//!   the vectorised path does not cover (a failed particle, an impedance that is not
-//!   positive and finite, a two-shock answer that is not finite) is solved again by the
-//!   portable code.
+//!   `avx2_star.rs`: each row's owner broadcast, its neighbours four per instruction, their
+//!   fields read from one compact record per particle (`Workspace::rec`, written before the
+//!   stars are solved) as `av`'s are (below). A lane the vectorised path does not cover (a
+//!   failed particle, an impedance that is not positive and finite, a two-shock answer
+//!   that is not finite) is solved again by the portable code.
 //! - the star states of `tkc` (and `pm` with MUSCL): objective rotation, corrected
 //!   traction axis, MUSCL in the pair frame, the acoustic or two-shock solver,
 //!   `avx2_pm.rs`; the same fallbacks.
 //! - `av`'s pair loop (the cubic spline and Wendland C2 kernels, non-periodic runs),
 //!   `avx2_av.rs`. Its neighbours' fields come from one compact record per particle
-//!   (`Workspace::av_rec`, written once per rate evaluation), four records loaded four
+//!   (`Workspace::rec`, written once per rate evaluation), four records loaded four
 //!   reals at a time and transposed into lanes; each pair's terms are computed in lanes and
 //!   the particle's sums add them in its list's order. (A first version that filled the
 //!   lanes from the per-particle arrays, about twenty scalar loads per neighbour, was 27 %
 //!   slower than the portable loop: the loop is bound by those loads, not by arithmetic.)
 
+#[cfg(all(test, target_arch = "x86_64", not(feature = "f32")))]
+mod av_tests;
 #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
 pub(crate) mod avx2;
 #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
@@ -133,16 +136,42 @@ pub(crate) fn av_row<const D: usize, E: crate::effects::Effects>(
     false
 }
 
+/// Writes every particle's neighbour record for [`ts_star_row`] into `rec` where the
+/// level and the step's options allow the vectorised row and it pays (AVX2;
+/// `avx2_star::covers` and `pays`) and `rec` has the room (`state::record_len`); returns
+/// whether it did (false: the rows run the portable loop).
+#[inline(always)]
+#[allow(unused_variables)]
+pub(crate) fn ts_records<const D: usize, E: crate::effects::Effects, X: crate::exec::Executor>(
+    sys: &crate::state::System<'_, D>,
+    grad: &[crate::state::Gradients<D>],
+    params: &crate::state::StepParams<'_, D>,
+    rec: &mut [crate::math::Real],
+    exec: &X,
+) -> bool {
+    #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
+    if params.simd.avx2()
+        && avx2_star::covers(params)
+        && avx2_star::pays::<D, E>(params)
+        && rec.len() == sys.x.len() * crate::schemes::ts::record_len(D)
+    {
+        avx2_star::write_records::<D, E, X>(sys, grad, params, rec, exec);
+        return true;
+    }
+    false
+}
+
 /// The star states of the pairs particle `i` owns (`ts1`, `ts2`: its neighbours `owned`,
-/// their geometry `geom`) into `out` by the vectorised loop where the level and the step's
-/// options allow it and it pays (AVX2; `avx2_star::covers` and `pays`). Returns how many pairs
-/// it did (0: none; the portable loop does the rest), each bitwise as
+/// their geometry `geom`) into `out` by the vectorised loop, from the neighbour records
+/// `rec` [`ts_records`] wrote (call only where it returned true). Returns how many pairs it
+/// did (0: none; the portable loop does the rest), each bitwise as
 /// [`crate::schemes::ts::pairs::star`] gives it (`p* = 0` unless `with_p`).
 #[inline(always)]
 #[allow(clippy::too_many_arguments, unused_variables)]
 pub(crate) fn ts_star_row<const D: usize, E: crate::effects::Effects>(
     sys: &crate::state::System<'_, D>,
     grad: &[crate::state::Gradients<D>],
+    rec: &[crate::math::Real],
     params: &crate::state::StepParams<'_, D>,
     i: usize,
     geom: &[crate::state::PairGeom<D>],
@@ -154,7 +183,7 @@ pub(crate) fn ts_star_row<const D: usize, E: crate::effects::Effects>(
     if params.simd.avx2() && avx2_star::covers(params) && avx2_star::pays::<D, E>(params) {
         // SAFETY: `params.simd` vouches for AVX2 (`SimdLevel::assume`) and `covers` holds
         return unsafe {
-            avx2_star::star_row::<D, E>(sys, grad, params, i, geom, owned, out, with_p)
+            avx2_star::star_row::<D, E>(sys, grad, rec, params, i, geom, owned, out, with_p)
         };
     }
     0

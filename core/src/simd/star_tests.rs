@@ -294,6 +294,9 @@ fn same_stars<const D: usize, E: Effects>(
     let grad = core::mem::take(&mut sc.grad);
     let mut met = Met::default();
     with_pairs::<D, E>(&mut sc, options, |sys, params, geom| {
+        // the neighbour records the rows read (stale values where the writer leaves a field)
+        let mut rec = vec![Real::NAN; sys.x.len() * crate::schemes::ts::record_len(D)];
+        avx2_star::write_records::<D, E, Serial>(sys, &grad, params, &mut rec, &Serial);
         for (i, p0, owned) in rows(params) {
             let gs = &geom[p0..p0 + owned.len()];
             let mut simd = vec![TsStar { u: 7.0, p: 7.0 }; owned.len()];
@@ -301,7 +304,7 @@ fn same_stars<const D: usize, E: Effects>(
             assert!(avx2_star::covers(params));
             // SAFETY: the caller checked that the CPU has AVX2; the options are covered
             let done = unsafe {
-                avx2_star::star_row::<D, E>(sys, &grad, params, i, gs, owned, &mut simd, true)
+                avx2_star::star_row::<D, E>(sys, &grad, &rec, params, i, gs, owned, &mut simd, true)
             };
             assert_eq!(done, owned.len(), "the row does every pair");
             for (q, (&j, pg)) in owned.iter().zip(gs).enumerate() {
@@ -325,7 +328,17 @@ fn same_stars<const D: usize, E: Effects>(
             let mut simd_u = vec![TsStar { u: 7.0, p: 7.0 }; owned.len()];
             // SAFETY: as above
             unsafe {
-                avx2_star::star_row::<D, E>(sys, &grad, params, i, gs, owned, &mut simd_u, false)
+                avx2_star::star_row::<D, E>(
+                    sys,
+                    &grad,
+                    &rec,
+                    params,
+                    i,
+                    gs,
+                    owned,
+                    &mut simd_u,
+                    false,
+                )
             };
             for (a, b) in simd.iter().zip(&simd_u) {
                 assert_eq!(

@@ -109,8 +109,8 @@ pub struct Sim {
     /// the collapse check in [`Sim::checked_dt`].
     dt_first: Option<Real>,
     art: Vec<Matrix<D>>,
-    /// `av`'s neighbour records (scratch of the vectorised pair loop; sized at each step).
-    av_rec: Vec<Real>,
+    /// Neighbour records (scratch of the vectorised pair loops; sized at each step).
+    rec: Vec<Real>,
     aux: Vec<Aux>,
     geom: Vec<PairGeom<D>>,
     fac: Vec<Real>,
@@ -240,7 +240,7 @@ impl<const D: usize> Sim<D> {
             dt_first: None,
             av: Vec::new(),
             art: Vec::new(),
-            av_rec: Vec::new(),
+            rec: Vec::new(),
             aux: Vec::new(),
             geom: Vec::new(),
             fac: Vec::new(),
@@ -326,7 +326,7 @@ impl<const D: usize> Sim<D> {
             + self.corr.len() * size_of::<Correction<D>>()
             + self.av.len() * size_of::<AvRates<D>>()
             + self.art.len() * size_of::<Matrix<D>>()
-            + self.av_rec.len() * size_of::<Real>()
+            + self.rec.len() * size_of::<Real>()
             + self.aux.len() * size_of::<Aux>()
             + self.fac.len() * size_of::<Real>()
             + self.geom.len() * size_of::<PairGeom<D>>()
@@ -455,14 +455,14 @@ impl<const D: usize> Sim<D> {
             effects: self.effects,
             simd: self.simd,
         };
-        // av's neighbour records where a vectorised loop may read them (scratch: every
-        // rate evaluation writes them whole)
-        let records = if self.av.is_empty() || self.simd.get() == gsph_core::simd::Simd::Baseline {
+        // the neighbour records where a vectorised loop may read them (scratch: the step
+        // writes them whole before it reads them)
+        let records = if self.simd.get() == gsph_core::simd::Simd::Baseline {
             0
         } else {
-            self.aux.len() * gsph_core::state::av_record_len(D)
+            self.aux.len() * gsph_core::state::record_len(self.scheme.family(), D)
         };
-        self.av_rec.resize(records, 0.0);
+        self.rec.resize(records, 0.0);
         let mut sys = gsph_core::particle_fields!(step each_state_field { system self });
         let mut ws = Workspace {
             sums: &mut self.sums,
@@ -471,7 +471,7 @@ impl<const D: usize> Sim<D> {
             corr: &mut self.corr,
             av: &mut self.av,
             art: &mut self.art,
-            av_rec: &mut self.av_rec,
+            rec: &mut self.rec,
             geom: &mut self.geom,
             fac: &mut self.fac,
             aux: &mut self.aux,

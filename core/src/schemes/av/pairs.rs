@@ -74,11 +74,11 @@ pub(crate) fn rates<const D: usize, E: Effects, X: Executor>(
     // the vectorised loop reads each neighbour's compact record: written here where it
     // runs (and the caller gave the room)
     let records =
-        crate::simd::av_rows(params.simd, &pg) && ws.av_rec.len() == aux.len() * record_len(D);
+        crate::simd::av_rows(params.simd, &pg) && ws.rec.len() == aux.len() * record_len(D);
     if records {
-        write_records::<D, E, X>(sys, aux, art, art_on, ws.av_rec, exec);
+        write_records::<D, E, X>(sys, aux, art, art_on, ws.rec, exec);
     }
-    let rec: &[Real] = ws.av_rec;
+    let rec: &[Real] = ws.rec;
     exec.run(rates, |off, chunk: &mut [AvRates<D>]| {
         for (k, out) in chunk.iter_mut().enumerate() {
             let i = off + k;
@@ -145,7 +145,7 @@ pub(crate) fn rates<const D: usize, E: Effects, X: Executor>(
     });
 }
 
-/// Writes every particle's neighbour record (`crate::state::Workspace::av_rec`): what
+/// Writes every particle's neighbour record (`crate::state::Workspace::rec`): what
 /// its neighbours' pair loops read of it, exactly the values the portable loop reads
 /// (its Cauchy stress as [`cauchy`] gives it).
 fn write_records<const D: usize, E: Effects, X: Executor>(

@@ -41,11 +41,11 @@ impl<const D: usize> Default for AvRates<D> {
     }
 }
 
-/// The reals of one particle's neighbour record ([`Workspace::av_rec`]) in `d`
+/// The reals of one particle's neighbour record ([`Workspace::rec`]) in `d`
 /// dimensions: the fields of [`RecordAt`], padded to whole groups of four (one AVX2 load
 /// each).
 ///
-/// [`Workspace::av_rec`]: crate::state::Workspace::av_rec
+/// [`Workspace::rec`]: crate::state::Workspace::rec
 pub const fn record_len(d: usize) -> usize {
     match d {
         1 => 12,

@@ -74,7 +74,7 @@ fn rates<const D: usize, E: Effects, X: Executor>(
         add_forces(ws.av, ws.sums, exec);
     }
     hydro_pass::<D, E, X>(
-        sys, ws.grad, geom, ws.aux, ws.ts_star, ws.sums, params, exec,
+        sys, ws.grad, geom, ws.aux, ws.ts_star, ws.rec, ws.sums, params, exec,
     );
     add_forces(ws.av, ws.sums, exec);
 }

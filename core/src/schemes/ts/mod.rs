@@ -51,7 +51,7 @@ mod gradients;
 mod leapfrog;
 mod options;
 pub(crate) mod pairs;
-mod records;
+pub(crate) mod records;
 
 use gradients::front_gradient_pass;
 pub(crate) use options::reads;
@@ -70,7 +70,7 @@ use crate::state::{
     Family, Integrator, Layout, PairGeom, PairSums, SchemeOptions, StepError, StepParams, System,
     Workspace,
 };
-pub use records::TsStar;
+pub use records::{record_len, TsStar};
 
 /// The halo exchanges of a `ts` step, in order (see [`crate::halo`]).
 ///
@@ -204,7 +204,7 @@ impl SchemeFamily for Ts {
         // 3. Hydrodynamic step with the new pressure (reconstruction slopes from step 1).
         halo_exchange!(params, halo, hydro, sys, ws);
         hydro_pass::<D, E, X>(
-            sys, ws.grad, geom, ws.aux, ws.ts_star, ws.sums, params, exec,
+            sys, ws.grad, geom, ws.aux, ws.ts_star, ws.rec, ws.sums, params, exec,
         );
         exec.run(
             (sys.reborrow(), &ws.sums[..]),
@@ -246,7 +246,7 @@ pub(super) fn kinematics<const D: usize, E: Effects, X: Executor>(
     front_gradient_pass::<D, E, X>(sys, geom, ws.aux, ws.sums, ws.grad, params, exec);
     halo_exchange!(params, halo, continuity, sys, ws);
     continuity_pass::<D, E, X>(
-        sys, ws.grad, geom, ws.aux, ws.ts_star, ws.sums, params, exec,
+        sys, ws.grad, geom, ws.aux, ws.ts_star, ws.rec, ws.sums, params, exec,
     );
 }
 

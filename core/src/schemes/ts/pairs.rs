@@ -41,12 +41,13 @@ pub(super) fn continuity_pass<const D: usize, E: Effects, X: Executor>(
     geom: &[PairGeom<D>],
     aux: &[Aux],
     stars: &mut [TsStar],
+    rec: &mut [Real],
     sums: &mut [PairSums<D>],
     params: &StepParams<'_, D>,
     exec: &X,
 ) {
     // each pair's contact velocity once, on the owner's side
-    solve_stars::<D, E, X>(sys, grad, geom, stars, params, exec, false);
+    solve_stars::<D, E, X>(sys, grad, geom, stars, rec, params, exec, false);
     let stars: &[TsStar] = stars;
     exec.run(sums, |off, chunk: &mut [PairSums<D>]| {
         for (k, out) in chunk.iter_mut().enumerate() {
@@ -85,24 +86,34 @@ pub(super) fn continuity_pass<const D: usize, E: Effects, X: Executor>(
 
 /// Every pair's star state once, on its owner's side ([`star`]; `p* = 0` unless `with_p`),
 /// a row four pairs at a time where the SIMD level and the options allow
-/// ([`crate::simd::ts_star_row`]), bitwise the same.
+/// ([`crate::simd::ts_star_row`], reading the neighbour records it has `rec` written
+/// first), bitwise the same.
 #[allow(clippy::too_many_arguments)]
 fn solve_stars<const D: usize, E: Effects, X: Executor>(
     sys: &System<'_, D>,
     grad: &[Gradients<D>],
     geom: &[PairGeom<D>],
     stars: &mut [TsStar],
+    rec: &mut [Real],
     params: &StepParams<'_, D>,
     exec: &X,
     with_p: bool,
 ) {
+    let records = crate::simd::ts_records::<D, E, X>(sys, grad, params, rec, exec);
+    let rec: &[Real] = rec;
     solve_pair_rows::<D, X, TsStar>(
         params,
         geom,
         stars,
         exec,
         |i, geom, owned, out| {
-            crate::simd::ts_star_row::<D, E>(sys, grad, params, i, geom, owned, out, with_p)
+            if records {
+                crate::simd::ts_star_row::<D, E>(
+                    sys, grad, rec, params, i, geom, owned, out, with_p,
+                )
+            } else {
+                0
+            }
         },
         |i, pr| {
             let (u, p) = star::<D, E>(sys, grad, params, i, pr.j, &pr.n, pr.r);
@@ -343,11 +354,12 @@ pub(super) fn hydro_pass<const D: usize, E: Effects, X: Executor>(
     geom: &[PairGeom<D>],
     aux: &[Aux],
     stars: &mut [TsStar],
+    rec: &mut [Real],
     sums: &mut [PairSums<D>],
     params: &StepParams<'_, D>,
     exec: &X,
 ) {
-    solve_stars::<D, E, X>(sys, grad, geom, stars, params, exec, true);
+    solve_stars::<D, E, X>(sys, grad, geom, stars, rec, params, exec, true);
     let stars: &[TsStar] = stars;
     exec.run(sums, |off, chunk: &mut [PairSums<D>]| {
         for (k, out) in chunk.iter_mut().enumerate() {

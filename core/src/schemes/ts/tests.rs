@@ -211,7 +211,15 @@ fn end_divergence(failed: usize) -> (Real, Real) {
         let mut aux = [Aux::default(); N];
         refresh_aux::<1, false, Serial>(sys, &mut aux, params, &Serial);
         continuity_pass::<1, Failing, Serial>(
-            sys, grad, geom, &aux, stars, &mut sums, params, &Serial,
+            sys,
+            grad,
+            geom,
+            &aux,
+            stars,
+            &mut [],
+            &mut sums,
+            params,
+            &Serial,
         );
         let mut plain = 0.0;
         for_each_pair(params, geom, 0, |pr, _| {
