@@ -42,7 +42,7 @@ impl<const D: usize> Default for AvRates<D> {
 }
 
 /// The reals of one particle's neighbour record ([`Workspace::rec`]) in `d`
-/// dimensions: the fields of [`RecordAt`], padded to whole groups of four (one AVX2 load
+/// dimensions: the fields of `RecordAt`, padded to whole groups of four (one AVX2 load
 /// each).
 ///
 /// [`Workspace::rec`]: crate::state::Workspace::rec

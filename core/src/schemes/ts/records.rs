@@ -14,7 +14,7 @@ pub struct TsStar {
 }
 
 /// The reals of one particle's neighbour record (`Workspace::rec`) for the time-split
-/// family's vectorised star states in `d` dimensions: the fields of [`RecordAt`], padded to
+/// family's vectorised star states in `d` dimensions: the fields of `RecordAt`, padded to
 /// whole groups of four (one AVX2 load each).
 pub const fn record_len(d: usize) -> usize {
     match d {
