@@ -278,13 +278,12 @@ impl<const D: usize> Default for PairGeom<D> {
 
 pub use crate::schemes::av::AvRates;
 
-/// The reals per particle of [`Workspace::rec`] for a family in `d` dimensions (0: the
-/// family's vectorised loops read no records).
+/// The reals per particle of [`Workspace::rec`] for a family in `d` dimensions.
 pub const fn record_len(family: Family, d: usize) -> usize {
     match family {
         Family::Av => crate::schemes::av::record_len(d),
         Family::Ts => crate::schemes::ts::record_len(d),
-        Family::Pm => 0,
+        Family::Pm => crate::schemes::pm::record_len(d),
     }
 }
 pub use crate::schemes::pm::PmStar;
@@ -306,7 +305,7 @@ pub struct Workspace<'a, const D: usize> {
     pub av: &'a mut [AvRates<D>],
     /// Artificial stress tensors `R_i` (effect `artificial_stress`).
     pub art: &'a mut [Matrix<D>],
-    /// Neighbour records of the vectorised pair loops (`crate::simd`; `av` and `ts`),
+    /// Neighbour records of the vectorised pair loops (`crate::simd`; every family),
     /// [`record_len`]`(family, D)` reals per particle: what each particle gives its
     /// neighbours' pairs, in one place. Scratch, written by the step where a vectorised
     /// loop reads it; optional: empty (or another length), the portable loops run.

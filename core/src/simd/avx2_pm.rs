@@ -2,8 +2,9 @@
 //! per instruction, each lane doing the portable [`pair_star`]'s IEEE operations in its
 //! order (module docs of [`super`]): the rotation of `options.objective`, the corrected
 //! traction axis, the MUSCL reconstruction in the pair's frame and the acoustic elastic
-//! Riemann problem. The owner's values are broadcast once per row; the neighbours' are
-//! loaded lane by lane.
+//! Riemann problem. The owner's values are broadcast once per row; the neighbours' come
+//! from their records ([`write_records`]), four records loaded four reals at a time and
+//! transposed into lanes.
 //!
 //! Covered: the acoustic and two-shock solvers with full dissipation on every channel and
 //! the minmod or superbee limiter ([`covers`]). A lane with a failed particle, or whose
@@ -14,18 +15,100 @@ use core::arch::x86_64::*;
 
 use super::avx2::{
     add, and, dot, finite, gt, limit, load, minmod, mul, neg, select, shock_slope, splat, store,
-    sub, two_shock, Side,
+    sub, transpose, two_shock, Side,
 };
 use crate::effects::Effects;
+use crate::exec::{Executor, Fixed};
 use crate::limiter::Limiter;
 use crate::math::Real;
 use crate::riemann::Dissipation;
+use crate::schemes::av::records::sym_at;
 use crate::schemes::common::{failed, Pair};
 use crate::schemes::pm::gradients::objective;
 use crate::schemes::pm::pairs::pair_star;
+use crate::schemes::pm::records::{record_len, RecordAt};
 use crate::state::{
     Aux, Correction, Gradients, PairGeom, PmStar, RiemannSolver, StepParams, System,
 };
+
+/// Writes every particle's neighbour record ([`RecordAt`]) for [`star_row`]: exactly the
+/// values the portable [`pair_star`] reads of a neighbour (its Cauchy stress as the row's
+/// `sig` forms it); the fields of arrays the case does not have (`corr`, `grad`, `grad_s`
+/// empty) stay as they are, unread.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn write_records<const D: usize, E: Effects, X: Executor>(
+    sys: &System<'_, D>,
+    aux: &[Aux],
+    corr: &[Correction<D>],
+    grad: &[Gradients<D>],
+    grad_s: &[[crate::math::Vector<D>; 6]],
+    params: &StepParams<'_, D>,
+    rec: &mut [Real],
+    exec: &X,
+) {
+    let (at, width) = (RecordAt::of(D), record_len(D));
+    let mats = params.materials;
+    exec.run(Fixed { width, data: rec }, |off, chunk: Fixed<'_, Real>| {
+        for (k, r) in chunk.data.chunks_exact_mut(width).enumerate() {
+            let i = off + k;
+            r[at.rho] = sys.rho[i];
+            r[at.cl] = sys.cl[i];
+            r[at.ct] = aux[i].ct;
+            r[at.slope] = shock_slope(&mats[sys.mat[i] as usize]);
+            r[at.failed] = if failed::<D, E>(sys, i) { 1.0 } else { 0.0 };
+            r[at.p] = sys.p[i];
+            for a in 0..D {
+                r[at.v + a] = sys.v[i][a];
+                for b in 0..D {
+                    r[at.sig + a * D + b] = stress::<D, E>(sys, i, a, b);
+                }
+            }
+            if let Some(c) = corr.get(i) {
+                for a in 0..D {
+                    for b in 0..D {
+                        r[at.l_inv + a * D + b] = c.l_inv[(a, b)];
+                    }
+                }
+            }
+            if let Some(g) = grad.get(i) {
+                for a in 0..D {
+                    r[at.grad_rho + a] = g.rho[a];
+                    r[at.grad_cl + a] = g.cl[a];
+                    r[at.grad_ct + a] = g.ct[a];
+                    r[at.grad_p + a] = g.p[a];
+                    for b in 0..D {
+                        r[at.w + a * D + b] = g.w[(a, b)];
+                        r[at.grad_v + a * D + b] = g.v[(a, b)];
+                    }
+                }
+            }
+            if let Some(gs) = grad_s.get(i) {
+                for a in 0..D {
+                    for b in a..D {
+                        for c in 0..D {
+                            r[at.grad_s + sym_at(D, a, b) * D + c] = gs[voigt(a, b)][c];
+                        }
+                    }
+                }
+            }
+        }
+    });
+}
+
+/// The Cauchy stress `S - P I` of particle `k` as the pairs see it (`-P I` without
+/// strength): off the diagonal `S + (-0) = S`.
+#[inline(always)]
+fn stress<const D: usize, E: Effects>(sys: &System<'_, D>, k: usize, a: usize, b: usize) -> Real {
+    let p = sys.p[k];
+    if E::STRENGTH {
+        let s = sys.s[k].get(a, b);
+        s + if a == b { -p } else { -0.0 }
+    } else if a == b {
+        -p
+    } else {
+        0.0
+    }
+}
 
 /// Whether [`star_row`] pays for this step's scheme: the first-order star (`pm`) is too
 /// light for the lanes' loads (measured on the colliding rings: 1.01 to 1.14 times the
@@ -278,6 +361,7 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
     corr: &[Correction<D>],
     grad: &[Gradients<D>],
     grad_s: &[[crate::math::Vector<D>; 6]],
+    rec: &[Real],
     params: &StepParams<'_, D>,
     i: usize,
     geom: &[PairGeom<D>],
@@ -308,19 +392,8 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
         splat(aux[i].ct),
         splat(sys.p[i]),
     );
-    // the Cauchy stress S - P I (-P I without strength): off the diagonal S + (-0) = S
-    let sig = |k: usize, a: usize, b: usize| -> Real {
-        let p = sys.p[k];
-        if E::STRENGTH {
-            let s = sys.s[k].get(a, b);
-            s + if a == b { -p } else { -0.0 }
-        } else if a == b {
-            -p
-        } else {
-            0.0
-        }
-    };
-    let sig_i = bm(&|a, b| sig(i, a, b));
+    let sig_i = bm(&|a, b| stress::<D, E>(sys, i, a, b));
+    let (at, width) = (RecordAt::of(D), record_len(D));
     let gi = if E::MUSCL || rotate {
         grad[i]
     } else {
@@ -354,47 +427,45 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
         let lanes = (n_pairs - q0).min(4);
         let lane = |l: usize| q0 + l.min(lanes - 1);
         let js: [usize; 4] = core::array::from_fn(|l| owned[lane(l)] as usize);
-        // four lanes of a per-neighbour value: `lanes!(|l, j| value)`
-        macro_rules! lanes {
-            (|$l:ident, $j:ident| $e:expr) => {
-                load(&core::array::from_fn(|$l| {
-                    let $j = js[$l];
-                    let _ = $j;
-                    $e
-                }))
-            };
+        // the neighbours' records, transposed into lanes: the loads read through raw
+        // pointers, every record checked
+        assert!(js.iter().all(|&j| (j + 1) * width <= rec.len()));
+        let p: [*const Real; 4] = core::array::from_fn(|l| rec.as_ptr().add(js[l] * width));
+        let mut f = [zero; 76];
+        for g in 0..width / 4 {
+            f[4 * g..4 * g + 4].copy_from_slice(&transpose(&p, g));
         }
-        macro_rules! vec_lanes {
-            (|$l:ident, $j:ident, $a:ident| $e:expr) => {
-                core::array::from_fn(|$a| if $a < D { lanes!(|$l, $j| $e) } else { zero })
-            };
-        }
-        macro_rules! mat_lanes {
-            (|$l:ident, $j:ident, $a:ident, $b:ident| $e:expr) => {
-                core::array::from_fn(|$b| {
-                    core::array::from_fn(|$a| {
-                        if $a < D && $b < D {
-                            lanes!(|$l, $j| $e)
-                        } else {
-                            zero
-                        }
-                    })
+        // a record's vector at `o` and matrix at `o` (row by row) as lanes
+        let vec_at =
+            |o: usize| -> V { core::array::from_fn(|a| if a < D { f[o + a] } else { zero }) };
+        let mat_at = |o: usize| -> M {
+            core::array::from_fn(|b| {
+                core::array::from_fn(|a| {
+                    if a < D && b < D {
+                        f[o + a * D + b]
+                    } else {
+                        zero
+                    }
                 })
-            };
-        }
-        let n: V = vec_lanes!(|l, j, a| geom[lane(l)].n[a]);
-        let r = lanes!(|l, j| geom[lane(l)].r);
-        let vj: V = vec_lanes!(|l, j, a| sys.v[j][a]);
-        let rhoj = lanes!(|l, j| sys.rho[j]);
-        let clj = lanes!(|l, j| sys.cl[j]);
-        let ctj = lanes!(|l, j| aux[j].ct);
+            })
+        };
+        let n: V = core::array::from_fn(|a| {
+            if a < D {
+                load(&core::array::from_fn(|l| geom[lane(l)].n[a]))
+            } else {
+                zero
+            }
+        });
+        let r = load(&core::array::from_fn(|l| geom[lane(l)].r));
+        let vj: V = vec_at(at.v);
+        let (rhoj, clj, ctj) = (f[at.rho], f[at.cl], f[at.ct]);
         let rji = scale::<D>(&n, r);
         let (mut v_l, mut v_r) = (vi, vj);
         // options.objective: the pair's mean spin W = (W_i + W_j)/2, the velocities taken
         // to the midpoint along it: v_i + W r_ji/2, v_j - W r_ji/2
         let mut spin: M = [[zero; 3]; 3];
         if rotate {
-            let wj_m: M = mat_lanes!(|l, j, a, b| grad[j].w[(a, b)]);
+            let wj_m: M = mat_at(at.w);
             let half = splat(0.5);
             for b in 0..D {
                 for a in 0..D {
@@ -409,7 +480,7 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
         }
         // the traction axis: n, or with correction (L_i^-1 + L_j^-1) n / 2
         let axis = if E::CORRECTION {
-            let lj_m: M = mat_lanes!(|l, j, a, b| corr[j].l_inv[(a, b)]);
+            let lj_m: M = mat_at(at.l_inv);
             let mut m = [[zero; 3]; 3];
             for b in 0..D {
                 for a in 0..D {
@@ -420,10 +491,11 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
         } else {
             n
         };
+        // (by rows: sig_j[a][b] is component (a, b))
         let sig_j: M = core::array::from_fn(|a| {
             core::array::from_fn(|b| {
                 if a < D && b < D {
-                    lanes!(|l, j| sig(j, a, b))
+                    f[at.sig + a * D + b]
                 } else {
                     zero
                 }
@@ -435,9 +507,9 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
         let (mut cl_l, mut cl_r) = (cli, clj);
         let (mut ct_l, mut ct_r) = (cti, ctj);
         if E::MUSCL {
-            let g_rho_j: V = vec_lanes!(|l, j, a| grad[j].rho[a]);
-            let g_cl_j: V = vec_lanes!(|l, j, a| grad[j].cl[a]);
-            let g_ct_j: V = vec_lanes!(|l, j, a| grad[j].ct[a]);
+            let g_rho_j: V = vec_at(at.grad_rho);
+            let g_cl_j: V = vec_at(at.grad_cl);
+            let g_ct_j: V = vec_at(at.grad_ct);
             (rho_l, rho_r) = muscl_pair(
                 superbee,
                 rhoi,
@@ -460,7 +532,7 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
                 dot::<D>(&g_ct_j, &rji),
             );
             // (grad v - W) r_ji of each side (less nothing without the rotation: x - 0 = x)
-            let gvj_m: M = mat_lanes!(|l, j, a, b| grad[j].v[(a, b)]);
+            let gvj_m: M = mat_at(at.grad_v);
             let (mut gi_w, mut gj_w) = (gvi_m, gvj_m);
             if rotate {
                 for b in 0..D {
@@ -498,7 +570,7 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
                 let slope_j: M = core::array::from_fn(|a| {
                     core::array::from_fn(|b| {
                         if a < D && b < D {
-                            let g: V = vec_lanes!(|l, j, c| grad_s[j][voigt(a, b)][c]);
+                            let g: V = vec_at(at.grad_s + sym_at(D, a, b) * D);
                             dot::<D>(&g, &rji)
                         } else {
                             zero
@@ -508,8 +580,8 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
                 let (si, sj) = (sym_dot::<D>(&slope_i, &axis), sym_dot::<D>(&slope_j, &axis));
                 (t_l, t_r) = muscl_frame::<D>(superbee, &basis, &t_l, &t_r, &si, &sj);
             } else {
-                let pj = lanes!(|l, j| sys.p[j]);
-                let g_p_j: V = vec_lanes!(|l, j, a| grad[j].p[a]);
+                let pj = f[at.p];
+                let g_p_j: V = vec_at(at.grad_p);
                 let (pl, pr) = muscl_pair(
                     superbee,
                     pi,
@@ -528,10 +600,7 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
                 c,
                 s,
             };
-            (
-                side(rho_l, cl_l, slope_i),
-                side(rho_r, cl_r, lanes!(|l, j| slope(j))),
-            )
+            (side(rho_l, cl_l, slope_i), side(rho_r, cl_r, f[at.slope]))
         });
         let (vs, ts, redo) = star_vector::<D>(
             &n,
@@ -550,10 +619,11 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
         let ts: [[Real; 4]; 3] = core::array::from_fn(|a| store(ts[a]));
         let r = store(r);
         let failed_i = failed::<D, E>(sys, i);
+        let failed_j = store(f[at.failed]);
         for l in 0..lanes {
             let (q, j) = (q0 + l, js[l]);
             out[q] = if r[l] > 0.0 {
-                if redo[l] != 0.0 || failed_i || failed::<D, E>(sys, j) {
+                if redo[l] != 0.0 || failed_i || failed_j[l] != 0.0 {
                     let g = &geom[q];
                     let pr = Pair {
                         j,

@@ -27,7 +27,7 @@
 //!   that is not finite) is solved again by the portable code.
 //! - the star states of `tkc` (and `pm` with MUSCL): objective rotation, corrected
 //!   traction axis, MUSCL in the pair frame, the acoustic or two-shock solver,
-//!   `avx2_pm.rs`; the same fallbacks.
+//!   `avx2_pm.rs`, from records as well; the same fallbacks.
 //! - `av`'s pair loop (the cubic spline and Wendland C2 kernels, non-periodic runs),
 //!   `avx2_av.rs`. Its neighbours' fields come from one compact record per particle
 //!   (`Workspace::rec`, written once per rate evaluation), four records loaded four
@@ -189,9 +189,37 @@ pub(crate) fn ts_star_row<const D: usize, E: crate::effects::Effects>(
     0
 }
 
+/// Writes every particle's neighbour record for [`pm_star_row`] into `rec` where the
+/// level and the step's options allow the vectorised row and it pays (AVX2;
+/// `avx2_pm::covers` and `pays`) and `rec` has the room (`state::record_len`); returns
+/// whether it did (false: the rows run the portable loop).
+#[inline(always)]
+#[allow(clippy::too_many_arguments, unused_variables)]
+pub(crate) fn pm_records<const D: usize, E: crate::effects::Effects, X: crate::exec::Executor>(
+    sys: &crate::state::System<'_, D>,
+    aux: &[crate::state::Aux],
+    corr: &[crate::state::Correction<D>],
+    grad: &[crate::state::Gradients<D>],
+    grad_s: &[[crate::math::Vector<D>; 6]],
+    params: &crate::state::StepParams<'_, D>,
+    rec: &mut [crate::math::Real],
+    exec: &X,
+) -> bool {
+    #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
+    if params.simd.avx2()
+        && avx2_pm::covers(params)
+        && avx2_pm::pays::<E>()
+        && rec.len() == sys.x.len() * crate::schemes::pm::record_len(D)
+    {
+        avx2_pm::write_records::<D, E, X>(sys, aux, corr, grad, grad_s, params, rec, exec);
+        return true;
+    }
+    false
+}
+
 /// The star states of the pairs particle `i` owns (`pm`, `tkc`: its neighbours `owned`,
-/// their geometry `geom`) into `out` by the vectorised loop where the level and the step's
-/// options allow it and it pays (AVX2; `avx2_pm::covers` and `pays`). Returns how many pairs it
+/// their geometry `geom`) into `out` by the vectorised loop, from the neighbour records
+/// `rec` [`pm_records`] wrote (call only where it returned true). Returns how many pairs it
 /// did (0: none; the portable loop does the rest), each bitwise as
 /// [`crate::schemes::pm::pairs::pair_star`] gives it.
 #[inline(always)]
@@ -202,6 +230,7 @@ pub(crate) fn pm_star_row<const D: usize, E: crate::effects::Effects>(
     corr: &[crate::state::Correction<D>],
     grad: &[crate::state::Gradients<D>],
     grad_s: &[[crate::math::Vector<D>; 6]],
+    rec: &[crate::math::Real],
     params: &crate::state::StepParams<'_, D>,
     i: usize,
     geom: &[crate::state::PairGeom<D>],
@@ -212,7 +241,9 @@ pub(crate) fn pm_star_row<const D: usize, E: crate::effects::Effects>(
     if params.simd.avx2() && avx2_pm::covers(params) && avx2_pm::pays::<E>() {
         // SAFETY: `params.simd` vouches for AVX2 (`SimdLevel::assume`) and `covers` holds
         return unsafe {
-            avx2_pm::star_row::<D, E>(sys, aux, corr, grad, grad_s, params, i, geom, owned, out)
+            avx2_pm::star_row::<D, E>(
+                sys, aux, corr, grad, grad_s, rec, params, i, geom, owned, out,
+            )
         };
     }
     0

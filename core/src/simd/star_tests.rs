@@ -372,6 +372,11 @@ fn same_pm_stars<const D: usize, E: Effects>(
     let corr = core::mem::take(&mut sc.corr);
     let mut met = Met::default();
     with_pairs::<D, E>(&mut sc, options, |sys, params, geom| {
+        // the neighbour records the rows read (stale values where the writer leaves a field)
+        let mut rec = vec![Real::NAN; sys.x.len() * crate::schemes::pm::record_len(D)];
+        avx2_pm::write_records::<D, E, Serial>(
+            sys, &aux, &corr, &grad, &grad_s, params, &mut rec, &Serial,
+        );
         for (i, p0, owned) in rows(params) {
             let gs = &geom[p0..p0 + owned.len()];
             let mut simd = vec![PmStar::<D>::default(); owned.len()];
@@ -380,7 +385,7 @@ fn same_pm_stars<const D: usize, E: Effects>(
             // SAFETY: the caller checked that the CPU has AVX2; the options are covered
             let done = unsafe {
                 avx2_pm::star_row::<D, E>(
-                    sys, &aux, &corr, &grad, &grad_s, params, i, gs, owned, &mut simd,
+                    sys, &aux, &corr, &grad, &grad_s, &rec, params, i, gs, owned, &mut simd,
                 )
             };
             assert_eq!(done, owned.len(), "the row does every pair");

@@ -43,7 +43,7 @@ mod leapfrog;
 mod options;
 pub(crate) mod pairs;
 mod particles;
-mod records;
+pub(crate) mod records;
 mod volume;
 
 pub(crate) use gradients::correction_pass;
@@ -64,7 +64,7 @@ use crate::state::{
     Family, Integrator, Layout, PairGeom, PairSums, SchemeOptions, SpecificVolume, StepError,
     StepParams, System, Workspace,
 };
-pub use records::PmStar;
+pub use records::{record_len, PmStar};
 
 /// The halo exchanges of a `pm`/`tkc` step, in order (see [`crate::halo`]).
 ///

@@ -123,15 +123,23 @@ pub(super) fn pair_pass<
     let geom: &[PairGeom<D>] = ws.geom;
     let art: &[Matrix<D>] = ws.art;
     let (fac, aux): (&[Real], &[Aux]) = (ws.fac, ws.aux);
+    // the neighbour records of the vectorised rows (written where they run)
+    let records =
+        crate::simd::pm_records::<D, E, X>(sys, aux, corr, grad, grad_s, params, ws.rec, exec);
+    let rec: &[Real] = ws.rec;
     solve_pair_rows::<D, X, PmStar<D>>(
         params,
         geom,
         ws.pm_star,
         exec,
         |i, geom, owned, out| {
-            crate::simd::pm_star_row::<D, E>(
-                sys, aux, corr, grad, grad_s, params, i, geom, owned, out,
-            )
+            if records {
+                crate::simd::pm_star_row::<D, E>(
+                    sys, aux, corr, grad, grad_s, rec, params, i, geom, owned, out,
+                )
+            } else {
+                0
+            }
         },
         |i, pr| pair_star::<D, E>(sys, aux, corr, grad, grad_s, params, i, pr),
     );

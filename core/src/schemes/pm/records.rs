@@ -21,3 +21,79 @@ impl<const D: usize> Default for PmStar<D> {
         }
     }
 }
+
+/// The reals of one particle's neighbour record (`Workspace::rec`) for the contact
+/// family's vectorised star states in `d` dimensions: the fields of [`RecordAt`], padded
+/// to whole groups of four (one AVX2 load each).
+pub const fn record_len(d: usize) -> usize {
+    match d {
+        1 => 16,
+        2 => 40,
+        _ => 76,
+    }
+}
+
+/// Where each field of a neighbour record lies in `D` dimensions: what particle j gives
+/// the star states of its pairs (the fields a case does not use hold zeros).
+#[derive(Clone, Copy, Debug)]
+#[cfg_attr(
+    not(all(target_arch = "x86_64", not(feature = "f32"))),
+    allow(dead_code)
+)]
+pub(crate) struct RecordAt {
+    /// Velocity (D).
+    pub v: usize,
+    pub rho: usize,
+    pub cl: usize,
+    /// The transverse sound speed (`Aux::ct`).
+    pub ct: usize,
+    /// The Hugoniot slope of its material.
+    pub slope: usize,
+    /// 1 for a failed particle, else 0.
+    pub failed: usize,
+    pub p: usize,
+    /// The Cauchy stress `S - P I`, `D x D` row by row.
+    pub sig: usize,
+    /// The spin gradient `W`, `D x D` row by row.
+    pub w: usize,
+    /// The corrected kernel's `L^-1`, `D x D` row by row.
+    pub l_inv: usize,
+    /// The gradients of rho, c_l, c_t and p (D each).
+    pub grad_rho: usize,
+    pub grad_cl: usize,
+    pub grad_ct: usize,
+    pub grad_p: usize,
+    /// The velocity gradient, `D x D` row by row.
+    pub grad_v: usize,
+    /// The stress gradients: component `(a, b)` (`av::records::sym_at`) times D, plus axis.
+    pub grad_s: usize,
+}
+
+#[cfg_attr(
+    not(all(target_arch = "x86_64", not(feature = "f32"))),
+    allow(dead_code)
+)]
+impl RecordAt {
+    pub const fn of(d: usize) -> RecordAt {
+        let sig = d + 6;
+        let grad_rho = sig + 3 * d * d;
+        RecordAt {
+            v: 0,
+            rho: d,
+            cl: d + 1,
+            ct: d + 2,
+            slope: d + 3,
+            failed: d + 4,
+            p: d + 5,
+            sig,
+            w: sig + d * d,
+            l_inv: sig + 2 * d * d,
+            grad_rho,
+            grad_cl: grad_rho + d,
+            grad_ct: grad_rho + 2 * d,
+            grad_p: grad_rho + 3 * d,
+            grad_v: grad_rho + 4 * d,
+            grad_s: grad_rho + 4 * d + d * d,
+        }
+    }
+}
