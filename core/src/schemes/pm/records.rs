@@ -23,7 +23,7 @@ impl<const D: usize> Default for PmStar<D> {
 }
 
 /// The reals of one particle's neighbour record (`Workspace::rec`) for the contact
-/// family's vectorised star states in `d` dimensions: the fields of [`RecordAt`], padded
+/// family's vectorised star states in `d` dimensions: the fields of `RecordAt`, padded
 /// to whole groups of four (one AVX2 load each).
 pub const fn record_len(d: usize) -> usize {
     match d {
