@@ -122,6 +122,22 @@ impl<T: Send> Split for Fixed<'_, T> {
     }
 }
 
+/// Calls `f(i, record)` for every particle `i`'s record of `data` (`width` elements each),
+/// the particles split among the executor's threads: the one loop of the record writers.
+#[inline]
+pub fn for_each_record<T: Send, X: Executor>(
+    exec: &X,
+    data: &mut [T],
+    width: usize,
+    f: impl Fn(usize, &mut [T]) + Sync,
+) {
+    exec.run(Fixed { width, data }, |off, chunk: Fixed<'_, T>| {
+        for (k, r) in chunk.data.chunks_exact_mut(width).enumerate() {
+            f(off + k, r);
+        }
+    });
+}
+
 /// The rows of a compressed-row array over a run of particles: the records of the pairs
 /// each particle owns (see [`crate::neighbors`]), or its neighbours. `start` holds the
 /// run's row offsets (absolute, one more entry than particles) and `data` exactly the run's

@@ -18,7 +18,7 @@ use super::avx2::{
     sub, transpose, two_shock, Side,
 };
 use crate::effects::Effects;
-use crate::exec::{Executor, Fixed};
+use crate::exec::{for_each_record, Executor};
 use crate::limiter::Limiter;
 use crate::math::Real;
 use crate::riemann::Dissipation;
@@ -48,46 +48,43 @@ pub(crate) fn write_records<const D: usize, E: Effects, X: Executor>(
 ) {
     let (at, width) = (RecordAt::of(D), record_len(D));
     let mats = params.materials;
-    exec.run(Fixed { width, data: rec }, |off, chunk: Fixed<'_, Real>| {
-        for (k, r) in chunk.data.chunks_exact_mut(width).enumerate() {
-            let i = off + k;
-            r[at.rho] = sys.rho[i];
-            r[at.cl] = sys.cl[i];
-            r[at.ct] = aux[i].ct;
-            r[at.slope] = shock_slope(&mats[sys.mat[i] as usize]);
-            r[at.failed] = if failed::<D, E>(sys, i) { 1.0 } else { 0.0 };
-            r[at.p] = sys.p[i];
+    for_each_record(exec, rec, width, |i, r| {
+        r[at.rho] = sys.rho[i];
+        r[at.cl] = sys.cl[i];
+        r[at.ct] = aux[i].ct;
+        r[at.slope] = shock_slope(&mats[sys.mat[i] as usize]);
+        r[at.failed] = if failed::<D, E>(sys, i) { 1.0 } else { 0.0 };
+        r[at.p] = sys.p[i];
+        for a in 0..D {
+            r[at.v + a] = sys.v[i][a];
+            for b in 0..D {
+                r[at.sig + a * D + b] = stress::<D, E>(sys, i, a, b);
+            }
+        }
+        if let Some(c) = corr.get(i) {
             for a in 0..D {
-                r[at.v + a] = sys.v[i][a];
                 for b in 0..D {
-                    r[at.sig + a * D + b] = stress::<D, E>(sys, i, a, b);
+                    r[at.l_inv + a * D + b] = c.l_inv[(a, b)];
                 }
             }
-            if let Some(c) = corr.get(i) {
-                for a in 0..D {
-                    for b in 0..D {
-                        r[at.l_inv + a * D + b] = c.l_inv[(a, b)];
-                    }
+        }
+        if let Some(g) = grad.get(i) {
+            for a in 0..D {
+                r[at.grad_rho + a] = g.rho[a];
+                r[at.grad_cl + a] = g.cl[a];
+                r[at.grad_ct + a] = g.ct[a];
+                r[at.grad_p + a] = g.p[a];
+                for b in 0..D {
+                    r[at.w + a * D + b] = g.w[(a, b)];
+                    r[at.grad_v + a * D + b] = g.v[(a, b)];
                 }
             }
-            if let Some(g) = grad.get(i) {
-                for a in 0..D {
-                    r[at.grad_rho + a] = g.rho[a];
-                    r[at.grad_cl + a] = g.cl[a];
-                    r[at.grad_ct + a] = g.ct[a];
-                    r[at.grad_p + a] = g.p[a];
-                    for b in 0..D {
-                        r[at.w + a * D + b] = g.w[(a, b)];
-                        r[at.grad_v + a * D + b] = g.v[(a, b)];
-                    }
-                }
-            }
-            if let Some(gs) = grad_s.get(i) {
-                for a in 0..D {
-                    for b in a..D {
-                        for c in 0..D {
-                            r[at.grad_s + sym_at(D, a, b) * D + c] = gs[voigt(a, b)][c];
-                        }
+        }
+        if let Some(gs) = grad_s.get(i) {
+            for a in 0..D {
+                for b in a..D {
+                    for c in 0..D {
+                        r[at.grad_s + sym_at(D, a, b) * D + c] = gs[voigt(a, b)][c];
                     }
                 }
             }

@@ -17,7 +17,7 @@ use super::avx2::{
     sub, transpose, two_shock, Side,
 };
 use crate::effects::{EffectSet, Effects};
-use crate::exec::{Executor, Fixed};
+use crate::exec::{for_each_record, Executor};
 use crate::limiter::Limiter;
 use crate::math::Real;
 use crate::riemann::Dissipation;
@@ -56,26 +56,23 @@ pub(crate) fn write_records<const D: usize, E: Effects, X: Executor>(
 ) {
     let (at, width) = (RecordAt::of(D), record_len(D));
     let mats = params.materials;
-    exec.run(Fixed { width, data: rec }, |off, chunk: Fixed<'_, Real>| {
-        for (k, r) in chunk.data.chunks_exact_mut(width).enumerate() {
-            let i = off + k;
+    for_each_record(exec, rec, width, |i, r| {
+        for a in 0..D {
+            r[at.v + a] = sys.v[i][a];
+        }
+        r[at.p] = sys.p[i];
+        r[at.rho] = sys.rho[i];
+        r[at.c] = sys.c[i];
+        r[at.slope] = shock_slope(&mats[sys.mat[i] as usize]);
+        r[at.failed] = if failed::<D, E>(sys, i) { 1.0 } else { 0.0 };
+        if E::MUSCL {
+            let g = &grad[i];
             for a in 0..D {
-                r[at.v + a] = sys.v[i][a];
-            }
-            r[at.p] = sys.p[i];
-            r[at.rho] = sys.rho[i];
-            r[at.c] = sys.c[i];
-            r[at.slope] = shock_slope(&mats[sys.mat[i] as usize]);
-            r[at.failed] = if failed::<D, E>(sys, i) { 1.0 } else { 0.0 };
-            if E::MUSCL {
-                let g = &grad[i];
-                for a in 0..D {
-                    for b in 0..D {
-                        r[at.grad_v + a * D + b] = g.v[(a, b)];
-                    }
-                    r[at.grad_p + a] = g.p[a];
-                    r[at.grad_rho + a] = g.rho[a];
+                for b in 0..D {
+                    r[at.grad_v + a * D + b] = g.v[(a, b)];
                 }
+                r[at.grad_p + a] = g.p[a];
+                r[at.grad_rho + a] = g.rho[a];
             }
         }
     });

@@ -2,7 +2,7 @@
 
 use super::records::{record_len, sym_at, RecordAt};
 use crate::effects::{EffectSet, Effects};
-use crate::exec::{Executor, Fixed};
+use crate::exec::{for_each_record, Executor};
 use crate::math::{Matrix, Real, Sym3, Vector};
 use crate::schemes::artificial_stress::pair_acceleration;
 use crate::schemes::common::{
@@ -157,26 +157,23 @@ fn write_records<const D: usize, E: Effects, X: Executor>(
     exec: &X,
 ) {
     let (at, width) = (RecordAt::of(D), record_len(D));
-    exec.run(Fixed { width, data: rec }, |off, chunk: Fixed<'_, Real>| {
-        for (k, r) in chunk.data.chunks_exact_mut(width).enumerate() {
-            let i = off + k;
-            for a in 0..D {
-                r[at.x + a] = sys.x[i][a];
-                r[at.v + a] = sys.v[i][a];
+    for_each_record(exec, rec, width, |i, r| {
+        for a in 0..D {
+            r[at.x + a] = sys.x[i][a];
+            r[at.v + a] = sys.v[i][a];
+        }
+        r[at.h] = sys.h[i];
+        r[at.rho] = sys.rho[i];
+        r[at.cl] = sys.cl[i];
+        r[at.inv_rho] = aux[i].inv_rho;
+        r[at.m] = sys.m[i];
+        let sig = cauchy::<D, E>(sys, i);
+        for a in 0..D {
+            for b in a..D {
+                r[at.sig + sym_at(D, a, b)] = sig.get(a, b);
             }
-            r[at.h] = sys.h[i];
-            r[at.rho] = sys.rho[i];
-            r[at.cl] = sys.cl[i];
-            r[at.inv_rho] = aux[i].inv_rho;
-            r[at.m] = sys.m[i];
-            let sig = cauchy::<D, E>(sys, i);
-            for a in 0..D {
-                for b in a..D {
-                    r[at.sig + sym_at(D, a, b)] = sig.get(a, b);
-                }
-                for b in 0..D {
-                    r[at.art + a * D + b] = if art_on { art[i][(a, b)] } else { 0.0 };
-                }
+            for b in 0..D {
+                r[at.art + a * D + b] = if art_on { art[i][(a, b)] } else { 0.0 };
             }
         }
     });
