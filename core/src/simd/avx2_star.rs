@@ -214,7 +214,8 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
         // the loads below read through raw pointers: every record checked
         assert!(js.iter().all(|&j| (j + 1) * width <= rec.len()));
         let p: [*const Real; 4] = core::array::from_fn(|l| rec.as_ptr().add(js[l] * width));
-        let mut f = [zero; 24];
+        // room for the widest record (3D)
+        let mut f = [zero; record_len(3)];
         for g in 0..groups {
             f[4 * g..4 * g + 4].copy_from_slice(&transpose(&p, g));
         }

@@ -47,11 +47,7 @@ impl<const D: usize> Default for AvRates<D> {
 ///
 /// [`Workspace::rec`]: crate::state::Workspace::rec
 pub const fn record_len(d: usize) -> usize {
-    match d {
-        1 => 12,
-        2 => 16,
-        _ => 28,
-    }
+    RecordAt::of(d).end.div_ceil(4) * 4
 }
 
 /// Where each field of a neighbour record lies in `D` dimensions: what particle j gives
@@ -74,6 +70,8 @@ pub(crate) struct RecordAt {
     pub sig: usize,
     /// The artificial-stress tensor, `D x D` row by row (zero without the effect).
     pub art: usize,
+    /// The reals the fields take (the record is padded to whole groups of four).
+    pub end: usize,
 }
 
 impl RecordAt {
@@ -89,6 +87,7 @@ impl RecordAt {
             m: 2 * d + 4,
             sig: 2 * d + 5,
             art: 2 * d + 5 + sym,
+            end: 2 * d + 5 + sym + d * d,
         }
     }
 }

@@ -26,11 +26,7 @@ impl<const D: usize> Default for PmStar<D> {
 /// family's vectorised star states in `d` dimensions: the fields of `RecordAt`, padded
 /// to whole groups of four (one AVX2 load each).
 pub const fn record_len(d: usize) -> usize {
-    match d {
-        1 => 16,
-        2 => 40,
-        _ => 76,
-    }
+    RecordAt::of(d).end.div_ceil(4) * 4
 }
 
 /// Where each field of a neighbour record lies in `D` dimensions: what particle j gives
@@ -67,6 +63,8 @@ pub(crate) struct RecordAt {
     pub grad_v: usize,
     /// The stress gradients: component `(a, b)` (`av::records::sym_at`) times D, plus axis.
     pub grad_s: usize,
+    /// The reals the fields take (the record is padded to whole groups of four).
+    pub end: usize,
 }
 
 #[cfg_attr(
@@ -94,6 +92,7 @@ impl RecordAt {
             grad_p: grad_rho + 3 * d,
             grad_v: grad_rho + 4 * d,
             grad_s: grad_rho + 4 * d + d * d,
+            end: grad_rho + 4 * d + d * d + d * d * (d + 1) / 2,
         }
     }
 }

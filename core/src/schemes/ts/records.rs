@@ -17,11 +17,7 @@ pub struct TsStar {
 /// family's vectorised star states in `d` dimensions: the fields of `RecordAt`, padded to
 /// whole groups of four (one AVX2 load each).
 pub const fn record_len(d: usize) -> usize {
-    match d {
-        1 => 12,
-        2 => 16,
-        _ => 24,
-    }
+    RecordAt::of(d).end.div_ceil(4) * 4
 }
 
 /// Where each field of a neighbour record lies in `D` dimensions: what particle j gives
@@ -50,6 +46,8 @@ pub(crate) struct RecordAt {
     pub grad_rho: usize,
     /// The reals up to the last first-order field.
     pub first_order: usize,
+    /// The reals the fields take (the record is padded to whole groups of four).
+    pub end: usize,
 }
 
 #[cfg_attr(
@@ -69,6 +67,7 @@ impl RecordAt {
             grad_p: d + 5 + d * d,
             grad_rho: 2 * d + 5 + d * d,
             first_order: d + 5,
+            end: 3 * d + 5 + d * d,
         }
     }
 }
