@@ -11,7 +11,7 @@ command -v perf >/dev/null || { echo "profile: needs perf (apt-get install linux
 schemes=("$@")
 [[ ${#schemes[@]} -gt 0 ]] || schemes=(av ts2 tkc)
 cargo build --profile profiling -q -p gsph --no-default-features \
-  --features dim2,scheme-av,scheme-pm,scheme-ts,effects-strength,effects-muscl,effects-correction \
+  --features dim2,scheme-av,scheme-pm,scheme-ts,effects-strength,effects-muscl,effects-correction,cli,hdf5 \
   --target-dir target/prof
 bin=target/prof/profiling/gsph
 mkdir -p out/profile
