@@ -79,6 +79,42 @@ fn a_blow_up_is_reported_as_fail_with_its_step_and_a_nonzero_exit() {
     );
 }
 
+/// The finite check after each step runs in parallel on more than one thread
+/// (`Sim::step`) and may meet any of the bad particles first: the error still names the
+/// one with the lowest id, the same on one thread and on two.
+#[test]
+fn a_blow_up_names_the_same_particle_on_one_and_two_threads() {
+    let tmp = tempfile::tempdir().unwrap();
+    let rings =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../cases/rings.toml"))
+            .unwrap();
+    // the right ring (ids 8,796 to 17,591) converging at 1e150 m/s: all 8,796 of its
+    // particles are non-finite after the first step
+    let text = rings.replacen(
+        "velocity = { type = \"uniform\", value = [-237.910962370926, 0.0] }",
+        "velocity = { type = \"radial\", v0 = -1e150, r_ref = 0.04, center = [0.082, 0.0] }",
+        1,
+    );
+    assert_ne!(text, rings);
+    std::fs::write(tmp.path().join("blow_up.toml"), text).unwrap();
+    let error = |threads: &str| {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_gsph"))
+            .args(["run", "blow_up.toml", "--unset", "dt", "--quiet"])
+            .args(["--threads", threads, "--out", &format!("out{threads}")])
+            .current_dir(tmp.path())
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(1));
+        String::from_utf8_lossy(&out.stderr).into_owned()
+    };
+    let one = error("1");
+    assert!(
+        one.contains("step 1 ") && one.contains("of particle 8796 is not finite"),
+        "{one}"
+    );
+    assert_eq!(one, error("2"));
+}
+
 #[test]
 fn a_run_stopped_early_fails_and_a_clean_run_passes() {
     let tmp = tempfile::tempdir().unwrap();
