@@ -556,25 +556,17 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
             if E::STRENGTH {
                 // the slopes of the traction: Sym3 of the stress gradients along r_ji
                 // (only the components a, b < D enter), dotted with the axis
-                let slope_i: M = core::array::from_fn(|a| {
-                    core::array::from_fn(|b| {
-                        if a < D && b < D {
-                            dot::<D>(&gs_i[voigt(a, b)], &rji)
-                        } else {
-                            zero
-                        }
-                    })
-                });
-                let slope_j: M = core::array::from_fn(|a| {
-                    core::array::from_fn(|b| {
-                        if a < D && b < D {
-                            let g: V = vec_at(at.grad_s + sym_at(D, a, b) * D);
-                            dot::<D>(&g, &rji)
-                        } else {
-                            zero
-                        }
-                    })
-                });
+                // (loops, not closures: a closure does not inherit this function's
+                // target features, and these were left as calls, their lanes passed
+                // through memory)
+                let (mut slope_i, mut slope_j): (M, M) = ([[zero; 3]; 3], [[zero; 3]; 3]);
+                for a in 0..D {
+                    for b in 0..D {
+                        slope_i[a][b] = dot::<D>(&gs_i[voigt(a, b)], &rji);
+                        let g: V = vec_at(at.grad_s + sym_at(D, a, b) * D);
+                        slope_j[a][b] = dot::<D>(&g, &rji);
+                    }
+                }
                 let (si, sj) = (sym_dot::<D>(&slope_i, &axis), sym_dot::<D>(&slope_j, &axis));
                 (t_l, t_r) = muscl_frame::<D>(superbee, &basis, &t_l, &t_r, &si, &sj);
             } else {
@@ -590,16 +582,25 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
                 (t_l, t_r) = (scale::<D>(&axis, neg(pl)), scale::<D>(&axis, neg(pr)));
             }
         }
-        let sides = two_shock_solver.then(|| {
-            let side = |rho, c, s| Side {
+        let sides = if two_shock_solver {
+            let left = Side {
                 u: zero,
                 p: zero,
-                rho,
-                c,
-                s,
+                rho: rho_l,
+                c: cl_l,
+                s: slope_i,
             };
-            (side(rho_l, cl_l, slope_i), side(rho_r, cl_r, f[at.slope]))
-        });
+            let right = Side {
+                u: zero,
+                p: zero,
+                rho: rho_r,
+                c: cl_r,
+                s: f[at.slope],
+            };
+            Some((left, right))
+        } else {
+            None
+        };
         let (vs, ts, redo) = star_vector::<D>(
             &n,
             &v_l,
@@ -610,7 +611,10 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
             &t_r,
             mul(rho_r, cl_r),
             mul(rho_r, ct_r),
-            sides.as_ref().map(|(l, r)| (l, r)),
+            match &sides {
+                Some((l, r)) => Some((l, r)),
+                None => None,
+            },
         );
         let redo = store(redo);
         let vs: [[Real; 4]; 3] = core::array::from_fn(|a| store(vs[a]));
