@@ -187,7 +187,8 @@ impl<const D: usize> Default for PairSums<D> {
 pub struct Gradients<const D: usize> {
     /// grad rho.
     pub rho: Vector<D>,
-    /// grad P.
+    /// grad P (the contact family computes it only without strength, where the pressure's
+    /// slope reconstructs the traction; with strength it stays zero).
     pub p: Vector<D>,
     /// Velocity gradient `dv_a/dx_b`.
     pub v: Matrix<D>,
@@ -297,7 +298,8 @@ pub struct Workspace<'a, const D: usize> {
     pub sums: &'a mut [PairSums<D>],
     /// MUSCL gradients.
     pub grad: &'a mut [Gradients<D>],
-    /// Gradients of the six stress components (`tkc` with strength).
+    /// Gradients of the stress components (`tkc` with strength; those the pairs read, see
+    /// `schemes::pm::gradients::in_plane`: in 2D xx, yy and xy, the others zero).
     pub grad_stress: &'a mut [[Vector<D>; 6]],
     /// Kernel correction.
     pub corr: &'a mut [Correction<D>],

@@ -184,7 +184,11 @@ pub(super) fn gradient_pass<const D: usize, E: Effects, X: Executor>(
                     let vol = aux[j].vol;
                     let gw = if E::CORRECTION { m * pr.grad } else { pr.grad } * vol;
                     acc.rho += gw * (sys.rho[j] - sys.rho[i]);
-                    acc.p += gw * (sys.p[j] - sys.p[i]);
+                    if !E::STRENGTH {
+                        // the pressure's slope reconstructs the traction only without
+                        // strength (`pair_star`); with it the stress slopes do
+                        acc.p += gw * (sys.p[j] - sys.p[i]);
+                    }
                     acc.cl += gw * (sys.cl[j] - sys.cl[i]);
                     acc.ct += gw * (aux[j].ct - cti);
                     let dv = sys.v[j] - sys.v[i];
@@ -194,7 +198,7 @@ pub(super) fn gradient_pass<const D: usize, E: Effects, X: Executor>(
                     }
                     if E::STRENGTH {
                         let sj = cauchy::<D, E>(sys, j).to_array();
-                        for c in 0..6 {
+                        for &c in in_plane::<D>() {
                             acc_s[c] += gw * (sj[c] - si[c]);
                         }
                     }
@@ -209,6 +213,18 @@ pub(super) fn gradient_pass<const D: usize, E: Effects, X: Executor>(
             }
         },
     );
+}
+
+/// The Voigt components of the stress whose slopes the pairs read (`pair_star`'s
+/// traction `sigma . axis`, with a D-vector axis, reads the components `(a, b)`, `a, b <
+/// D`): xx in 1D; xx, yy, xy in 2D (the slopes of zz, xz and yz stay zero); all six in 3D.
+#[inline(always)]
+fn in_plane<const D: usize>() -> &'static [usize] {
+    match D {
+        1 => &[0],
+        2 => &[0, 1, 3],
+        _ => &[0, 1, 2, 3, 4, 5],
+    }
 }
 
 /// The matrix that corrects particle i's MUSCL slopes: its `L^-1` (the identity near a
