@@ -286,6 +286,19 @@ impl Sym3 {
         }
     }
 
+    /// The index of component `(a, b)` (indices 0..3) in the Voigt order of
+    /// [`Sym3::to_array`] (`xx yy zz xy xz yz`).
+    pub const fn voigt(a: usize, b: usize) -> usize {
+        match (a, b) {
+            (0, 0) => 0,
+            (1, 1) => 1,
+            (2, 2) => 2,
+            (0, 1) | (1, 0) => 3,
+            (0, 2) | (2, 0) => 4,
+            _ => 5,
+        }
+    }
+
     /// Component `(a, b)`, indices 0..3.
     #[inline]
     pub fn get(&self, a: usize, b: usize) -> Real {

@@ -298,8 +298,8 @@ pub struct Workspace<'a, const D: usize> {
     pub sums: &'a mut [PairSums<D>],
     /// MUSCL gradients.
     pub grad: &'a mut [Gradients<D>],
-    /// Gradients of the stress components (`tkc` with strength; those the pairs read, see
-    /// `schemes::pm::gradients::in_plane`: in 2D xx, yy and xy, the others zero).
+    /// Gradients of the stress components in Voigt order (`tkc` with strength; only those
+    /// the pairs read: in 2D xx, yy and xy, the others zero).
     pub grad_stress: &'a mut [[Vector<D>; 6]],
     /// Kernel correction.
     pub corr: &'a mut [Correction<D>],

@@ -20,7 +20,7 @@ use super::avx2::{
 use crate::effects::Effects;
 use crate::exec::{for_each_record, Executor};
 use crate::limiter::Limiter;
-use crate::math::Real;
+use crate::math::{Real, Sym3};
 use crate::riemann::Dissipation;
 use crate::schemes::av::records::sym_at;
 use crate::schemes::common::{failed, Pair};
@@ -84,7 +84,7 @@ pub(crate) fn write_records<const D: usize, E: Effects, X: Executor>(
             for a in 0..D {
                 for b in a..D {
                     for c in 0..D {
-                        r[at.grad_s + sym_at(D, a, b) * D + c] = gs[voigt(a, b)][c];
+                        r[at.grad_s + sym_at(D, a, b) * D + c] = gs[Sym3::voigt(a, b)][c];
                     }
                 }
             }
@@ -224,18 +224,6 @@ unsafe fn sym_dot<const D: usize>(s: &M, x: &V) -> V {
         }
     }
     out
-}
-
-/// The Voigt index of the component `(a, b)` of a `Sym3` (`xx yy zz xy xz yz`).
-const fn voigt(a: usize, b: usize) -> usize {
-    match (a, b) {
-        (0, 0) => 0,
-        (1, 1) => 1,
-        (2, 2) => 2,
-        (0, 1) | (1, 0) => 3,
-        (0, 2) | (2, 0) => 4,
-        _ => 5,
-    }
 }
 
 /// `acoustic_star` along the axis: `(u*, s*)`, the mean of the sides where `z_l + z_r` is
@@ -562,7 +550,7 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
                 let (mut slope_i, mut slope_j): (M, M) = ([[zero; 3]; 3], [[zero; 3]; 3]);
                 for a in 0..D {
                     for b in 0..D {
-                        slope_i[a][b] = dot::<D>(&gs_i[voigt(a, b)], &rji);
+                        slope_i[a][b] = dot::<D>(&gs_i[Sym3::voigt(a, b)], &rji);
                         let g: V = vec_at(at.grad_s + sym_at(D, a, b) * D);
                         slope_j[a][b] = dot::<D>(&g, &rji);
                     }

@@ -3,7 +3,7 @@
 
 use crate::effects::Effects;
 use crate::exec::Executor;
-use crate::math::{det, inverse, Matrix, Real, Vector};
+use crate::math::{det, inverse, Matrix, Real, Sym3, Vector};
 use crate::schemes::common::{
     cauchy, for_each_pair, min_sym_eigenvalue, open_neighbourhood, outer, Pair,
 };
@@ -198,8 +198,14 @@ pub(super) fn gradient_pass<const D: usize, E: Effects, X: Executor>(
                     }
                     if E::STRENGTH {
                         let sj = cauchy::<D, E>(sys, j).to_array();
-                        for &c in in_plane::<D>() {
-                            acc_s[c] += gw * (sj[c] - si[c]);
+                        // only the components the pairs read (`pair_star`'s traction
+                        // `sigma . axis`, with a D-vector axis, reads (a, b) with a, b < D:
+                        // in 2D xx, yy and xy; the slopes of the others stay zero)
+                        for a in 0..D {
+                            for b in a..D {
+                                let c = Sym3::voigt(a, b);
+                                acc_s[c] += gw * (sj[c] - si[c]);
+                            }
                         }
                     }
                 });
@@ -213,18 +219,6 @@ pub(super) fn gradient_pass<const D: usize, E: Effects, X: Executor>(
             }
         },
     );
-}
-
-/// The Voigt components of the stress whose slopes the pairs read (`pair_star`'s
-/// traction `sigma . axis`, with a D-vector axis, reads the components `(a, b)`, `a, b <
-/// D`): xx in 1D; xx, yy, xy in 2D (the slopes of zz, xz and yz stay zero); all six in 3D.
-#[inline(always)]
-fn in_plane<const D: usize>() -> &'static [usize] {
-    match D {
-        1 => &[0],
-        2 => &[0, 1, 3],
-        _ => &[0, 1, 2, 3, 4, 5],
-    }
 }
 
 /// The matrix that corrects particle i's MUSCL slopes: its `L^-1` (the identity near a
