@@ -307,12 +307,38 @@ fn every_family_conserves_momentum_and_stays_finite() {
 }
 
 /// The kernel corrections of the 100 particles `x` (unit mass and density, h = 1.2,
-/// Wendland C2) with `options`, and the neighbour-list-free uncorrected L of particle `i`.
+/// Wendland C2) with `options`.
 fn corrections(x: &mut [Vector<2>; 100], options: SchemeOptions) -> [Correction<2>; 100] {
+    let zero = crate::math::Matrix::<2>::zeros();
+    neighbourhood(x, options, zero, Vector::<2>::zeros()).0
+}
+
+/// The kernel corrections of the 100 particles `x` as [`corrections`], from `tkc`'s
+/// gradient pass, which must agree with the correction pass (the same flags, `L^-1` to
+/// round-off), and the gradients that pass gives the linear fields `rho = 1 + g . x`,
+/// `v = A x` and `sigma_xy = g . x`.
+fn neighbourhood(
+    x: &mut [Vector<2>; 100],
+    options: SchemeOptions,
+    a: crate::math::Matrix<2>,
+    g: Vector<2>,
+) -> (
+    [Correction<2>; 100],
+    [Gradients<2>; 100],
+    [[Vector<2>; 6]; 100],
+) {
     const M: usize = 100;
-    let (mut v, m, mat) = ([Vector::<2>::zeros(); M], [1.0; M], [0u16; M]);
+    let (mut v, mut m, mat) = ([Vector::<2>::zeros(); M], [1.0; M], [0u16; M]);
     let (mut rho, mut e, mut p, mut c, mut cl, mut h) =
         ([1.0; M], [0.0; M], [0.0; M], [1.0; M], [1.0; M], [1.2; M]);
+    let mut s = [Sym3::default(); M];
+    for k in 0..M {
+        // unit volumes
+        rho[k] = 1.0 + g.dot(&x[k]);
+        m[k] = rho[k];
+        v[k] = a * x[k];
+        s[k].xy = g.dot(&x[k]);
+    }
     let mut storage = [0u32; NeighborList::storage_len(M, 64)];
     let mut list = NeighborList::new(64, M, &mut storage).unwrap();
     build_naive(&x[..], &Periodic::none(), |_, _| 2.4, &mut list).unwrap();
@@ -327,7 +353,7 @@ fn corrections(x: &mut [Vector<2>; 100], options: SchemeOptions) -> [Correction<
         c: &mut c,
         cl: &mut cl,
         h: &mut h,
-        s: &mut [],
+        s: &mut s,
         eps_p: &mut [],
         damage: &mut [],
         temp: &mut [],
@@ -361,7 +387,24 @@ fn corrections(x: &mut [Vector<2>; 100], options: SchemeOptions) -> [Correction<
     super::pm::correction_pass::<2, Serial>(
         &sys, geom, &aux, &mut corr, &mut sums, &params, &Serial,
     );
-    corr
+    let mut fused = [Correction::<2>::default(); M];
+    let mut grad = [Gradients::<2>::default(); M];
+    let mut gs = [[Vector::<2>::zeros(); 6]; M];
+    super::pm::gradient_pass::<2, PlasticTkc, Serial>(
+        &sys, geom, &aux, &mut fused, &mut sums, &mut grad, &mut gs, &params, &Serial,
+    );
+    for k in 0..M {
+        assert_eq!(fused[k].boundary, corr[k].boundary, "particle {k}");
+        assert_eq!(fused[k].lambda_min, corr[k].lambda_min, "particle {k}");
+        let scale = corr[k].l_inv.norm();
+        assert!(
+            (fused[k].l_inv - corr[k].l_inv).norm() <= 1e-14 * scale,
+            "particle {k}: {} against {}",
+            fused[k].l_inv,
+            corr[k].l_inv
+        );
+    }
+    (corr, grad, gs)
 }
 
 /// A 10 x 10 block with spacings `dx`, `dy`.
@@ -470,4 +513,63 @@ impl Effects for PlasticTkc2 {
     const CORRECTION: bool = true;
     const MUSCL: bool = true;
     const SET: EffectSet = EffectSet::HYDRO;
+}
+
+/// `tkc`'s gradient pass (which sums uncorrected and corrects once per particle) gives the
+/// exact slopes of linear fields where the correction is on (flag 0), and everywhere
+/// with `options.corrected_slopes`; the spin of `v = A x` is `(A - A^T)/2` on every
+/// particle whose `det L >= det_epsilon`, the surface included. On a sheared block.
+#[test]
+fn tkc_gradients_of_linear_fields_are_exact_where_corrected() {
+    use crate::math::Matrix;
+    let a = Matrix::<2>::new(0.1, -2.0, 3.0, 0.4);
+    let g = Vector::<2>::new(0.3, -0.7);
+    let spin = (a - a.transpose()) * 0.5;
+    for corrected_slopes in [false, true] {
+        let mut x = block(1.0, 1.0);
+        for p in x.iter_mut() {
+            p[0] += 0.3 * p[1];
+        }
+        let options = SchemeOptions {
+            corrected_slopes,
+            ..SchemeOptions::default()
+        };
+        let (corr, grad, gs) = neighbourhood(&mut x, options, a, g);
+        let (mut exact, mut interior) = (0, 0);
+        let mut spun = 0;
+        for k in 0..100 {
+            // zero where det L < det_epsilon (no spin known: the block's corners)
+            let w = grad[k].w;
+            spun += usize::from(w != Matrix::<2>::zeros());
+            assert!(
+                w == Matrix::<2>::zeros() || (w - spin).norm() < 1e-12,
+                "particle {k}: {w}"
+            );
+            if corr[k].boundary == 0 || corrected_slopes {
+                interior += usize::from(corr[k].boundary == 0);
+                exact += 1;
+                assert!(
+                    (grad[k].rho - g).norm() < 1e-12,
+                    "particle {k}: {}",
+                    grad[k].rho
+                );
+                assert!(
+                    (grad[k].v - a).norm() < 1e-12,
+                    "particle {k}: {}",
+                    grad[k].v
+                );
+                let xy = Sym3::voigt(0, 1);
+                assert!(
+                    (gs[k][xy] - g).norm() < 1e-12,
+                    "particle {k}: {}",
+                    gs[k][xy]
+                );
+            }
+        }
+        // the interior of the block (6 x 6 minus what the surface rule takes) and, with
+        // corrected slopes, all 100
+        assert!(interior >= 16, "{interior} interior particles");
+        assert_eq!(exact == 100, corrected_slopes, "{exact} exact slopes");
+        assert!(spun >= 96, "{spun} particles with a spin");
+    }
 }

@@ -2,7 +2,7 @@
 //! over the pairs before the Riemann problems).
 
 use crate::effects::Effects;
-use crate::exec::Executor;
+use crate::exec::{Executor, Optional};
 use crate::math::{det, inverse, Matrix, Real, Sym3, Vector};
 use crate::schemes::common::{
     cauchy, for_each_pair, min_sym_eigenvalue, open_neighbourhood, outer, Pair,
@@ -21,9 +21,81 @@ use crate::state::{Aux, Correction, Gradients, PairGeom, PairSums, StepParams, S
 /// irregularity (a polar lattice's rings differ from `h` by ~1e-4 relative).
 pub const NEAR_SURFACE_TOLERANCE: Real = 1e-9;
 
+/// `L = sum V_j grad_i W_ij ⊗ (x_j - x_i)` (with `x_j - x_i = r n`) of neighbour `pr` of
+/// volume `vol`, added to `l`.
+#[inline(always)]
+fn add_l<const D: usize>(l: &mut Matrix<D>, pr: &Pair<D>, vol: Real) {
+    *l += outer(&(pr.grad * vol), &(pr.n * pr.r));
+}
+
+/// Particle i's kernel correction from its uncorrected `L`, before the near-surface rule
+/// ([`near_surface`]): the smallest eigenvalue of `L`, flag 2 where it is below
+/// `surface_lambda` (and, with `surface_scan`, the neighbourhood is open), and `L^-1`
+/// (the identity where `det L < det_epsilon`).
+fn classify<const D: usize>(
+    l: &Matrix<D>,
+    sys: &System<'_, D>,
+    geom: &[PairGeom<D>],
+    aux: &[Aux],
+    i: usize,
+    params: &StepParams<'_, D>,
+) -> Correction<D> {
+    let lam_min = min_sym_eigenvalue(l);
+    let open = lam_min < params.options.surface_lambda
+        && (!params.options.surface_scan || open_neighbourhood(params, geom, aux, i, sys.h[i]));
+    Correction {
+        lambda_min: lam_min,
+        boundary: if open { 2 } else { 0 },
+        l_inv: match inverse(l) {
+            Some(inv) if det(l) >= params.options.det_epsilon => inv,
+            _ => Matrix::<D>::identity(),
+        },
+    }
+}
+
+/// Seed 004's near-surface rule, first half: marks (with [`PairSums::set_surface`]) every
+/// particle that is a boundary particle or has one within its smoothing length, up to
+/// [`NEAR_SURFACE_TOLERANCE`]. [`apply_near_surface`] is the second half.
+fn near_surface<const D: usize, X: Executor>(
+    sys: &System<'_, D>,
+    geom: &[PairGeom<D>],
+    corr: &[Correction<D>],
+    sums: &mut [PairSums<D>],
+    params: &StepParams<'_, D>,
+    exec: &X,
+) {
+    let within = 1.0 + NEAR_SURFACE_TOLERANCE;
+    exec.run(sums, |off, chunk: &mut [PairSums<D>]| {
+        for (k, out) in chunk.iter_mut().enumerate() {
+            let i = off + k;
+            let mut near = corr[i].boundary == 2;
+            let reach = sys.h[i] * within;
+            for_each_pair(params, geom, i, |pr, _| {
+                if corr[pr.j].boundary == 2 && pr.r > 0.0 && pr.r <= reach {
+                    near = true;
+                }
+            });
+            out.set_surface(near);
+        }
+    });
+}
+
+/// A marked particle ([`near_surface`]) uses `L = I` (flag 1 unless it is a boundary
+/// particle itself).
+#[inline(always)]
+fn apply_near_surface<const D: usize>(c: &mut Correction<D>, near: bool) {
+    if near {
+        if c.boundary == 0 {
+            c.boundary = 1;
+        }
+        c.l_inv = Matrix::<D>::identity();
+    }
+}
+
 /// Kernel correction: L_i, its inverse and the free-surface flags (2: smallest
 /// eigenvalue of L below `surface_lambda`; 1: a flag-2 particle within `h_i`, up to
-/// [`NEAR_SURFACE_TOLERANCE`]; 0 otherwise).
+/// [`NEAR_SURFACE_TOLERANCE`]; 0 otherwise). With MUSCL [`gradient_pass`] computes the
+/// same with the gradients.
 pub(crate) fn correction_pass<const D: usize, X: Executor>(
     sys: &System<'_, D>,
     geom: &[PairGeom<D>],
@@ -33,61 +105,40 @@ pub(crate) fn correction_pass<const D: usize, X: Executor>(
     params: &StepParams<'_, D>,
     exec: &X,
 ) {
-    let lam = params.options.surface_lambda;
-    let eps = params.options.det_epsilon;
     exec.run(&mut *corr, |off, chunk: &mut [Correction<D>]| {
         for (k, out) in chunk.iter_mut().enumerate() {
             let i = off + k;
             let mut l = Matrix::<D>::zeros();
-            for_each_pair(params, geom, i, |pr, _| {
-                let vol = aux[pr.j].vol;
-                // L = sum V_j grad_i W_ij ⊗ (x_j - x_i), with x_j - x_i = r n
-                l += outer(&pr.grad, &(pr.n * pr.r)) * vol;
-            });
-            let lam_min = min_sym_eigenvalue(&l);
-            out.lambda_min = lam_min;
-            let open = lam_min < lam
-                && (!params.options.surface_scan
-                    || open_neighbourhood(params, geom, aux, i, sys.h[i]));
-            out.boundary = if open { 2 } else { 0 };
-            out.l_inv = match inverse(&l) {
-                Some(inv) if det(&l) >= eps => inv,
-                _ => Matrix::<D>::identity(),
-            };
+            for_each_pair(params, geom, i, |pr, _| add_l(&mut l, pr, aux[pr.j].vol));
+            *out = classify(&l, sys, geom, aux, i, params);
         }
     });
-    // Particles with a boundary particle within their smoothing length use L = I
-    // (marked with `PairSums::set_surface`).
-    let within = 1.0 + NEAR_SURFACE_TOLERANCE;
-    let c: &[Correction<D>] = corr;
-    exec.run(&mut *sums, |off, chunk: &mut [PairSums<D>]| {
-        for (k, out) in chunk.iter_mut().enumerate() {
-            let i = off + k;
-            let mut near = c[i].boundary == 2;
-            let reach = sys.h[i] * within;
-            for_each_pair(params, geom, i, |pr, _| {
-                if c[pr.j].boundary == 2 && pr.r > 0.0 && pr.r <= reach {
-                    near = true;
-                }
-            });
-            out.set_surface(near);
-        }
-    });
+    near_surface::<D, X>(sys, geom, corr, sums, params, exec);
     let s: &[PairSums<D>] = sums;
     exec.run(corr, |off, chunk: &mut [Correction<D>]| {
         for (k, out) in chunk.iter_mut().enumerate() {
-            if s[off + k].surface() {
-                if out.boundary == 0 {
-                    out.boundary = 1;
-                }
-                out.l_inv = Matrix::<D>::identity();
-            }
+            apply_near_surface(out, s[off + k].surface());
         }
     });
 }
 
-/// The sums behind a particle's spin ([`Gradients::w`]): `G = sum V_j (v_j - v_i) ⊗ grad W`
-/// and `L = sum V_j grad W ⊗ (x_j - x_i)`, uncorrected.
+/// The spin `W = (G L^-T - (G L^-T)^T)/2` from `G = sum V_j (v_j - v_i) ⊗ grad W` and
+/// `L = sum V_j grad W ⊗ (x_j - x_i)`, both uncorrected: an affine velocity field
+/// `v = v0 + A x` has `G = A L^T`, so `G L^-T = A` whatever the neighbourhood (a free
+/// surface included) as long as `det L >= eps`; below that (a particle with too few
+/// neighbours to span the plane) no spin is known and zero is returned, so its pairs'
+/// transverse problems see the whole velocity jump, as without `options.objective`.
+fn spin<const D: usize>(g: &Matrix<D>, l: &Matrix<D>, eps: Real) -> Matrix<D> {
+    match inverse(l) {
+        Some(inv) if det(l) >= eps => {
+            let a = g * inv.transpose();
+            (a - a.transpose()) * 0.5
+        }
+        _ => Matrix::<D>::zeros(),
+    }
+}
+
+/// The sums behind a particle's spin ([`Gradients::w`], [`spin`]), for `pm` without MUSCL.
 #[derive(Clone, Copy)]
 pub(super) struct SpinSums<const D: usize> {
     g: Matrix<D>,
@@ -105,24 +156,13 @@ impl<const D: usize> SpinSums<D> {
     /// Adds neighbour `pr.j` of volume `vol` whose velocity differs by `dv`.
     #[inline(always)]
     pub(super) fn add(&mut self, pr: &Pair<D>, vol: Real, dv: &Vector<D>) {
-        let gw = pr.grad * vol;
-        self.g += outer(dv, &gw);
-        self.l += outer(&gw, &(pr.n * pr.r));
+        self.g += outer(dv, &(pr.grad * vol));
+        add_l(&mut self.l, pr, vol);
     }
 
-    /// The spin `W = (G L^-T - (G L^-T)^T)/2`: an affine velocity field `v = v0 + A x` has
-    /// `G = A L^T`, so `G L^-T = A` whatever the neighbourhood (a free surface included)
-    /// as long as `det L >= eps`; below that (a particle with too few neighbours to span
-    /// the plane) no spin is known and zero is returned, so its pairs' transverse
-    /// problems see the whole velocity jump, as without `options.objective`.
+    /// [`spin`] of the sums.
     pub(super) fn spin(&self, eps: Real) -> Matrix<D> {
-        match inverse(&self.l) {
-            Some(inv) if det(&self.l) >= eps => {
-                let a = self.g * inv.transpose();
-                (a - a.transpose()) * 0.5
-            }
-            _ => Matrix::<D>::zeros(),
-        }
+        spin(&self.g, &self.l, eps)
     }
 }
 
@@ -149,14 +189,20 @@ pub(super) fn spin_pass<const D: usize, X: Executor>(
     });
 }
 
-/// Gradients of the reconstructed quantities (corrected when `E::CORRECTION`), and the
-/// spin with `options.objective`.
+/// Gradients of the reconstructed quantities and, with `E::CORRECTION`, the kernel
+/// correction of [`correction_pass`], in one pass over the pairs: the sums are taken
+/// uncorrected (`sum V_j (phi_j - phi_i) grad W`) beside `L`, and multiplied by the
+/// particle's correction matrix `M` once the near-surface rule is known
+/// (`sum V_j dphi M grad W = M sum V_j dphi grad W`; the same slopes as correcting each
+/// kernel gradient, to round-off). With `options.objective` the spin comes from the same
+/// uncorrected velocity sum and `L` ([`spin`]).
 #[allow(clippy::too_many_arguments)]
-pub(super) fn gradient_pass<const D: usize, E: Effects, X: Executor>(
+pub(crate) fn gradient_pass<const D: usize, E: Effects, X: Executor>(
     sys: &System<'_, D>,
     geom: &[PairGeom<D>],
     aux: &[Aux],
-    corr: &[Correction<D>],
+    corr: &mut [Correction<D>],
+    sums: &mut [PairSums<D>],
     grad: &mut [Gradients<D>],
     grad_stress: &mut [[Vector<D>; 6]],
     params: &StepParams<'_, D>,
@@ -165,24 +211,25 @@ pub(super) fn gradient_pass<const D: usize, E: Effects, X: Executor>(
     let objective = objective::<D, E>(params);
     let eps = params.options.det_epsilon;
     exec.run(
-        (grad, grad_stress),
-        |off, (g, gs): (&mut [Gradients<D>], &mut [[Vector<D>; 6]])| {
+        (
+            Optional(&mut *corr),
+            (&mut *grad, Optional(&mut *grad_stress)),
+        ),
+        |off, (c, (g, gs)): (Optional<Correction<D>>, (&mut [Gradients<D>], Optional<_>))| {
             for (k, out) in g.iter_mut().enumerate() {
                 let i = off + k;
                 let mut acc = Gradients::<D>::default();
                 let mut acc_s = [Vector::<D>::zeros(); 6];
+                let mut l = Matrix::<D>::zeros();
                 let si = cauchy::<D, E>(sys, i).to_array();
                 let cti = aux[i].ct;
-                let mut spin = SpinSums::<D>::new();
-                let m = if E::CORRECTION {
-                    slope_correction(&corr[i], i, aux, geom, params)
-                } else {
-                    Matrix::<D>::identity()
-                };
                 for_each_pair(params, geom, i, |pr, _| {
                     let j = pr.j;
                     let vol = aux[j].vol;
-                    let gw = if E::CORRECTION { m * pr.grad } else { pr.grad } * vol;
+                    if E::CORRECTION || objective {
+                        add_l(&mut l, pr, vol);
+                    }
+                    let gw = pr.grad * vol;
                     acc.rho += gw * (sys.rho[j] - sys.rho[i]);
                     if !E::STRENGTH {
                         // the pressure's slope reconstructs the traction only without
@@ -191,11 +238,7 @@ pub(super) fn gradient_pass<const D: usize, E: Effects, X: Executor>(
                     }
                     acc.cl += gw * (sys.cl[j] - sys.cl[i]);
                     acc.ct += gw * (aux[j].ct - cti);
-                    let dv = sys.v[j] - sys.v[i];
-                    acc.v += outer(&dv, &gw);
-                    if objective {
-                        spin.add(pr, vol, &dv);
-                    }
+                    acc.v += outer(&(sys.v[j] - sys.v[i]), &gw);
                     if E::STRENGTH {
                         let sj = cauchy::<D, E>(sys, j).to_array();
                         // only the components the pairs read (`pair_star`'s traction
@@ -210,39 +253,50 @@ pub(super) fn gradient_pass<const D: usize, E: Effects, X: Executor>(
                     }
                 });
                 if objective {
-                    acc.w = spin.spin(eps);
+                    acc.w = spin(&acc.v, &l, eps);
+                }
+                if E::CORRECTION {
+                    c.0[k] = classify(&l, sys, geom, aux, i, params);
                 }
                 *out = acc;
                 if E::STRENGTH {
-                    gs[k] = acc_s;
+                    gs.0[k] = acc_s;
                 }
             }
         },
     );
-}
-
-/// The matrix that corrects particle i's MUSCL slopes: its `L^-1` (the identity near a
-/// free surface, seed 004), or with `options.corrected_slopes` the inverse of its full `L`
-/// there too, where `det L >= det_epsilon` (a slope of a linear field is then exact at the
-/// surface as inside; the forces keep the surface rule).
-fn slope_correction<const D: usize>(
-    c: &Correction<D>,
-    i: usize,
-    aux: &[Aux],
-    geom: &[PairGeom<D>],
-    params: &StepParams<'_, D>,
-) -> Matrix<D> {
-    if !params.options.corrected_slopes || c.boundary == 0 {
-        return c.l_inv;
+    if !E::CORRECTION {
+        return;
     }
-    let mut l = Matrix::<D>::zeros();
-    for_each_pair(params, geom, i, |pr, _| {
-        l += outer(&pr.grad, &(pr.n * pr.r)) * aux[pr.j].vol;
-    });
-    match inverse(&l) {
-        Some(inv) if det(&l) >= params.options.det_epsilon => inv,
-        _ => c.l_inv,
-    }
+    near_surface::<D, X>(sys, geom, corr, sums, params, exec);
+    let s: &[PairSums<D>] = sums;
+    // with `options.corrected_slopes` the slopes keep the full `L^-1` at the surface too
+    // (a slope of a linear field is then exact there as inside; the forces keep the rule)
+    let full = params.options.corrected_slopes;
+    exec.run(
+        (corr, (grad, Optional(grad_stress))),
+        |off, (c, (g, gs)): (&mut [Correction<D>], (&mut [Gradients<D>], Optional<_>))| {
+            for (k, out) in c.iter_mut().enumerate() {
+                let l_inv = out.l_inv;
+                apply_near_surface(out, s[off + k].surface());
+                let m = if full { l_inv } else { out.l_inv };
+                let gk = &mut g[k];
+                gk.rho = m * gk.rho;
+                gk.p = m * gk.p;
+                gk.cl = m * gk.cl;
+                gk.ct = m * gk.ct;
+                gk.v *= m.transpose();
+                if E::STRENGTH {
+                    for a in 0..D {
+                        for b in a..D {
+                            let v = &mut gs.0[k][Sym3::voigt(a, b)];
+                            *v = m * *v;
+                        }
+                    }
+                }
+            }
+        },
+    );
 }
 
 /// Whether the step removes the pairs' rigid rotation from the transverse Riemann problems

@@ -46,8 +46,8 @@ mod particles;
 pub(crate) mod records;
 mod volume;
 
-pub(crate) use gradients::correction_pass;
-use gradients::{gradient_pass, objective, spin_pass};
+pub(crate) use gradients::{correction_pass, gradient_pass};
+use gradients::{objective, spin_pass};
 pub(crate) use options::{defaults, reads};
 use pairs::pair_pass;
 use particles::{dynamic_update, kinematic_update};
@@ -221,23 +221,26 @@ fn prepare<const D: usize, E: Effects, X: Executor>(
     {
         let sysr: &System<'_, D> = sys;
         let geom: &[PairGeom<D>] = ws.geom;
-        if E::CORRECTION {
-            correction_pass::<D, X>(sysr, geom, ws.aux, ws.corr, ws.sums, params, exec);
-        }
-        if !E::MUSCL && objective::<D, E>(params) {
-            spin_pass::<D, X>(sysr, geom, ws.aux, ws.grad, params, exec);
-        }
         if E::MUSCL {
+            // the kernel correction and the spin come with the gradients
             gradient_pass::<D, E, X>(
                 sysr,
                 geom,
                 ws.aux,
                 ws.corr,
+                ws.sums,
                 ws.grad,
                 ws.grad_stress,
                 params,
                 exec,
             );
+        } else {
+            if E::CORRECTION {
+                correction_pass::<D, X>(sysr, geom, ws.aux, ws.corr, ws.sums, params, exec);
+            }
+            if objective::<D, E>(params) {
+                spin_pass::<D, X>(sysr, geom, ws.aux, ws.grad, params, exec);
+            }
         }
         if params.options.specific_volume == SpecificVolume::Interpolated {
             volume::specific_volume_pass::<D, X>(sysr, geom, ws.grad, params, exec);
