@@ -69,12 +69,17 @@ fn near_surface<const D: usize, X: Executor>(
         for (k, out) in chunk.iter_mut().enumerate() {
             let i = off + k;
             let mut near = corr[i].boundary == 2;
-            let reach = sys.h[i] * within;
-            for_each_pair(params, geom, i, |pr, _| {
-                if corr[pr.j].boundary == 2 && pr.r > 0.0 && pr.r <= reach {
-                    near = true;
-                }
-            });
+            if !near {
+                // the flag first: the distance (the same seen from either side) is read
+                // only for the few boundary neighbours
+                let reach = sys.h[i] * within;
+                params.nbrs.for_each(i, |e| {
+                    if corr[e.j].boundary == 2 {
+                        let r = geom[e.pair].r;
+                        near |= r > 0.0 && r <= reach;
+                    }
+                });
+            }
             out.set_surface(near);
         }
     });
