@@ -363,6 +363,7 @@ pub(super) fn gather<
     let vi = sys.v[i];
     let inv_i = aux[i].inv_rho;
     let mut out = PairSums::<D>::default();
+    let mut grad_v = Matrix::<D>::zeros();
     for_each_pair(params, geom, i, |pr, e| {
         let j = pr.j;
         let st = &stars[e.pair];
@@ -395,18 +396,27 @@ pub(super) fn gather<
             }
         }
         if KIN {
-            let gw = if E::CORRECTION {
-                corr[i].l_inv * pr.grad
-            } else {
-                pr.grad
-            };
             let w = 2.0 * mj * inv_j;
-            out.div += w * dv.dot(&gw);
-            if E::STRENGTH {
-                out.grad_v += outer(&dv, &gw) * w;
+            if E::CORRECTION {
+                // uncorrected here, `L^-1` once below
+                grad_v += outer(&dv, &pr.grad) * w;
+            } else {
+                out.div += w * dv.dot(&pr.grad);
+                if E::STRENGTH {
+                    out.grad_v += outer(&dv, &pr.grad) * w;
+                }
             }
         }
     });
+    if KIN && E::CORRECTION {
+        // sum w dv ⊗ (L^-1 grad W) = (sum w dv ⊗ grad W) L^-T, and the divergence is its
+        // trace (the same sums as correcting each kernel gradient, to round-off)
+        let g = grad_v * corr[i].l_inv.transpose();
+        out.div = g.trace();
+        if E::STRENGTH {
+            out.grad_v = g;
+        }
+    }
     out
 }
 
