@@ -310,14 +310,14 @@ fn every_family_conserves_momentum_and_stays_finite() {
 /// Wendland C2) with `options`.
 fn corrections(x: &mut [Vector<2>; 100], options: SchemeOptions) -> [Correction<2>; 100] {
     let zero = crate::math::Matrix::<2>::zeros();
-    neighbourhood(x, options, zero, Vector::<2>::zeros()).0
+    neighbourhood::<PlasticTkc>(x, options, zero, Vector::<2>::zeros()).0
 }
 
-/// The kernel corrections of the 100 particles `x` as [`corrections`], from `tkc`'s
-/// gradient pass, which must agree with the correction pass (the same flags, `L^-1` to
-/// round-off), and the gradients that pass gives the linear fields `rho = 1 + g . x`,
-/// `v = A x` and `sigma_xy = g . x`.
-fn neighbourhood(
+/// The kernel corrections of the 100 particles `x` as [`corrections`], from the contact
+/// family's gradient pass with effects `E` (with correction they must agree with the
+/// correction pass: the same flags, `L^-1` to round-off), and the gradients that pass
+/// gives the linear fields `rho = 1 + g . x`, `v = A x` and `sigma_xy = g . x`.
+fn neighbourhood<E: Effects>(
     x: &mut [Vector<2>; 100],
     options: SchemeOptions,
     a: crate::math::Matrix<2>,
@@ -390,10 +390,10 @@ fn neighbourhood(
     let mut fused = [Correction::<2>::default(); M];
     let mut grad = [Gradients::<2>::default(); M];
     let mut gs = [[Vector::<2>::zeros(); 6]; M];
-    super::pm::gradient_pass::<2, PlasticTkc, Serial>(
+    super::pm::gradient_pass::<2, E, Serial>(
         &sys, geom, &aux, &mut fused, &mut sums, &mut grad, &mut gs, &params, &Serial,
     );
-    for k in 0..M {
+    for k in (0..M).filter(|_| E::CORRECTION) {
         assert_eq!(fused[k].boundary, corr[k].boundary, "particle {k}");
         assert_eq!(fused[k].lambda_min, corr[k].lambda_min, "particle {k}");
         let scale = corr[k].l_inv.norm();
@@ -534,7 +534,7 @@ fn tkc_gradients_of_linear_fields_are_exact_where_corrected() {
             corrected_slopes,
             ..SchemeOptions::default()
         };
-        let (corr, grad, gs) = neighbourhood(&mut x, options, a, g);
+        let (corr, grad, gs) = neighbourhood::<PlasticTkc>(&mut x, options, a, g);
         let (mut exact, mut interior) = (0, 0);
         let mut spun = 0;
         for k in 0..100 {
@@ -571,5 +571,24 @@ fn tkc_gradients_of_linear_fields_are_exact_where_corrected() {
         assert!(interior >= 16, "{interior} interior particles");
         assert_eq!(exact == 100, corrected_slopes, "{exact} exact slopes");
         assert!(spun >= 96, "{spun} particles with a spin");
+    }
+    // pm with MUSCL and without correction: the same spin from the same pass (its own
+    // `L`), the slopes uncorrected
+    let mut x = block(1.0, 1.0);
+    for p in x.iter_mut() {
+        p[0] += 0.3 * p[1];
+    }
+    let (_, grad, _) = neighbourhood::<PlasticMuscl>(&mut x, SchemeOptions::default(), a, g);
+    let spun = grad
+        .iter()
+        .filter(|gk| gk.w != Matrix::<2>::zeros())
+        .count();
+    assert!(spun >= 96, "{spun} particles with a spin");
+    for (k, gk) in grad.iter().enumerate() {
+        assert!(
+            gk.w == Matrix::<2>::zeros() || (gk.w - spin).norm() < 1e-12,
+            "particle {k}: {}",
+            gk.w
+        );
     }
 }
