@@ -515,6 +515,30 @@ impl Effects for PlasticTkc2 {
     const SET: EffectSet = EffectSet::HYDRO;
 }
 
+/// A 10 x 10 unit block sheared by 0.3 along x, so that `L` is not diagonal.
+fn sheared_block() -> [Vector<2>; 100] {
+    let mut x = block(1.0, 1.0);
+    for p in x.iter_mut() {
+        p[0] += 0.3 * p[1];
+    }
+    x
+}
+
+/// Every particle's spin is `spin` to round-off or zero (where det L < det_epsilon, no
+/// spin is known: the block's corners), and at least 96 of the 100 have one.
+fn assert_spins(grad: &[Gradients<2>; 100], spin: crate::math::Matrix<2>) {
+    let zero = crate::math::Matrix::<2>::zeros();
+    for (k, gk) in grad.iter().enumerate() {
+        assert!(
+            gk.w == zero || (gk.w - spin).norm() < 1e-12,
+            "particle {k}: {}",
+            gk.w
+        );
+    }
+    let spun = grad.iter().filter(|gk| gk.w != zero).count();
+    assert!(spun >= 96, "{spun} particles with a spin");
+}
+
 /// `tkc`'s gradient pass (which sums uncorrected and corrects once per particle) gives the
 /// exact slopes of linear fields where the correction is on (flag 0), and everywhere
 /// with `options.corrected_slopes`; the spin of `v = A x` is `(A - A^T)/2` on every
@@ -526,25 +550,14 @@ fn tkc_gradients_of_linear_fields_are_exact_where_corrected() {
     let g = Vector::<2>::new(0.3, -0.7);
     let spin = (a - a.transpose()) * 0.5;
     for corrected_slopes in [false, true] {
-        let mut x = block(1.0, 1.0);
-        for p in x.iter_mut() {
-            p[0] += 0.3 * p[1];
-        }
         let options = SchemeOptions {
             corrected_slopes,
             ..SchemeOptions::default()
         };
-        let (corr, grad, gs) = neighbourhood::<PlasticTkc>(&mut x, options, a, g);
+        let (corr, grad, gs) = neighbourhood::<PlasticTkc>(&mut sheared_block(), options, a, g);
+        assert_spins(&grad, spin);
         let (mut exact, mut interior) = (0, 0);
-        let mut spun = 0;
         for k in 0..100 {
-            // zero where det L < det_epsilon (no spin known: the block's corners)
-            let w = grad[k].w;
-            spun += usize::from(w != Matrix::<2>::zeros());
-            assert!(
-                w == Matrix::<2>::zeros() || (w - spin).norm() < 1e-12,
-                "particle {k}: {w}"
-            );
             if corr[k].boundary == 0 || corrected_slopes {
                 interior += usize::from(corr[k].boundary == 0);
                 exact += 1;
@@ -570,25 +583,10 @@ fn tkc_gradients_of_linear_fields_are_exact_where_corrected() {
         // corrected slopes, all 100
         assert!(interior >= 16, "{interior} interior particles");
         assert_eq!(exact == 100, corrected_slopes, "{exact} exact slopes");
-        assert!(spun >= 96, "{spun} particles with a spin");
     }
     // pm with MUSCL and without correction: the same spin from the same pass (its own
     // `L`), the slopes uncorrected
-    let mut x = block(1.0, 1.0);
-    for p in x.iter_mut() {
-        p[0] += 0.3 * p[1];
-    }
-    let (_, grad, _) = neighbourhood::<PlasticMuscl>(&mut x, SchemeOptions::default(), a, g);
-    let spun = grad
-        .iter()
-        .filter(|gk| gk.w != Matrix::<2>::zeros())
-        .count();
-    assert!(spun >= 96, "{spun} particles with a spin");
-    for (k, gk) in grad.iter().enumerate() {
-        assert!(
-            gk.w == Matrix::<2>::zeros() || (gk.w - spin).norm() < 1e-12,
-            "particle {k}: {}",
-            gk.w
-        );
-    }
+    let options = SchemeOptions::default();
+    let (_, grad, _) = neighbourhood::<PlasticMuscl>(&mut sheared_block(), options, a, g);
+    assert_spins(&grad, spin);
 }

@@ -287,7 +287,9 @@ pub(crate) fn gradient_pass<const D: usize, E: Effects, X: Executor>(
                 let m = if full { l_inv } else { out.l_inv };
                 let gk = &mut g[k];
                 gk.rho = m * gk.rho;
-                gk.p = m * gk.p;
+                if !E::STRENGTH {
+                    gk.p = m * gk.p;
+                }
                 gk.cl = m * gk.cl;
                 gk.ct = m * gk.ct;
                 gk.v *= m.transpose();
