@@ -205,7 +205,7 @@ fn cases() -> Vec<Case> {
         case("cfl above 1", f(), "check", &["--set", "cfl=1.5"], &["cfl: must be at most 1 (got 1.5)"]),
         case("zero threads", f(), "run", &["--threads", "0"], &["--threads must be at least 1"]),
         case("usage: threads not a number", f(), "run", &["--threads", "many"], &["'many'", "--threads"]),
-        case("unknown SIMD level", f(), "run", &["--simd", "sse"], &["--simd sse: unknown instruction-set level `sse` (one of auto, baseline, avx2)"]),
+        case("unknown SIMD level", f(), "run", &["--simd", "sse"], &["--simd sse: unknown instruction-set level `sse` (one of auto, baseline, avx2, avx512)"]),
         case("nonexistent scene file", None, "check", &[], &["missing.toml: cannot read scene"]),
         case("JH1 tensile limit not a tension", impact(), "check", &["--set", "materials.1.strength.tensile_limit=7.5e8"], &["materials[1].strength.tensile_limit: must be negative"]),
         case("Johnson-Cook melt below room temperature", impact(), "check", &["--set", "materials.0.strength.t_melt=200"], &["materials[0].strength.t_melt: must exceed t_room = 298 K (got 200)"]),

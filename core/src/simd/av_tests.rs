@@ -76,7 +76,7 @@ fn bits<const D: usize>(r: &AvRates<D>) -> Vec<u64> {
 /// Every particle's rates at AVX2 (records given) against the baseline and against AVX2
 /// without records (the portable loop): asserts every bit equal, and that nine particles
 /// in ten have a finite, non-zero acceleration to compare.
-fn same_rates<const D: usize, E: Effects>(kernel: Kernel, seed: u64) {
+fn same_rates<const D: usize, E: Effects>(level: SimdLevel, kernel: Kernel, seed: u64) {
     let mut sc = scene::<D>(seed);
     // no zero densities (the star tests' fallback case): here their infinite 1/rho
     // would make every neighbour's rates NaN, and the comparison toothless
@@ -88,21 +88,26 @@ fn same_rates<const D: usize, E: Effects>(kernel: Kernel, seed: u64) {
         av_beta: 2.0,
         ..SchemeOptions::default()
     };
-    with_pairs::<D, E>(&mut sc, options, |sys, params, _| {
-        let avx2 = StepParams { kernel, ..*params };
+    with_pairs::<D, E>(level, &mut sc, options, |sys, params, _| {
+        let vectorised = StepParams { kernel, ..*params };
         let base = StepParams {
             simd: SimdLevel::BASELINE,
-            ..avx2
+            ..vectorised
         };
         let want = all_rates::<D, E>(sys, &base, true);
-        let got = all_rates::<D, E>(sys, &avx2, true);
-        let portable = all_rates::<D, E>(sys, &avx2, false);
+        let got = all_rates::<D, E>(sys, &vectorised, true);
+        let portable = all_rates::<D, E>(sys, &vectorised, false);
+        let at = level.get();
         for (i, ((w, g), p)) in want.iter().zip(&got).zip(&portable).enumerate() {
-            assert_eq!(bits(w), bits(p), "{D}D {kernel} seed {seed}: particle {i}");
+            assert_eq!(
+                bits(w),
+                bits(p),
+                "{at} {D}D {kernel} seed {seed}: particle {i}"
+            );
             assert_eq!(
                 bits(w),
                 bits(g),
-                "{D}D {kernel} seed {seed}: particle {i}: {w:?} against {g:?}"
+                "{at} {D}D {kernel} seed {seed}: particle {i}: {w:?} against {g:?}"
             );
         }
         // the loop met what it must handle: viscosity, artificial stress, failed
@@ -116,30 +121,26 @@ fn same_rates<const D: usize, E: Effects>(kernel: Kernel, seed: u64) {
 }
 
 fn all<const D: usize>() {
-    for seed in 1..4 {
-        for kernel in [Kernel::CubicSpline, Kernel::WendlandC2, Kernel::Gaussian] {
-            same_rates::<D, Solid>(kernel, seed);
-            same_rates::<D, SolidPlain>(kernel, seed);
-            same_rates::<D, Fluid>(kernel, seed);
+    for level in crate::simd::tested_levels() {
+        for seed in 1..4 {
+            for kernel in [Kernel::CubicSpline, Kernel::WendlandC2, Kernel::Gaussian] {
+                same_rates::<D, Solid>(level, kernel, seed);
+                same_rates::<D, SolidPlain>(level, kernel, seed);
+                same_rates::<D, Fluid>(level, kernel, seed);
+            }
         }
     }
 }
 
 #[test]
-fn avx2_av_rates_are_bitwise_the_portable_ones_1d() {
-    if std::is_x86_feature_detected!("avx2") {
-        all::<1>();
-    }
+fn vectorised_av_rates_are_bitwise_the_portable_ones_1d() {
+    all::<1>();
 }
 #[test]
-fn avx2_av_rates_are_bitwise_the_portable_ones_2d() {
-    if std::is_x86_feature_detected!("avx2") {
-        all::<2>();
-    }
+fn vectorised_av_rates_are_bitwise_the_portable_ones_2d() {
+    all::<2>();
 }
 #[test]
-fn avx2_av_rates_are_bitwise_the_portable_ones_3d() {
-    if std::is_x86_feature_detected!("avx2") {
-        all::<3>();
-    }
+fn vectorised_av_rates_are_bitwise_the_portable_ones_3d() {
+    all::<3>();
 }

@@ -13,48 +13,79 @@
 //! against the portable loop (`core/src/simd/tests.rs`), and `tests/tests/determinism.rs`
 //! compares whole runs.
 //!
-//! What is vectorised so far:
+//! Each loop is written once, generic over the register (`lanes::Lanes`: `__m256d`, four
+//! lanes, for AVX2; `__m512d`, eight, for AVX-512F), `#[inline(always)]`, and entered
+//! through one function per level compiled for its instructions (`…_avx2`, `…_avx512`).
+//! The AVX-512 entries run a row's full groups of eight in `zmm` registers and the rest in
+//! `ymm` ones, since a partial group costs as much as a full one.
+//!
+//! What is vectorised:
 //! - the pair geometry (`schemes::common::geometry_pass` of the `pm` and `ts` families,
 //!   which store it for their several pair passes; the cubic spline and Wendland C2
-//!   kernels, non-periodic runs), `avx2.rs`. (`av`, with one pair loop, computes the
+//!   kernels, non-periodic runs), `ops.rs`. (`av`, with one pair loop, computes the
 //!   geometry in that loop.)
 //! - the star states of `ts1` and `ts2` (MUSCL reconstruction, the acoustic or two-shock
 //!   solver; the default time and dissipation options, the superbee and minmod limiters),
-//!   `avx2_star.rs`: each row's owner broadcast, its neighbours four per instruction, their
+//!   `ts_star.rs`: each row's owner broadcast, its neighbours a register at a time, their
 //!   fields read from one compact record per particle (`Workspace::rec`, written before the
 //!   stars are solved) as `av`'s are (below). A lane the vectorised path does not cover (a
 //!   failed particle, an impedance that is not positive and finite, a two-shock answer
 //!   that is not finite) is solved again by the portable code.
 //! - the star states of `tkc` (and `pm` with MUSCL): objective rotation, corrected
 //!   traction axis, MUSCL in the pair frame, the acoustic or two-shock solver,
-//!   `avx2_pm.rs`, from records as well; the same fallbacks.
+//!   `pm_star.rs`, from records as well; the same fallbacks.
 //! - `av`'s pair loop (the cubic spline and Wendland C2 kernels, non-periodic runs),
-//!   `avx2_av.rs`. Its neighbours' fields come from one compact record per particle
-//!   (`Workspace::rec`, written once per rate evaluation), four records loaded four
+//!   `av.rs`. Its neighbours' fields come from one compact record per particle
+//!   (`Workspace::rec`, written once per rate evaluation), a register's records loaded four
 //!   reals at a time and transposed into lanes; each pair's terms are computed in lanes and
 //!   the particle's sums add them in its list's order. (A first version that filled the
 //!   lanes from the per-particle arrays, about twenty scalar loads per neighbour, was 27 %
 //!   slower than the portable loop: the loop is bound by those loads, not by arithmetic.)
 
+#[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
+pub(crate) mod av;
 #[cfg(all(test, target_arch = "x86_64", not(feature = "f32")))]
 mod av_tests;
 #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
-pub(crate) mod avx2;
+mod lanes;
 #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
-pub(crate) mod avx2_av;
+pub(crate) mod ops;
 #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
-pub(crate) mod avx2_pm;
-#[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
-pub(crate) mod avx2_star;
+pub(crate) mod pm_star;
 #[cfg(all(test, target_arch = "x86_64", not(feature = "f32")))]
 mod star_tests;
 #[cfg(all(test, target_arch = "x86_64", not(feature = "f32")))]
 mod tests;
 
+/// The vectorised levels this CPU has, for the tests that compare each with the portable
+/// loops (a level it lacks is named on stderr, not tested).
+#[cfg(all(test, target_arch = "x86_64", not(feature = "f32")))]
+pub(crate) fn tested_levels() -> std::vec::Vec<SimdLevel> {
+    extern crate std;
+    let mut out = std::vec::Vec::new();
+    for (level, has) in [
+        (Simd::Avx2, std::is_x86_feature_detected!("avx2")),
+        (
+            Simd::Avx512,
+            std::is_x86_feature_detected!("avx512f") && std::is_x86_feature_detected!("avx2"),
+        ),
+    ] {
+        if has {
+            // SAFETY: detected just above
+            out.push(unsafe { SimdLevel::assume(level) });
+        } else {
+            std::eprintln!("this CPU has no {level}: its loops are not tested here");
+        }
+    }
+    out
+}
+#[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
+pub(crate) mod ts_star;
+
 /// The pair geometry of the pairs particle `i` (at `xi`, `hi`) owns, its neighbours
 /// `owned`, into `out` (and the artificial-stress factors into `fac`) by the vectorised loop
-/// where the level and the case allow it: AVX2, the cubic spline or Wendland C2 kernel, no
-/// periodic images. Returns how many of the pairs it did (0: none; the portable loop does
+/// where the level and the case allow it: AVX2 or AVX-512, the cubic spline or Wendland C2
+/// kernel, no periodic images. Returns how many of the pairs it did (0: none; the portable loop does
 /// the rest), each bitwise as [`PairGeometry::of`](crate::schemes::common::PairGeometry)
 /// gives it.
 #[inline(always)]
@@ -71,18 +102,26 @@ pub(crate) fn geometry_row<const D: usize>(
     fac: &mut [crate::math::Real],
 ) -> usize {
     #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
-    if level.avx2() && pg.periodic.is_none() && avx2::has_geometry(pg.kernel) {
-        // SAFETY: `level` vouches for AVX2 (`SimdLevel::assume`) and the kernel is one the
-        // loop computes; it checks the neighbour indices and indexes `out`, `fac` checked
-        return unsafe {
-            avx2::geometry_row::<D>(pg.kernel, xi, hi, x, h, owned, out, fac, pg.art)
-        };
+    if pg.periodic.is_none() && ops::has_geometry(pg.kernel) {
+        let (k, art) = (pg.kernel, pg.art);
+        // SAFETY: `level` vouches for the instructions (`SimdLevel::assume`) and the kernel
+        // is one the loop computes; it checks the neighbour indices and indexes `out`,
+        // `fac` checked
+        match level.get() {
+            Simd::Avx512 => unsafe {
+                return ops::geometry_row_avx512::<D>(k, xi, hi, x, h, owned, out, fac, art);
+            },
+            Simd::Avx2 => unsafe {
+                return ops::geometry_row_avx2::<D>(k, xi, hi, x, h, owned, out, fac, art);
+            },
+            Simd::Baseline => {}
+        }
     }
     0
 }
 
-/// Whether [`av_row`] runs at this level with this geometry: AVX2, the cubic spline or
-/// Wendland C2 kernel, no periodic images (the caller then writes the neighbour records
+/// Whether [`av_row`] runs at this level with this geometry: AVX2 or AVX-512, the cubic
+/// spline or Wendland C2 kernel, no periodic images (the caller then writes the neighbour records
 /// it reads).
 #[inline(always)]
 #[allow(unused_variables)]
@@ -91,7 +130,7 @@ pub(crate) fn av_rows<const D: usize>(
     pg: &crate::schemes::common::PairGeometry<D>,
 ) -> bool {
     #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
-    if level.avx2() && pg.periodic.is_none() && avx2::has_geometry(pg.kernel) {
+    if level.vectorised() && pg.periodic.is_none() && ops::has_geometry(pg.kernel) {
         return true;
     }
     false
@@ -116,20 +155,15 @@ pub(crate) fn av_row<const D: usize, E: crate::effects::Effects>(
     #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
     if av_rows(params.simd, pg) {
         let (row, owned) = (params.nbrs.of(i), params.nbrs.owned(i));
-        // SAFETY: `params.simd` vouches for AVX2 (`SimdLevel::assume`) and `av_rows` holds;
-        // the row checks its neighbours against `rec`
+        let (k, art, lower) = (pg.kernel, pg.art, row.len() - owned.len());
+        // SAFETY: `params.simd` vouches for the instructions (`SimdLevel::assume`) and
+        // `av_rows` holds; the row checks its neighbours against `rec`
         unsafe {
-            avx2_av::rates_row::<D, E>(
-                pg.kernel,
-                pg.art,
-                alpha,
-                beta,
-                rec,
-                row,
-                row.len() - owned.len(),
-                own,
-                s,
-            )
+            if params.simd.get() == Simd::Avx512 {
+                av::rates_row_avx512::<D, E>(k, art, alpha, beta, rec, row, lower, own, s)
+            } else {
+                av::rates_row_avx2::<D, E>(k, art, alpha, beta, rec, row, lower, own, s)
+            }
         };
         return true;
     }
@@ -137,8 +171,8 @@ pub(crate) fn av_row<const D: usize, E: crate::effects::Effects>(
 }
 
 /// Writes every particle's neighbour record for [`ts_star_row`] into `rec` where the
-/// level and the step's options allow the vectorised row and it pays (AVX2;
-/// `avx2_star::covers` and `pays`) and `rec` has the room (`state::record_len`); returns
+/// level and the step's options allow the vectorised row and it pays (AVX2 or AVX-512;
+/// `ts_star::covers` and `pays`) and `rec` has the room (`state::record_len`); returns
 /// whether it did (false: the rows run the portable loop).
 #[inline(always)]
 #[allow(unused_variables)]
@@ -150,12 +184,12 @@ pub(crate) fn ts_records<const D: usize, E: crate::effects::Effects, X: crate::e
     exec: &X,
 ) -> bool {
     #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
-    if params.simd.avx2()
-        && avx2_star::covers(params)
-        && avx2_star::pays::<D, E>(params)
+    if params.simd.vectorised()
+        && ts_star::covers(params)
+        && ts_star::pays::<D, E>(params)
         && rec.len() == sys.x.len() * crate::schemes::ts::record_len(D)
     {
-        avx2_star::write_records::<D, E, X>(sys, grad, params, rec, exec);
+        ts_star::write_records::<D, E, X>(sys, grad, params, rec, exec);
         return true;
     }
     false
@@ -180,18 +214,25 @@ pub(crate) fn ts_star_row<const D: usize, E: crate::effects::Effects>(
     with_p: bool,
 ) -> usize {
     #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
-    if params.simd.avx2() && avx2_star::covers(params) && avx2_star::pays::<D, E>(params) {
-        // SAFETY: `params.simd` vouches for AVX2 (`SimdLevel::assume`) and `covers` holds
+    if params.simd.vectorised() && ts_star::covers(params) && ts_star::pays::<D, E>(params) {
+        // SAFETY: `params.simd` vouches for the instructions (`SimdLevel::assume`) and
+        // `covers` holds
         return unsafe {
-            avx2_star::star_row::<D, E>(sys, grad, rec, params, i, geom, owned, out, with_p)
+            if params.simd.get() == Simd::Avx512 {
+                ts_star::star_row_avx512::<D, E>(
+                    sys, grad, rec, params, i, geom, owned, out, with_p,
+                )
+            } else {
+                ts_star::star_row_avx2::<D, E>(sys, grad, rec, params, i, geom, owned, out, with_p)
+            }
         };
     }
     0
 }
 
 /// Writes every particle's neighbour record for [`pm_star_row`] into `rec` where the
-/// level and the step's options allow the vectorised row and it pays (AVX2;
-/// `avx2_pm::covers` and `pays`) and `rec` has the room (`state::record_len`); returns
+/// level and the step's options allow the vectorised row and it pays (AVX2 or AVX-512;
+/// `pm_star::covers` and `pays`) and `rec` has the room (`state::record_len`); returns
 /// whether it did (false: the rows run the portable loop).
 #[inline(always)]
 #[allow(clippy::too_many_arguments, unused_variables)]
@@ -206,12 +247,12 @@ pub(crate) fn pm_records<const D: usize, E: crate::effects::Effects, X: crate::e
     exec: &X,
 ) -> bool {
     #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
-    if params.simd.avx2()
-        && avx2_pm::covers(params)
-        && avx2_pm::pays::<E>()
+    if params.simd.vectorised()
+        && pm_star::covers(params)
+        && pm_star::pays::<E>()
         && rec.len() == sys.x.len() * crate::schemes::pm::record_len(D)
     {
-        avx2_pm::write_records::<D, E, X>(sys, aux, corr, grad, grad_s, params, rec, exec);
+        pm_star::write_records::<D, E, X>(sys, aux, corr, grad, grad_s, params, rec, exec);
         return true;
     }
     false
@@ -238,12 +279,19 @@ pub(crate) fn pm_star_row<const D: usize, E: crate::effects::Effects>(
     out: &mut [crate::state::PmStar<D>],
 ) -> usize {
     #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
-    if params.simd.avx2() && avx2_pm::covers(params) && avx2_pm::pays::<E>() {
-        // SAFETY: `params.simd` vouches for AVX2 (`SimdLevel::assume`) and `covers` holds
+    if params.simd.vectorised() && pm_star::covers(params) && pm_star::pays::<E>() {
+        // SAFETY: `params.simd` vouches for the instructions (`SimdLevel::assume`) and
+        // `covers` holds
         return unsafe {
-            avx2_pm::star_row::<D, E>(
-                sys, aux, corr, grad, grad_s, rec, params, i, geom, owned, out,
-            )
+            if params.simd.get() == Simd::Avx512 {
+                pm_star::star_row_avx512::<D, E>(
+                    sys, aux, corr, grad, grad_s, rec, params, i, geom, owned, out,
+                )
+            } else {
+                pm_star::star_row_avx2::<D, E>(
+                    sys, aux, corr, grad, grad_s, rec, params, i, geom, owned, out,
+                )
+            }
         };
     }
     0
@@ -258,17 +306,21 @@ pub enum Simd {
     /// AVX2 (x86-64-v3: Intel since Haswell, AMD since Zen): four `f64` pairs per
     /// instruction.
     Avx2,
+    /// AVX-512F (Intel Xeon since Skylake-SP, AMD since Zen 4): eight `f64` pairs per
+    /// instruction.
+    Avx512,
 }
 
 impl Simd {
     /// Every level, lowest first.
-    pub const ALL: [Simd; 2] = [Simd::Baseline, Simd::Avx2];
+    pub const ALL: [Simd; 3] = [Simd::Baseline, Simd::Avx2, Simd::Avx512];
 
-    /// The level's name (`baseline`, `avx2`), as `gsph --simd` and `GSPH_SIMD` take it.
+    /// The level's name (`baseline`, `avx2`, `avx512`), as `gsph --simd` and `GSPH_SIMD` take it.
     pub const fn name(self) -> &'static str {
         match self {
             Simd::Baseline => "baseline",
             Simd::Avx2 => "avx2",
+            Simd::Avx512 => "avx512",
         }
     }
 
@@ -295,7 +347,8 @@ impl SimdLevel {
     /// Vouches that the CPU running the steps has `level`'s instructions.
     ///
     /// # Safety
-    /// The CPU must have them (x86-64 AVX2 for [`Simd::Avx2`]; the host checks with
+    /// The CPU must have them (x86-64 AVX2 for [`Simd::Avx2`], AVX-512F (which implies
+    /// AVX2) for [`Simd::Avx512`]; the host checks with
     /// `is_x86_feature_detected!`). A level the target architecture has no loops for runs
     /// the portable ones.
     pub const unsafe fn assume(level: Simd) -> SimdLevel {
@@ -307,13 +360,13 @@ impl SimdLevel {
         self.0
     }
 
-    /// True when the AVX2 loops may run.
+    /// True when the vectorised loops may run (AVX2 or AVX-512).
     #[inline(always)]
     #[cfg_attr(
         not(all(target_arch = "x86_64", not(feature = "f32"))),
         allow(dead_code)
     )]
-    pub(crate) fn avx2(self) -> bool {
-        cfg!(target_arch = "x86_64") && !cfg!(feature = "f32") && matches!(self.0, Simd::Avx2)
+    pub(crate) fn vectorised(self) -> bool {
+        cfg!(target_arch = "x86_64") && !cfg!(feature = "f32") && self.0 != Simd::Baseline
     }
 }

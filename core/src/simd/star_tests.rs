@@ -15,7 +15,7 @@ use crate::schemes::common::geometry_pass;
 use crate::schemes::common::Pair;
 use crate::schemes::pm::pairs::pair_star;
 use crate::schemes::ts::pairs::star;
-use crate::simd::{avx2_pm, avx2_star, Simd, SimdLevel};
+use crate::simd::{pm_star, tested_levels, ts_star, Simd, SimdLevel};
 use crate::state::{
     Aux, Correction, Gradients, PairGeom, PmStar, RiemannSolver, SchemeOptions, StepParams, System,
     TsStar,
@@ -218,6 +218,7 @@ pub(super) fn scene<const D: usize>(seed: u64) -> Scene<D> {
 /// Calls `f` with the scene's particles, the step's parameters (AVX2, the options
 /// `options`, the effects of `E` and damage) and every pair's geometry.
 pub(super) fn with_pairs<const D: usize, E: Effects>(
+    level: SimdLevel,
     sc: &mut Scene<D>,
     options: SchemeOptions,
     f: impl FnOnce(&System<'_, D>, &StepParams<'_, D>, &[PairGeom<D>]),
@@ -228,8 +229,6 @@ pub(super) fn with_pairs<const D: usize, E: Effects>(
     let hmax = sc.h.iter().cloned().fold(0.0, Real::max);
     build_naive(&sc.x, &Periodic::none(), |_, _| 2.4 * hmax, &mut list).unwrap();
     let mats = [material(1.2), material(1.5), material(-0.5)];
-    // SAFETY: the callers checked that the CPU has AVX2
-    let avx2 = unsafe { SimdLevel::assume(Simd::Avx2) };
     let params = StepParams {
         dt: 1e-9,
         materials: &mats,
@@ -239,7 +238,7 @@ pub(super) fn with_pairs<const D: usize, E: Effects>(
         nbrs: list.view(),
         options,
         effects: E::SET.union(EffectSet::DAMAGE),
-        simd: avx2,
+        simd: level,
     };
     let mut geom = vec![PairGeom::<D>::default(); list.view().unordered_pairs()];
     let mut fac = vec![
@@ -281,6 +280,7 @@ fn rows<'a, const D: usize>(
 /// Every owned pair's `ts` star state by the AVX2 row and by the portable `star`: asserts
 /// every bit equal.
 fn same_stars<const D: usize, E: Effects>(
+    level: SimdLevel,
     riemann: RiemannSolver,
     limiter: Limiter,
     seed: u64,
@@ -293,19 +293,18 @@ fn same_stars<const D: usize, E: Effects>(
     };
     let grad = core::mem::take(&mut sc.grad);
     let mut met = Met::default();
-    with_pairs::<D, E>(&mut sc, options, |sys, params, geom| {
+    with_pairs::<D, E>(level, &mut sc, options, |sys, params, geom| {
         // the neighbour records the rows read (stale values where the writer leaves a field)
         let mut rec = vec![Real::NAN; sys.x.len() * crate::schemes::ts::record_len(D)];
-        avx2_star::write_records::<D, E, Serial>(sys, &grad, params, &mut rec, &Serial);
+        ts_star::write_records::<D, E, Serial>(sys, &grad, params, &mut rec, &Serial);
         for (i, p0, owned) in rows(params) {
             let gs = &geom[p0..p0 + owned.len()];
             let mut simd = vec![TsStar { u: 7.0, p: 7.0 }; owned.len()];
-            // the kernel itself, whether or not it pays for E (`avx2_star::pays`)
-            assert!(avx2_star::covers(params));
-            // SAFETY: the caller checked that the CPU has AVX2; the options are covered
-            let done = unsafe {
-                avx2_star::star_row::<D, E>(sys, &grad, &rec, params, i, gs, owned, &mut simd, true)
-            };
+            // the kernel itself, whether or not it pays for E (`ts_star::pays`)
+            assert!(ts_star::covers(params));
+            // SAFETY: the caller checked that the CPU has the level; the options are covered
+            let done =
+                unsafe { ts_row::<D, E>(sys, &grad, &rec, params, i, gs, owned, &mut simd, true) };
             assert_eq!(done, owned.len(), "the row does every pair");
             for (q, (&j, pg)) in owned.iter().zip(gs).enumerate() {
                 let j = j as usize;
@@ -320,26 +319,15 @@ fn same_stars<const D: usize, E: Effects>(
                 assert_eq!(
                     (simd[q].u.to_bits(), simd[q].p.to_bits()),
                     (u.to_bits(), p.to_bits()),
-                    "{D}D {riemann} {limiter} seed {seed}: pair ({i}, {j}): {:?} against ({u:e}, {p:e})",
+                    "{} {D}D {riemann} {limiter} seed {seed}: pair ({i}, {j}): {:?} against ({u:e}, {p:e})",
+                    level.get(),
                     simd[q]
                 );
             }
             // without the pressure, the same velocities and p* = 0
             let mut simd_u = vec![TsStar { u: 7.0, p: 7.0 }; owned.len()];
             // SAFETY: as above
-            unsafe {
-                avx2_star::star_row::<D, E>(
-                    sys,
-                    &grad,
-                    &rec,
-                    params,
-                    i,
-                    gs,
-                    owned,
-                    &mut simd_u,
-                    false,
-                )
-            };
+            unsafe { ts_row::<D, E>(sys, &grad, &rec, params, i, gs, owned, &mut simd_u, false) };
             for (a, b) in simd.iter().zip(&simd_u) {
                 assert_eq!(
                     (a.u.to_bits(), 0.0f64.to_bits()),
@@ -354,6 +342,7 @@ fn same_stars<const D: usize, E: Effects>(
 /// Every owned pair's `pm`/`tkc` star state by the AVX2 row and by the portable
 /// `pair_star`: asserts every bit equal.
 fn same_pm_stars<const D: usize, E: Effects>(
+    level: SimdLevel,
     riemann: RiemannSolver,
     limiter: Limiter,
     objective: bool,
@@ -371,20 +360,20 @@ fn same_pm_stars<const D: usize, E: Effects>(
     let aux = core::mem::take(&mut sc.aux);
     let corr = core::mem::take(&mut sc.corr);
     let mut met = Met::default();
-    with_pairs::<D, E>(&mut sc, options, |sys, params, geom| {
+    with_pairs::<D, E>(level, &mut sc, options, |sys, params, geom| {
         // the neighbour records the rows read (stale values where the writer leaves a field)
         let mut rec = vec![Real::NAN; sys.x.len() * crate::schemes::pm::record_len(D)];
-        avx2_pm::write_records::<D, E, Serial>(
+        pm_star::write_records::<D, E, Serial>(
             sys, &aux, &corr, &grad, &grad_s, params, &mut rec, &Serial,
         );
         for (i, p0, owned) in rows(params) {
             let gs = &geom[p0..p0 + owned.len()];
             let mut simd = vec![PmStar::<D>::default(); owned.len()];
-            // the kernel itself, whether or not it pays for E (`avx2_pm::pays`)
-            assert!(avx2_pm::covers(params));
-            // SAFETY: the caller checked that the CPU has AVX2; the options are covered
+            // the kernel itself, whether or not it pays for E (`pm_star::pays`)
+            assert!(pm_star::covers(params));
+            // SAFETY: the caller checked that the CPU has the level; the options are covered
             let done = unsafe {
-                avx2_pm::star_row::<D, E>(
+                pm_row::<D, E>(
                     sys, &aux, &corr, &grad, &grad_s, &rec, params, i, gs, owned, &mut simd,
                 )
             };
@@ -415,7 +404,8 @@ fn same_pm_stars<const D: usize, E: Effects>(
                 assert_eq!(
                     bits(&simd[q]),
                     bits(&want),
-                    "{D}D {riemann} {limiter} objective {objective} seed {seed}: pair ({i}, {j}): {:?} against {want:?}",
+                    "{} {D}D {riemann} {limiter} objective {objective} seed {seed}: pair ({i}, {j}): {:?} against {want:?}",
+                    level.get(),
                     simd[q]
                 );
             }
@@ -424,25 +414,70 @@ fn same_pm_stars<const D: usize, E: Effects>(
     met
 }
 
-fn has_avx2() -> bool {
-    let yes = std::is_x86_feature_detected!("avx2");
-    if !yes {
-        std::eprintln!("this CPU has no AVX2: the AVX2 loops are not tested here");
+/// The `ts` star row at `params.simd` (a vectorised level the CPU has).
+#[allow(clippy::too_many_arguments)]
+unsafe fn ts_row<const D: usize, E: Effects>(
+    sys: &System<'_, D>,
+    grad: &[Gradients<D>],
+    rec: &[Real],
+    params: &StepParams<'_, D>,
+    i: usize,
+    geom: &[PairGeom<D>],
+    owned: &[u32],
+    out: &mut [TsStar],
+    with_p: bool,
+) -> usize {
+    match params.simd.get() {
+        Simd::Avx512 => {
+            ts_star::star_row_avx512::<D, E>(sys, grad, rec, params, i, geom, owned, out, with_p)
+        }
+        Simd::Avx2 => {
+            ts_star::star_row_avx2::<D, E>(sys, grad, rec, params, i, geom, owned, out, with_p)
+        }
+        Simd::Baseline => unreachable!("the tests run the vectorised levels"),
     }
-    yes
+}
+
+/// The `pm` star row at `params.simd` (a vectorised level the CPU has).
+#[allow(clippy::too_many_arguments)]
+unsafe fn pm_row<const D: usize, E: Effects>(
+    sys: &System<'_, D>,
+    aux: &[Aux],
+    corr: &[Correction<D>],
+    grad: &[Gradients<D>],
+    grad_s: &[[Vector<D>; 6]],
+    rec: &[Real],
+    params: &StepParams<'_, D>,
+    i: usize,
+    geom: &[PairGeom<D>],
+    owned: &[u32],
+    out: &mut [PmStar<D>],
+) -> usize {
+    match params.simd.get() {
+        Simd::Avx512 => pm_star::star_row_avx512::<D, E>(
+            sys, aux, corr, grad, grad_s, rec, params, i, geom, owned, out,
+        ),
+        Simd::Avx2 => pm_star::star_row_avx2::<D, E>(
+            sys, aux, corr, grad, grad_s, rec, params, i, geom, owned, out,
+        ),
+        Simd::Baseline => unreachable!("the tests run the vectorised levels"),
+    }
 }
 
 fn every_case<const D: usize>() {
-    if !has_avx2() {
-        return;
+    for level in tested_levels() {
+        every_case_at::<D>(level);
     }
+}
+
+fn every_case_at<const D: usize>(level: SimdLevel) {
     let mut met = Met::default();
     for riemann in [RiemannSolver::Acoustic, RiemannSolver::TwoShock] {
         for seed in [1, 2, 3] {
             for limiter in [Limiter::Superbee, Limiter::Minmod] {
-                met.add(same_stars::<D, Muscl>(riemann, limiter, seed));
+                met.add(same_stars::<D, Muscl>(level, riemann, limiter, seed));
             }
-            same_stars::<D, First>(riemann, Limiter::Superbee, seed);
+            same_stars::<D, First>(level, riemann, Limiter::Superbee, seed);
         }
     }
     // the test reaches the lanes the portable solver redoes
@@ -488,18 +523,23 @@ impl Effects for Pm {
 }
 
 fn every_pm_case<const D: usize>() {
-    if !has_avx2() {
-        return;
+    for level in tested_levels() {
+        every_pm_case_at::<D>(level);
     }
+}
+
+fn every_pm_case_at<const D: usize>(level: SimdLevel) {
     let mut met = Met::default();
     for riemann in [RiemannSolver::Acoustic, RiemannSolver::TwoShock] {
         for seed in [1, 2, 3] {
             for objective in [true, false] {
                 for limiter in [Limiter::Minmod, Limiter::Superbee] {
-                    met.add(same_pm_stars::<D, Tkc>(riemann, limiter, objective, seed));
-                    same_pm_stars::<D, TkcFluid>(riemann, limiter, objective, seed);
+                    met.add(same_pm_stars::<D, Tkc>(
+                        level, riemann, limiter, objective, seed,
+                    ));
+                    same_pm_stars::<D, TkcFluid>(level, riemann, limiter, objective, seed);
                 }
-                same_pm_stars::<D, Pm>(riemann, Limiter::Minmod, objective, seed);
+                same_pm_stars::<D, Pm>(level, riemann, Limiter::Minmod, objective, seed);
             }
         }
     }
@@ -513,31 +553,31 @@ fn every_pm_case<const D: usize>() {
 }
 
 #[test]
-fn avx2_pm_stars_are_bitwise_the_portable_ones_1d() {
+fn vectorised_pm_stars_are_bitwise_the_portable_ones_1d() {
     every_pm_case::<1>();
 }
 
 #[test]
-fn avx2_pm_stars_are_bitwise_the_portable_ones_2d() {
+fn vectorised_pm_stars_are_bitwise_the_portable_ones_2d() {
     every_pm_case::<2>();
 }
 
 #[test]
-fn avx2_pm_stars_are_bitwise_the_portable_ones_3d() {
+fn vectorised_pm_stars_are_bitwise_the_portable_ones_3d() {
     every_pm_case::<3>();
 }
 
 #[test]
-fn avx2_ts_stars_are_bitwise_the_portable_ones_1d() {
+fn vectorised_ts_stars_are_bitwise_the_portable_ones_1d() {
     every_case::<1>();
 }
 
 #[test]
-fn avx2_ts_stars_are_bitwise_the_portable_ones_2d() {
+fn vectorised_ts_stars_are_bitwise_the_portable_ones_2d() {
     every_case::<2>();
 }
 
 #[test]
-fn avx2_ts_stars_are_bitwise_the_portable_ones_3d() {
+fn vectorised_ts_stars_are_bitwise_the_portable_ones_3d() {
     every_case::<3>();
 }

@@ -9,7 +9,7 @@ use crate::math::{Lcg, Real, Vector};
 use crate::neighbors::{build_naive, NeighborList, Periodic};
 use crate::schemes::artificial_stress::ArtificialStress;
 use crate::schemes::common::geometry_pass;
-use crate::simd::{Simd, SimdLevel};
+use crate::simd::SimdLevel;
 use crate::state::{PairGeom, SchemeOptions, StepParams};
 use std::vec;
 use std::vec::Vec;
@@ -105,40 +105,45 @@ fn bits<const D: usize>(g: &[PairGeom<D>]) -> Vec<u64> {
 }
 
 fn same_geometry<const D: usize>() {
-    if !std::is_x86_feature_detected!("avx2") {
-        std::eprintln!("this CPU has no AVX2: the AVX2 loops are not tested here");
-        return;
+    for level in crate::simd::tested_levels() {
+        same_geometry_at::<D>(level);
     }
-    // SAFETY: detected just above
-    let avx2 = unsafe { SimdLevel::assume(Simd::Avx2) };
+}
+
+fn same_geometry_at<const D: usize>(level: SimdLevel) {
     for kernel in [Kernel::CubicSpline, Kernel::WendlandC2, Kernel::Gaussian] {
         for exponent in [None, Some(4), Some(0), Some(3)] {
             for seed in [1, 2, 3] {
                 let (g0, f0) = geometry::<D>(SimdLevel::BASELINE, kernel, exponent, seed);
-                let (g1, f1) = geometry::<D>(avx2, kernel, exponent, seed);
+                let (g1, f1) = geometry::<D>(level, kernel, exponent, seed);
+                let at = level.get();
                 assert_eq!(
                     bits(&g0),
                     bits(&g1),
-                    "{kernel} {D}D {exponent:?} seed {seed}"
+                    "{at} {kernel} {D}D {exponent:?} seed {seed}"
                 );
                 let fb = |f: &[Real]| f.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
-                assert_eq!(fb(&f0), fb(&f1), "{kernel} {D}D {exponent:?} seed {seed}");
+                assert_eq!(
+                    fb(&f0),
+                    fb(&f1),
+                    "{at} {kernel} {D}D {exponent:?} seed {seed}"
+                );
             }
         }
     }
 }
 
 #[test]
-fn avx2_pair_geometry_is_bitwise_the_portable_one_1d() {
+fn vectorised_pair_geometry_is_bitwise_the_portable_one_1d() {
     same_geometry::<1>();
 }
 
 #[test]
-fn avx2_pair_geometry_is_bitwise_the_portable_one_2d() {
+fn vectorised_pair_geometry_is_bitwise_the_portable_one_2d() {
     same_geometry::<2>();
 }
 
 #[test]
-fn avx2_pair_geometry_is_bitwise_the_portable_one_3d() {
+fn vectorised_pair_geometry_is_bitwise_the_portable_one_3d() {
     same_geometry::<3>();
 }

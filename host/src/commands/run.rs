@@ -25,8 +25,9 @@ pub struct RunArgs {
     /// No progress bar.
     #[arg(long)]
     pub quiet: bool,
-    /// Instruction-set level of the vectorised loops: auto (the best this CPU has),
-    /// baseline or avx2; results are bitwise the same (default: GSPH_SIMD, else auto).
+    /// Instruction-set level of the vectorised loops: auto (AVX2 where this CPU has it),
+    /// baseline, avx2 or avx512; results are bitwise the same (default: GSPH_SIMD, else
+    /// auto).
     #[arg(long, value_name = "LEVEL")]
     pub simd: Option<String>,
     /// Write OUT/checkpoint.bin every K steps (docs/checkpoint.md).

@@ -34,7 +34,7 @@ pub(crate) struct RecordAt {
     pub p: usize,
     pub rho: usize,
     pub c: usize,
-    /// The Hugoniot slope of its material (`avx2::shock_slope`).
+    /// The Hugoniot slope of its material (`simd::ops::shock_slope`).
     pub slope: usize,
     /// 1 for a failed particle, else 0.
     pub failed: usize,

@@ -1,20 +1,21 @@
-//! The AVX2 star states of the contact family's pairs (`pm`, `tkc`): four pairs of one row
-//! per instruction, each lane doing the portable [`pair_star`]'s IEEE operations in its
+//! The vectorised star states of the contact family's pairs (`pm`, `tkc`): four (AVX2) or
+//! eight (AVX-512) pairs of one row per instruction, each lane doing the portable [`pair_star`]'s IEEE operations in its
 //! order (module docs of [`super`]): the rotation of `options.objective`, the corrected
 //! traction axis, the MUSCL reconstruction in the pair's frame and the acoustic elastic
 //! Riemann problem. The owner's values are broadcast once per row; the neighbours' come
-//! from their records ([`write_records`]), four records loaded four reals at a time and
-//! transposed into lanes.
+//! from their records ([`write_records`]), a register's records loaded four reals at a time
+//! and transposed into lanes.
 //!
 //! Covered: the acoustic and two-shock solvers with full dissipation on every channel and
 //! the minmod or superbee limiter ([`covers`]). A lane with a failed particle, or whose
 //! two-shock answer falls back to the acoustic one (an impedance not positive and finite,
 //! an answer not finite), is solved again by the portable [`pair_star`].
 
-use core::arch::x86_64::*;
+use core::arch::x86_64::{__m256d, __m512d};
 
-use super::avx2::{
-    add, and, dot, finite, gt, limit, load, minmod, mul, neg, select, shock_slope, splat, store,
+use super::lanes::Lanes;
+use super::ops::{
+    add, div, dot, finite, gt, limit, load, minmod, mul, neg, select, shock_slope, splat, store,
     sub, transpose, two_shock, Side,
 };
 use crate::effects::Effects;
@@ -124,17 +125,16 @@ pub(crate) fn covers<const D: usize>(params: &StepParams<'_, D>) -> bool {
         && matches!(o.limiter, Limiter::Superbee | Limiter::Minmod)
 }
 
-/// Four lanes of a `D`-vector (components past `D` unused).
-type V = [__m256d; 3];
-/// Four lanes of a `D x D` matrix, by columns: `m[b][a]` is element `(a, b)`.
-type M = [[__m256d; 3]; 3];
+/// Lanes of a `D`-vector (components past `D` unused).
+type Vl<V> = [V; 3];
+/// Lanes of a `D x D` matrix, by columns: `m[b][a]` is element `(a, b)`.
+type Ml<V> = [[V; 3]; 3];
 
 /// `m x` in nalgebra's gemv order: column 0 times `x_0`, then each further column times
 /// its component, added on.
-#[target_feature(enable = "avx2")]
-#[inline]
-unsafe fn gemv<const D: usize>(m: &M, x: &V) -> V {
-    let mut out = [_mm256_setzero_pd(); 3];
+#[inline(always)]
+unsafe fn gemv<V: Lanes, const D: usize>(m: &Ml<V>, x: &Vl<V>) -> Vl<V> {
+    let mut out = [V::zero(); 3];
     for b in 0..D {
         for a in 0..D {
             let t = mul(m[b][a], x[b]);
@@ -145,9 +145,8 @@ unsafe fn gemv<const D: usize>(m: &M, x: &V) -> V {
 }
 
 /// `v * s`, component by component.
-#[target_feature(enable = "avx2")]
-#[inline]
-unsafe fn scale<const D: usize>(v: &V, s: __m256d) -> V {
+#[inline(always)]
+unsafe fn scale<V: Lanes, const D: usize>(v: &Vl<V>, s: V) -> Vl<V> {
     let mut out = *v;
     for a in 0..D {
         out[a] = mul(v[a], s);
@@ -157,15 +156,8 @@ unsafe fn scale<const D: usize>(v: &V, s: __m256d) -> V {
 
 /// `muscl_pair` of `pm::pairs`: minmod (`phi + minmod(...)/2`), or superbee with each
 /// extrapolation bounded by half the pair difference.
-#[target_feature(enable = "avx2")]
-#[inline]
-unsafe fn muscl_pair(
-    superbee: bool,
-    phi_i: __m256d,
-    phi_j: __m256d,
-    gi: __m256d,
-    gj: __m256d,
-) -> (__m256d, __m256d) {
+#[inline(always)]
+unsafe fn muscl_pair<V: Lanes>(superbee: bool, phi_i: V, phi_j: V, gi: V, gj: V) -> (V, V) {
     let half = splat(0.5);
     let d = sub(phi_j, phi_i);
     if superbee {
@@ -184,25 +176,24 @@ unsafe fn muscl_pair(
 
 /// `muscl_frame` of `pm::pairs`: the reconstruction component by component in the basis
 /// `basis` (`pair_basis`: in 2D `n` and its normal, otherwise the scene's axes).
-#[target_feature(enable = "avx2")]
-#[inline]
-unsafe fn muscl_frame<const D: usize>(
+#[inline(always)]
+unsafe fn muscl_frame<V: Lanes, const D: usize>(
     superbee: bool,
-    basis: &[V; 3],
-    wi: &V,
-    wj: &V,
-    di: &V,
-    dj: &V,
-) -> (V, V) {
-    let zero = _mm256_setzero_pd();
+    basis: &[Vl<V>; 3],
+    wi: &Vl<V>,
+    wj: &Vl<V>,
+    di: &Vl<V>,
+    dj: &Vl<V>,
+) -> (Vl<V>, Vl<V>) {
+    let zero = V::zero();
     let (mut l, mut r) = ([zero; 3], [zero; 3]);
     for e in basis.iter().take(D) {
         let (a, b) = muscl_pair(
             superbee,
-            dot::<D>(wi, e),
-            dot::<D>(wj, e),
-            dot::<D>(di, e),
-            dot::<D>(dj, e),
+            dot::<V, D>(wi, e),
+            dot::<V, D>(wj, e),
+            dot::<V, D>(di, e),
+            dot::<V, D>(dj, e),
         );
         for c in 0..D {
             l[c] = add(l[c], mul(e[c], a));
@@ -214,10 +205,9 @@ unsafe fn muscl_frame<const D: usize>(
 
 /// `Sym3::dot_vec`: row `a` is `(0 + s_a0 x_0) + s_a1 x_1 + …`; `s[a][b]` is the
 /// component `(a, b)`.
-#[target_feature(enable = "avx2")]
-#[inline]
-unsafe fn sym_dot<const D: usize>(s: &M, x: &V) -> V {
-    let mut out = [_mm256_setzero_pd(); 3];
+#[inline(always)]
+unsafe fn sym_dot<V: Lanes, const D: usize>(s: &Ml<V>, x: &Vl<V>) -> Vl<V> {
+    let mut out = [V::zero(); 3];
     for (a, o) in out.iter_mut().enumerate().take(D) {
         for b in 0..D {
             *o = add(*o, mul(s[a][b], x[b]));
@@ -228,19 +218,11 @@ unsafe fn sym_dot<const D: usize>(s: &M, x: &V) -> V {
 
 /// `acoustic_star` along the axis: `(u*, s*)`, the mean of the sides where `z_l + z_r` is
 /// not positive and finite.
-#[target_feature(enable = "avx2")]
-#[inline]
-unsafe fn acoustic(
-    ul: __m256d,
-    sl: __m256d,
-    zl: __m256d,
-    ur: __m256d,
-    sr: __m256d,
-    zr: __m256d,
-) -> (__m256d, __m256d) {
+#[inline(always)]
+unsafe fn acoustic<V: Lanes>(ul: V, sl: V, zl: V, ur: V, sr: V, zr: V) -> (V, V) {
     let zs = add(zl, zr);
-    let ok = and(gt(zs, _mm256_setzero_pd()), finite(zs));
-    let inv = _mm256_div_pd(splat(1.0), zs);
+    let ok = V::and(gt(zs, V::zero()), finite(zs));
+    let inv = div(splat(1.0), zs);
     let u = mul(sub(add(add(mul(zl, ul), mul(zr, ur)), sr), sl), inv);
     let s = mul(
         add(add(mul(zr, sl), mul(zl, sr)), mul(mul(zl, zr), sub(ur, ul))),
@@ -257,33 +239,32 @@ unsafe fn acoustic(
 /// tangential one with the transverse impedances; `(V*, T*)` and the lanes the portable
 /// code must redo. With `shock` (each side's density, sound speed and slope) the normal
 /// problem is the two-shock one (`elastic_star_vector` with `two_shock_star`).
-#[target_feature(enable = "avx2")]
-#[inline]
+#[inline(always)]
 #[allow(clippy::too_many_arguments)]
-unsafe fn star_vector<const D: usize>(
-    n: &V,
-    v_l: &V,
-    t_l: &V,
-    zl_long: __m256d,
-    zl_trans: __m256d,
-    v_r: &V,
-    t_r: &V,
-    zr_long: __m256d,
-    zr_trans: __m256d,
-    shock: Option<(&Side, &Side)>,
-) -> (V, V, __m256d) {
-    let zero = _mm256_setzero_pd();
+unsafe fn star_vector<V: Lanes, const D: usize>(
+    n: &Vl<V>,
+    v_l: &Vl<V>,
+    t_l: &Vl<V>,
+    zl_long: V,
+    zl_trans: V,
+    v_r: &Vl<V>,
+    t_r: &Vl<V>,
+    zr_long: V,
+    zr_trans: V,
+    shock: Option<(&Side<V>, &Side<V>)>,
+) -> (Vl<V>, Vl<V>, V::Mask) {
+    let zero = V::zero();
     let (vln, tln, vrn, trn) = (
-        dot::<D>(v_l, n),
-        dot::<D>(t_l, n),
-        dot::<D>(v_r, n),
-        dot::<D>(t_r, n),
+        dot::<V, D>(v_l, n),
+        dot::<V, D>(t_l, n),
+        dot::<V, D>(v_r, n),
+        dot::<V, D>(t_r, n),
     );
     // the longitudinal problem: acoustic, or the two-shock solver on pressures `-s`
     let (u_n, s_n, redo) = match shock {
         None => {
             let (u, s) = acoustic(vln, tln, zl_long, vrn, trn, zr_long);
-            (u, s, zero)
+            (u, s, V::none())
         }
         Some((l, r)) => {
             let (u, p, redo) = two_shock(
@@ -302,8 +283,8 @@ unsafe fn star_vector<const D: usize>(
         }
     };
     let zs = add(zl_trans, zr_trans);
-    let ok = and(gt(zs, zero), finite(zs));
-    let inv = _mm256_div_pd(splat(1.0), zs);
+    let ok = V::and(gt(zs, zero), finite(zs));
+    let inv = div(splat(1.0), zs);
     let zz = mul(zl_trans, zr_trans);
     let half = splat(0.5);
     let (mut vs, mut ts) = ([zero; 3], [zero; 3]);
@@ -324,7 +305,7 @@ unsafe fn star_vector<const D: usize>(
             inv,
         );
         let v_t = select(ok, v_t, mul(add(vlt, vrt), half));
-        let t_t = and(ok, t_t);
+        let t_t = V::keep(ok, t_t);
         vs[a] = add(mul(n[a], u_n), v_t);
         ts[a] = add(mul(n[a], s_n), t_t);
     }
@@ -332,15 +313,15 @@ unsafe fn star_vector<const D: usize>(
 }
 
 /// The star states of the pairs particle `i` owns (its neighbours `owned`, their stored
-/// geometry `geom`), four at a time, as the portable [`pair_star`] gives them, into `out`;
+/// geometry `geom`), a register at a time, as the portable [`pair_star`] gives them, into `out`;
 /// the default record for a pair outside the support. Returns how many pairs it did (all).
 ///
 /// # Safety
-/// The CPU must have AVX2, and the step's options must pass [`covers`]. (Everything is
-/// indexed with bounds checks.)
-#[target_feature(enable = "avx2")]
+/// The CPU must have the level of `V`, and the step's options must pass [`covers`].
+/// (Everything is indexed with bounds checks.)
+#[inline(always)]
 #[allow(clippy::too_many_arguments)]
-pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
+unsafe fn star_row<V: Lanes, const D: usize, E: Effects>(
     sys: &System<'_, D>,
     aux: &[Aux],
     corr: &[Correction<D>],
@@ -354,18 +335,18 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
     out: &mut [PmStar<D>],
 ) -> usize {
     let n_pairs = owned.len().min(geom.len()).min(out.len());
-    let zero = _mm256_setzero_pd();
+    let zero = V::zero();
     let superbee = params.options.limiter == Limiter::Superbee;
     let rotate = objective::<D, E>(params);
     let two_shock_solver = params.options.riemann == RiemannSolver::TwoShock;
     let mats = params.materials;
     let slope = |k: usize| shock_slope(&mats[sys.mat[k] as usize]);
-    let slope_i = splat(if two_shock_solver { slope(i) } else { 0.0 });
+    let slope_i: V = splat(if two_shock_solver { slope(i) } else { 0.0 });
     // the owner's values, broadcast
-    let bv = |f: &dyn Fn(usize) -> Real| -> V {
+    let bv = |f: &dyn Fn(usize) -> Real| -> Vl<V> {
         core::array::from_fn(|a| if a < D { splat(f(a)) } else { zero })
     };
-    let bm = |f: &dyn Fn(usize, usize) -> Real| -> M {
+    let bm = |f: &dyn Fn(usize, usize) -> Real| -> Ml<V> {
         core::array::from_fn(|b| {
             core::array::from_fn(|a| if a < D && b < D { splat(f(a, b)) } else { zero })
         })
@@ -399,7 +380,7 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
         bv(&|a| gi.p[a]),
     );
     // the owner's stress gradients (Voigt component, axis), broadcast
-    let gs_i: [V; 6] = core::array::from_fn(|k| {
+    let gs_i: [Vl<V>; 6] = core::array::from_fn(|k| {
         if E::MUSCL && E::STRENGTH {
             bv(&|c| grad_s[i][k][c])
         } else {
@@ -409,22 +390,22 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
     let mut q0 = 0;
     while q0 < n_pairs {
         // a last, partial group repeats its last pair in the spare lanes (not stored)
-        let lanes = (n_pairs - q0).min(4);
+        let lanes = (n_pairs - q0).min(V::N);
         let lane = |l: usize| q0 + l.min(lanes - 1);
-        let js: [usize; 4] = core::array::from_fn(|l| owned[lane(l)] as usize);
+        let js = V::arr(|l| owned[lane(l)] as usize);
         // the neighbours' records, transposed into lanes: the loads read through raw
         // pointers, every record checked
-        assert!(js.iter().all(|&j| (j + 1) * width <= rec.len()));
-        let p: [*const Real; 4] = core::array::from_fn(|l| rec.as_ptr().add(js[l] * width));
+        assert!(js.as_ref().iter().all(|&j| (j + 1) * width <= rec.len()));
+        let p = V::arr(|l| rec.as_ptr().add(js[l] * width));
         // room for the widest record (3D)
         let mut f = [zero; record_len(3)];
         for g in 0..width / 4 {
-            f[4 * g..4 * g + 4].copy_from_slice(&transpose(&p, g));
+            f[4 * g..4 * g + 4].copy_from_slice(&transpose::<V>(&p, g));
         }
         // a record's vector at `o` and matrix at `o` (row by row) as lanes
         let vec_at =
-            |o: usize| -> V { core::array::from_fn(|a| if a < D { f[o + a] } else { zero }) };
-        let mat_at = |o: usize| -> M {
+            |o: usize| -> Vl<V> { core::array::from_fn(|a| if a < D { f[o + a] } else { zero }) };
+        let mat_at = |o: usize| -> Ml<V> {
             core::array::from_fn(|b| {
                 core::array::from_fn(|a| {
                     if a < D && b < D {
@@ -435,30 +416,30 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
                 })
             })
         };
-        let n: V = core::array::from_fn(|a| {
+        let n: Vl<V> = core::array::from_fn(|a| {
             if a < D {
-                load(&core::array::from_fn(|l| geom[lane(l)].n[a]))
+                load(&V::arr(|l| geom[lane(l)].n[a]))
             } else {
                 zero
             }
         });
-        let r = load(&core::array::from_fn(|l| geom[lane(l)].r));
-        let vj: V = vec_at(at.v);
+        let r: V = load(&V::arr(|l| geom[lane(l)].r));
+        let vj: Vl<V> = vec_at(at.v);
         let (rhoj, clj, ctj) = (f[at.rho], f[at.cl], f[at.ct]);
-        let rji = scale::<D>(&n, r);
+        let rji = scale::<V, D>(&n, r);
         let (mut v_l, mut v_r) = (vi, vj);
         // options.objective: the pair's mean spin W = (W_i + W_j)/2, the velocities taken
         // to the midpoint along it: v_i + W r_ji/2, v_j - W r_ji/2
-        let mut spin: M = [[zero; 3]; 3];
+        let mut spin: Ml<V> = [[zero; 3]; 3];
         if rotate {
-            let wj_m: M = mat_at(at.w);
+            let wj_m: Ml<V> = mat_at(at.w);
             let half = splat(0.5);
             for b in 0..D {
                 for a in 0..D {
                     spin[b][a] = mul(add(wi_m[b][a], wj_m[b][a]), half);
                 }
             }
-            let h = scale::<D>(&gemv::<D>(&spin, &rji), half);
+            let h = scale::<V, D>(&gemv::<V, D>(&spin, &rji), half);
             for a in 0..D {
                 v_l[a] = add(v_l[a], h[a]);
                 v_r[a] = sub(v_r[a], h[a]);
@@ -466,19 +447,19 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
         }
         // the traction axis: n, or with correction (L_i^-1 + L_j^-1) n / 2
         let axis = if E::CORRECTION {
-            let lj_m: M = mat_at(at.l_inv);
+            let lj_m: Ml<V> = mat_at(at.l_inv);
             let mut m = [[zero; 3]; 3];
             for b in 0..D {
                 for a in 0..D {
                     m[b][a] = add(li_m[b][a], lj_m[b][a]);
                 }
             }
-            scale::<D>(&gemv::<D>(&m, &n), splat(0.5))
+            scale::<V, D>(&gemv::<V, D>(&m, &n), splat(0.5))
         } else {
             n
         };
         // (by rows: sig_j[a][b] is component (a, b))
-        let sig_j: M = core::array::from_fn(|a| {
+        let sig_j: Ml<V> = core::array::from_fn(|a| {
             core::array::from_fn(|b| {
                 if a < D && b < D {
                     f[at.sig + a * D + b]
@@ -488,37 +469,40 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
             })
         });
         // (the stress is symmetric: by rows or by columns alike)
-        let (mut t_l, mut t_r) = (sym_dot::<D>(&sig_i, &axis), sym_dot::<D>(&sig_j, &axis));
+        let (mut t_l, mut t_r) = (
+            sym_dot::<V, D>(&sig_i, &axis),
+            sym_dot::<V, D>(&sig_j, &axis),
+        );
         let (mut rho_l, mut rho_r) = (rhoi, rhoj);
         let (mut cl_l, mut cl_r) = (cli, clj);
         let (mut ct_l, mut ct_r) = (cti, ctj);
         if E::MUSCL {
-            let g_rho_j: V = vec_at(at.grad_rho);
-            let g_cl_j: V = vec_at(at.grad_cl);
-            let g_ct_j: V = vec_at(at.grad_ct);
+            let g_rho_j: Vl<V> = vec_at(at.grad_rho);
+            let g_cl_j: Vl<V> = vec_at(at.grad_cl);
+            let g_ct_j: Vl<V> = vec_at(at.grad_ct);
             (rho_l, rho_r) = muscl_pair(
                 superbee,
                 rhoi,
                 rhoj,
-                dot::<D>(&g_rho_i, &rji),
-                dot::<D>(&g_rho_j, &rji),
+                dot::<V, D>(&g_rho_i, &rji),
+                dot::<V, D>(&g_rho_j, &rji),
             );
             (cl_l, cl_r) = muscl_pair(
                 superbee,
                 cli,
                 clj,
-                dot::<D>(&g_cl_i, &rji),
-                dot::<D>(&g_cl_j, &rji),
+                dot::<V, D>(&g_cl_i, &rji),
+                dot::<V, D>(&g_cl_j, &rji),
             );
             (ct_l, ct_r) = muscl_pair(
                 superbee,
                 cti,
                 ctj,
-                dot::<D>(&g_ct_i, &rji),
-                dot::<D>(&g_ct_j, &rji),
+                dot::<V, D>(&g_ct_i, &rji),
+                dot::<V, D>(&g_ct_j, &rji),
             );
             // (grad v - W) r_ji of each side (less nothing without the rotation: x - 0 = x)
-            let gvj_m: M = mat_at(at.grad_v);
+            let gvj_m: Ml<V> = mat_at(at.grad_v);
             let (mut gi_w, mut gj_w) = (gvi_m, gvj_m);
             if rotate {
                 for b in 0..D {
@@ -528,9 +512,9 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
                     }
                 }
             }
-            let (dvi, dvj) = (gemv::<D>(&gi_w, &rji), gemv::<D>(&gj_w, &rji));
+            let (dvi, dvj) = (gemv::<V, D>(&gi_w, &rji), gemv::<V, D>(&gj_w, &rji));
             // pair_basis: in 2D n and (-n_y, n_x), otherwise the scene's axes
-            let mut basis: [V; 3] = [[zero; 3]; 3];
+            let mut basis: [Vl<V>; 3] = [[zero; 3]; 3];
             if D == 2 {
                 basis[0] = n;
                 basis[1][0] = neg(n[1]);
@@ -540,34 +524,37 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
                     e[a] = splat(1.0);
                 }
             }
-            (v_l, v_r) = muscl_frame::<D>(superbee, &basis, &v_l, &v_r, &dvi, &dvj);
+            (v_l, v_r) = muscl_frame::<V, D>(superbee, &basis, &v_l, &v_r, &dvi, &dvj);
             if E::STRENGTH {
                 // the slopes of the traction: Sym3 of the stress gradients along r_ji
                 // (only the components a, b < D enter), dotted with the axis
                 // (loops, not closures: a closure does not inherit this function's
                 // target features, and these were left as calls, their lanes passed
                 // through memory)
-                let (mut slope_i, mut slope_j): (M, M) = ([[zero; 3]; 3], [[zero; 3]; 3]);
+                let (mut slope_i, mut slope_j): (Ml<V>, Ml<V>) = ([[zero; 3]; 3], [[zero; 3]; 3]);
                 for a in 0..D {
                     for b in 0..D {
-                        slope_i[a][b] = dot::<D>(&gs_i[Sym3::voigt(a, b)], &rji);
-                        let g: V = vec_at(at.grad_s + sym_at(D, a, b) * D);
-                        slope_j[a][b] = dot::<D>(&g, &rji);
+                        slope_i[a][b] = dot::<V, D>(&gs_i[Sym3::voigt(a, b)], &rji);
+                        let g: Vl<V> = vec_at(at.grad_s + sym_at(D, a, b) * D);
+                        slope_j[a][b] = dot::<V, D>(&g, &rji);
                     }
                 }
-                let (si, sj) = (sym_dot::<D>(&slope_i, &axis), sym_dot::<D>(&slope_j, &axis));
-                (t_l, t_r) = muscl_frame::<D>(superbee, &basis, &t_l, &t_r, &si, &sj);
+                let (si, sj) = (
+                    sym_dot::<V, D>(&slope_i, &axis),
+                    sym_dot::<V, D>(&slope_j, &axis),
+                );
+                (t_l, t_r) = muscl_frame::<V, D>(superbee, &basis, &t_l, &t_r, &si, &sj);
             } else {
                 let pj = f[at.p];
-                let g_p_j: V = vec_at(at.grad_p);
+                let g_p_j: Vl<V> = vec_at(at.grad_p);
                 let (pl, pr) = muscl_pair(
                     superbee,
                     pi,
                     pj,
-                    dot::<D>(&g_p_i, &rji),
-                    dot::<D>(&g_p_j, &rji),
+                    dot::<V, D>(&g_p_i, &rji),
+                    dot::<V, D>(&g_p_j, &rji),
                 );
-                (t_l, t_r) = (scale::<D>(&axis, neg(pl)), scale::<D>(&axis, neg(pr)));
+                (t_l, t_r) = (scale::<V, D>(&axis, neg(pl)), scale::<V, D>(&axis, neg(pr)));
             }
         }
         let sides = if two_shock_solver {
@@ -589,7 +576,7 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
         } else {
             None
         };
-        let (vs, ts, redo) = star_vector::<D>(
+        let (vs, ts, redo) = star_vector::<V, D>(
             &n,
             &v_l,
             &t_l,
@@ -604,16 +591,16 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
                 None => None,
             },
         );
-        let redo = store(redo);
-        let vs: [[Real; 4]; 3] = core::array::from_fn(|a| store(vs[a]));
-        let ts: [[Real; 4]; 3] = core::array::from_fn(|a| store(ts[a]));
+        let redo = V::bits(redo);
+        let vs: [V::Arr<Real>; 3] = core::array::from_fn(|a| store(vs[a]));
+        let ts: [V::Arr<Real>; 3] = core::array::from_fn(|a| store(ts[a]));
         let r = store(r);
         let failed_i = failed::<D, E>(sys, i);
         let failed_j = store(f[at.failed]);
         for l in 0..lanes {
             let (q, j) = (q0 + l, js[l]);
             out[q] = if r[l] > 0.0 {
-                if redo[l] != 0.0 || failed_i || failed_j[l] != 0.0 {
+                if redo & (1 << l) != 0 || failed_i || failed_j[l] != 0.0 {
                     let g = &geom[q];
                     let pr = Pair {
                         j,
@@ -638,4 +625,63 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
         q0 += lanes;
     }
     n_pairs
+}
+
+/// [`star_row`] with four pairs per AVX2 instruction.
+///
+/// # Safety
+/// As [`star_row`], with AVX2.
+#[target_feature(enable = "avx2")]
+#[allow(clippy::too_many_arguments)]
+pub(crate) unsafe fn star_row_avx2<const D: usize, E: Effects>(
+    sys: &System<'_, D>,
+    aux: &[Aux],
+    corr: &[Correction<D>],
+    grad: &[Gradients<D>],
+    grad_s: &[[crate::math::Vector<D>; 6]],
+    rec: &[Real],
+    params: &StepParams<'_, D>,
+    i: usize,
+    geom: &[PairGeom<D>],
+    owned: &[u32],
+    out: &mut [PmStar<D>],
+) -> usize {
+    star_row::<__m256d, D, E>(
+        sys, aux, corr, grad, grad_s, rec, params, i, geom, owned, out,
+    )
+}
+
+/// [`star_row`] with eight pairs per AVX-512 instruction.
+///
+/// # Safety
+/// As [`star_row`], with AVX-512F.
+#[target_feature(enable = "avx512f")]
+#[allow(clippy::too_many_arguments)]
+pub(crate) unsafe fn star_row_avx512<const D: usize, E: Effects>(
+    sys: &System<'_, D>,
+    aux: &[Aux],
+    corr: &[Correction<D>],
+    grad: &[Gradients<D>],
+    grad_s: &[[crate::math::Vector<D>; 6]],
+    rec: &[Real],
+    params: &StepParams<'_, D>,
+    i: usize,
+    geom: &[PairGeom<D>],
+    owned: &[u32],
+    out: &mut [PmStar<D>],
+) -> usize {
+    let n = owned.len().min(geom.len()).min(out.len());
+    let (geom, owned, out) = (&geom[..n], &owned[..n], &mut out[..n]);
+    // the full groups of eight in zmm registers, the rest in ymm ones (a last, partial
+    // group of eight would cost as much as a full one)
+    let m = n / 8 * 8;
+    let (o8, o4) = out.split_at_mut(m);
+    let (g8, g4) = geom.split_at(m);
+    let (w8, w4) = owned.split_at(m);
+    let wide = if m > 0 {
+        star_row::<__m512d, D, E>(sys, aux, corr, grad, grad_s, rec, params, i, g8, w8, o8)
+    } else {
+        0
+    };
+    wide + star_row::<__m256d, D, E>(sys, aux, corr, grad, grad_s, rec, params, i, g4, w4, o4)
 }

@@ -1,8 +1,8 @@
-//! The AVX2 star states of the time-split family's pairs (`ts1`, `ts2`): four pairs of one
-//! row per instruction, each lane doing the portable [`star`]'s IEEE operations in its
+//! The vectorised star states of the time-split family's pairs (`ts1`, `ts2`): four (AVX2)
+//! or eight (AVX-512) pairs of one row per instruction, each lane doing the portable [`star`]'s IEEE operations in its
 //! order (module docs of [`super`]). The owner's values are broadcast once per row; the
-//! neighbours' come from their records ([`write_records`]), four records loaded four reals
-//! at a time and transposed into lanes.
+//! neighbours' come from their records ([`write_records`]), a register's records loaded
+//! four reals at a time and transposed into lanes.
 //!
 //! Covered: the default time and dissipation options (`muscl_time = "none"`,
 //! `dissipation = "full"`), the superbee and minmod limiters, the acoustic and two-shock
@@ -10,10 +10,11 @@
 //! that is not positive and finite, a two-shock answer that is not finite) is solved again
 //! by the portable [`star`]; every other case runs the portable loop ([`covers`]).
 
-use core::arch::x86_64::*;
+use core::arch::x86_64::{__m256d, __m512d};
 
-use super::avx2::{
-    add, and, dot, finite, gt, limit, load, minmod, mul, neg, select, shock_slope, splat, store,
+use super::lanes::Lanes;
+use super::ops::{
+    add, div, dot, finite, gt, limit, load, minmod, mul, neg, select, shock_slope, splat, store,
     sub, transpose, two_shock, Side,
 };
 use crate::effects::{EffectSet, Effects};
@@ -79,16 +80,8 @@ pub(crate) fn write_records<const D: usize, E: Effects, X: Executor>(
 }
 
 /// `ts::pairs::reconstruct` with `f_i = f_j = 1`.
-#[target_feature(enable = "avx2")]
-#[inline]
-unsafe fn reconstruct(
-    superbee: bool,
-    qi: __m256d,
-    qj: __m256d,
-    gi: __m256d,
-    gj: __m256d,
-    half_r: __m256d,
-) -> (__m256d, __m256d) {
+#[inline(always)]
+unsafe fn reconstruct<V: Lanes>(superbee: bool, qi: V, qj: V, gi: V, gj: V, half_r: V) -> (V, V) {
     let half_jump = mul(splat(0.5), sub(qj, qi));
     // half_r * f_i * limit with f_i = 1: (half_r * 1) * limit, and half_r * 1 = half_r
     let ext_i = minmod(mul(half_r, limit(superbee, gi, gj)), half_jump);
@@ -99,40 +92,31 @@ unsafe fn reconstruct(
 /// The slopes along `n` of `ts::pairs::riemann_states`: `n . (grad v n)`, `grad p . n`,
 /// `grad rho . n`, with `grad v n` in nalgebra's gemv order (column 0 times `n_0`, then
 /// each further column times its component, added on). `gv[b][a]` is `dv_a/dx_b`.
-#[target_feature(enable = "avx2")]
-#[inline]
-unsafe fn slopes<const D: usize>(
-    n: &[__m256d; 3],
-    gv: &[[__m256d; 3]; 3],
-    gp: &[__m256d; 3],
-    gr: &[__m256d; 3],
-) -> [__m256d; 3] {
-    let mut gvn = [_mm256_setzero_pd(); 3];
+#[inline(always)]
+unsafe fn slopes<V: Lanes, const D: usize>(
+    n: &[V; 3],
+    gv: &[[V; 3]; 3],
+    gp: &[V; 3],
+    gr: &[V; 3],
+) -> [V; 3] {
+    let mut gvn = [V::zero(); 3];
     for b in 0..D {
         for a in 0..D {
             let t = mul(gv[b][a], n[b]);
             gvn[a] = if b == 0 { t } else { add(t, gvn[a]) };
         }
     }
-    [dot::<D>(n, &gvn), dot::<D>(gp, n), dot::<D>(gr, n)]
+    [dot::<V, D>(n, &gvn), dot::<V, D>(gp, n), dot::<V, D>(gr, n)]
 }
 
 /// [`crate::riemann::pressure_star`] (the acoustic solver with `s = -p`) with impedances
 /// `zl`, `zr`; lanes where `zl + zr` is not positive and finite take the mean of the sides.
-#[target_feature(enable = "avx2")]
-#[inline]
-unsafe fn pressure_star(
-    ul: __m256d,
-    pl: __m256d,
-    zl: __m256d,
-    ur: __m256d,
-    pr: __m256d,
-    zr: __m256d,
-) -> (__m256d, __m256d) {
+#[inline(always)]
+unsafe fn pressure_star<V: Lanes>(ul: V, pl: V, zl: V, ur: V, pr: V, zr: V) -> (V, V) {
     let (sl, sr) = (neg(pl), neg(pr));
     let zs = add(zl, zr);
-    let ok = and(gt(zs, _mm256_setzero_pd()), finite(zs));
-    let inv = _mm256_div_pd(splat(1.0), zs);
+    let ok = V::and(gt(zs, V::zero()), finite(zs));
+    let inv = div(splat(1.0), zs);
     let u = mul(sub(add(add(mul(zl, ul), mul(zr, ur)), sr), sl), inv);
     let s = mul(
         add(add(mul(zr, sl), mul(zl, sr)), mul(mul(zl, zr), sub(ur, ul))),
@@ -145,16 +129,16 @@ unsafe fn pressure_star(
 }
 
 /// The star states of the pairs particle `i` owns (its neighbours `owned`, their stored
-/// geometry `geom`), four at a time, as the portable [`star`] gives them: `(u*, p*)` into
+/// geometry `geom`), a register at a time, as the portable [`star`] gives them: `(u*, p*)` into
 /// `out` (`p* = 0` unless `with_p`), the default record for a pair outside the support.
 /// Returns how many pairs it did (all of them).
 ///
 /// # Safety
-/// The CPU must have AVX2, and the step's options must pass [`covers`]. (The neighbour
-/// indices are checked; everything is indexed with bounds checks.)
-#[target_feature(enable = "avx2")]
+/// The CPU must have the level of `V`, and the step's options must pass [`covers`]. (The
+/// neighbour indices are checked; everything is indexed with bounds checks.)
+#[inline(always)]
 #[allow(clippy::too_many_arguments)]
-pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
+unsafe fn star_row<V: Lanes, const D: usize, E: Effects>(
     sys: &System<'_, D>,
     grad: &[Gradients<D>],
     rec: &[Real],
@@ -166,7 +150,7 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
     with_p: bool,
 ) -> usize {
     let n = owned.len().min(geom.len()).min(out.len());
-    let zero = _mm256_setzero_pd();
+    let zero = V::zero();
     let superbee = params.options.limiter == Limiter::Superbee;
     let two_shock_solver = params.options.riemann == RiemannSolver::TwoShock;
     let damage = E::RUNTIME.contains(EffectSet::DAMAGE);
@@ -180,7 +164,7 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
         at.first_order.div_ceil(4)
     };
     // the owner's values, broadcast
-    let vi: [__m256d; 3] = core::array::from_fn(|a| if a < D { splat(sys.v[i][a]) } else { zero });
+    let vi: [V; 3] = core::array::from_fn(|a| if a < D { splat(sys.v[i][a]) } else { zero });
     let (pi, rhoi, ci) = (splat(sys.p[i]), splat(sys.rho[i]), splat(sys.c[i]));
     let si = if two_shock_solver {
         splat(slope(i))
@@ -193,7 +177,7 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
     } else {
         Gradients::default()
     };
-    let gvi: [[__m256d; 3]; 3] = core::array::from_fn(|b| {
+    let gvi: [[V; 3]; 3] = core::array::from_fn(|b| {
         core::array::from_fn(|a| {
             if a < D && b < D {
                 splat(gi.v[(a, b)])
@@ -202,39 +186,39 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
             }
         })
     });
-    let gpi: [__m256d; 3] = core::array::from_fn(|a| if a < D { splat(gi.p[a]) } else { zero });
-    let gri: [__m256d; 3] = core::array::from_fn(|a| if a < D { splat(gi.rho[a]) } else { zero });
+    let gpi: [V; 3] = core::array::from_fn(|a| if a < D { splat(gi.p[a]) } else { zero });
+    let gri: [V; 3] = core::array::from_fn(|a| if a < D { splat(gi.rho[a]) } else { zero });
     let failed_i = failed::<D, E>(sys, i);
     let mut q0 = 0;
     while q0 < n {
         // a last, partial group repeats its last pair in the spare lanes (not stored)
-        let lanes = (n - q0).min(4);
+        let lanes = (n - q0).min(V::N);
         let lane = |l: usize| q0 + l.min(lanes - 1);
-        let js: [usize; 4] = core::array::from_fn(|l| owned[lane(l)] as usize);
+        let js = V::arr(|l| owned[lane(l)] as usize);
         // the loads below read through raw pointers: every record checked
-        assert!(js.iter().all(|&j| (j + 1) * width <= rec.len()));
-        let p: [*const Real; 4] = core::array::from_fn(|l| rec.as_ptr().add(js[l] * width));
+        assert!(js.as_ref().iter().all(|&j| (j + 1) * width <= rec.len()));
+        let p = V::arr(|l| rec.as_ptr().add(js[l] * width));
         // room for the widest record (3D)
         let mut f = [zero; record_len(3)];
         for g in 0..groups {
-            f[4 * g..4 * g + 4].copy_from_slice(&transpose(&p, g));
+            f[4 * g..4 * g + 4].copy_from_slice(&transpose::<V>(&p, g));
         }
-        let nv: [__m256d; 3] = core::array::from_fn(|a| {
+        let nv: [V; 3] = core::array::from_fn(|a| {
             if a < D {
-                load(&core::array::from_fn(|l| geom[lane(l)].n[a]))
+                load(&V::arr(|l| geom[lane(l)].n[a]))
             } else {
                 zero
             }
         });
-        let r = load(&core::array::from_fn(|l| geom[lane(l)].r));
-        let vj: [__m256d; 3] = core::array::from_fn(|a| if a < D { f[at.v + a] } else { zero });
+        let r: V = load(&V::arr(|l| geom[lane(l)].r));
+        let vj: [V; 3] = core::array::from_fn(|a| if a < D { f[at.v + a] } else { zero });
         let (pj, rhoj, cj) = (f[at.p], f[at.rho], f[at.c]);
         // first order: (v . n, p, rho) of each side
-        let (ui, uj) = (dot::<D>(&vi, &nv), dot::<D>(&vj, &nv));
+        let (ui, uj) = (dot::<V, D>(&vi, &nv), dot::<V, D>(&vj, &nv));
         let (mut l, mut rr) = ([ui, pi, rhoi], [uj, pj, rhoj]);
         if E::MUSCL {
             // the neighbours' gradients, per lane (the owner's are broadcast below)
-            let gvj: [[__m256d; 3]; 3] = core::array::from_fn(|b| {
+            let gvj: [[V; 3]; 3] = core::array::from_fn(|b| {
                 core::array::from_fn(|a| {
                     if a < D && b < D {
                         f[at.grad_v + a * D + b]
@@ -243,12 +227,11 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
                     }
                 })
             });
-            let gpj: [__m256d; 3] =
-                core::array::from_fn(|a| if a < D { f[at.grad_p + a] } else { zero });
-            let grj: [__m256d; 3] =
+            let gpj: [V; 3] = core::array::from_fn(|a| if a < D { f[at.grad_p + a] } else { zero });
+            let grj: [V; 3] =
                 core::array::from_fn(|a| if a < D { f[at.grad_rho + a] } else { zero });
-            let own = slopes::<D>(&nv, &gvi, &gpi, &gri);
-            let theirs = slopes::<D>(&nv, &gvj, &gpj, &grj);
+            let own = slopes::<V, D>(&nv, &gvi, &gpi, &gri);
+            let theirs = slopes::<V, D>(&nv, &gvj, &gpj, &grj);
             let half_r = mul(splat(0.5), r);
             let mut ml = [zero; 3];
             let mut mr = [zero; 3];
@@ -256,7 +239,7 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
                 (ml[q], mr[q]) = reconstruct(superbee, l[q], rr[q], own[q], theirs[q], half_r);
             }
             // a reconstructed density must stay positive; otherwise first order
-            let keep = and(gt(ml[2], zero), gt(mr[2], zero));
+            let keep = V::and(gt(ml[2], zero), gt(mr[2], zero));
             for q in 0..3 {
                 l[q] = select(keep, ml[q], l[q]);
                 rr[q] = select(keep, mr[q], rr[q]);
@@ -284,14 +267,15 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
             )
         } else {
             let (u, p) = pressure_star(ul, pl, mul(rl, ci), ur, pr, mul(rhor, cj));
-            (u, p, zero)
+            (u, p, V::none())
         };
-        let (us, ps, redo, r) = (store(us), store(ps), store(redo), store(r));
+        let (us, ps, redo, r) = (store(us), store(ps), V::bits(redo), store(r));
         let failed_j = store(f[at.failed]);
         for l in 0..lanes {
             let (q, j) = (q0 + l, js[l]);
             out[q] = if r[l] > 0.0 {
-                let (u, p) = if redo[l] != 0.0 || (damage && (failed_i || failed_j[l] != 0.0)) {
+                let (u, p) = if redo & (1 << l) != 0 || (damage && (failed_i || failed_j[l] != 0.0))
+                {
                     let g = &geom[q];
                     star::<D, E>(sys, grad, params, i, j, &g.n, g.r)
                 } else {
@@ -308,4 +292,75 @@ pub(crate) unsafe fn star_row<const D: usize, E: Effects>(
         q0 += lanes;
     }
     n
+}
+
+/// [`star_row`] with four pairs per AVX2 instruction.
+///
+/// # Safety
+/// As [`star_row`], with AVX2.
+#[target_feature(enable = "avx2")]
+#[allow(clippy::too_many_arguments)]
+pub(crate) unsafe fn star_row_avx2<const D: usize, E: Effects>(
+    sys: &System<'_, D>,
+    grad: &[Gradients<D>],
+    rec: &[Real],
+    params: &StepParams<'_, D>,
+    i: usize,
+    geom: &[PairGeom<D>],
+    owned: &[u32],
+    out: &mut [TsStar],
+    with_p: bool,
+) -> usize {
+    star_row::<__m256d, D, E>(sys, grad, rec, params, i, geom, owned, out, with_p)
+}
+
+/// [`star_row`] with eight pairs per AVX-512 instruction.
+///
+/// # Safety
+/// As [`star_row`], with AVX-512F.
+#[target_feature(enable = "avx512f")]
+#[allow(clippy::too_many_arguments)]
+pub(crate) unsafe fn star_row_avx512<const D: usize, E: Effects>(
+    sys: &System<'_, D>,
+    grad: &[Gradients<D>],
+    rec: &[Real],
+    params: &StepParams<'_, D>,
+    i: usize,
+    geom: &[PairGeom<D>],
+    owned: &[u32],
+    out: &mut [TsStar],
+    with_p: bool,
+) -> usize {
+    let n = owned.len().min(geom.len()).min(out.len());
+    let (geom, owned, out) = (&geom[..n], &owned[..n], &mut out[..n]);
+    // the full groups of eight in zmm registers, the rest in ymm ones (a last, partial
+    // group of eight would cost as much as a full one)
+    let m = n / 8 * 8;
+    let (o8, o4) = out.split_at_mut(m);
+    let wide = if m > 0 {
+        star_row::<__m512d, D, E>(
+            sys,
+            grad,
+            rec,
+            params,
+            i,
+            &geom[..m],
+            &owned[..m],
+            o8,
+            with_p,
+        )
+    } else {
+        0
+    };
+    wide + star_row::<__m256d, D, E>(
+        sys,
+        grad,
+        rec,
+        params,
+        i,
+        &geom[m..],
+        &owned[m..],
+        o4,
+        with_p,
+    )
 }

@@ -1,14 +1,16 @@
-//! `av`'s pair loop, four neighbours per AVX2 instruction (module docs of [`super`]).
+//! `av`'s pair loop, four neighbours per AVX2 instruction or eight per AVX-512 one (module
+//! docs of [`super`]).
 //!
-//! Each neighbour's fields come from its compact record (`Workspace::rec`): four
+//! Each neighbour's fields come from its compact record (`Workspace::rec`): a register's
 //! records are loaded four reals at a time and transposed into lanes, so a neighbour
 //! costs a few vector loads instead of a dozen scattered scalar ones. The lanes compute
 //! each pair's terms with the portable loop's operations in its order; the particle's
 //! sums then add them lane by lane in the order of its list, as the portable loop does.
 
-use core::arch::x86_64::*;
+use core::arch::x86_64::{__m256d, __m512d};
 
-use super::avx2::{add, dot, lt, mul, neg, pair_lanes, select, splat, store, sub, transpose};
+use super::lanes::Lanes;
+use super::ops::{add, div, dot, lt, mul, neg, pair_lanes, select, splat, store, sub, transpose};
 use crate::effects::Effects;
 use crate::kernel::Kernel;
 use crate::math::Real;
@@ -20,12 +22,12 @@ use crate::schemes::av::records::{record_len, sym_at, RecordAt};
 /// loop of `av`'s `rates`.
 ///
 /// # Safety
-/// The CPU must have AVX2, `kernel` must pass [`super::avx2::has_geometry`] and the run
-/// must have no periodic images. (The neighbour indices are checked against `rec`.)
-#[target_feature(enable = "avx2")]
+/// The CPU must have the level of `V`, `kernel` must pass [`super::ops::has_geometry`] and
+/// the run must have no periodic images. (The neighbour indices are checked against `rec`.)
+#[inline(always)]
 // the sums index each lane across the terms' arrays
 #[allow(clippy::too_many_arguments, clippy::needless_range_loop)]
-pub(crate) unsafe fn rates_row<const D: usize, E: Effects>(
+unsafe fn rates_row<V: Lanes, const D: usize, E: Effects>(
     kernel: Kernel,
     art: Option<(Real, u32)>,
     alpha: Real,
@@ -38,27 +40,26 @@ pub(crate) unsafe fn rates_row<const D: usize, E: Effects>(
 ) {
     let (at, width) = (RecordAt::of(D), record_len(D));
     let groups = width / 4;
-    let zero = _mm256_setzero_pd();
+    let zero = V::zero();
     let n = row.len();
     let mut q0 = 0;
     while q0 < n {
         // a last, partial group repeats its last neighbour in the spare lanes (not summed)
-        let lanes = (n - q0).min(4);
-        let j: [usize; 4] = core::array::from_fn(|l| row[q0 + l.min(lanes - 1)] as usize);
+        let lanes = (n - q0).min(V::N);
+        let j = V::arr(|l| row[q0 + l.min(lanes - 1)] as usize);
         // the loads below read through raw pointers: every record checked
-        assert!(j.iter().all(|&j| (j + 1) * width <= rec.len()));
-        let p: [*const Real; 4] = core::array::from_fn(|l| rec.as_ptr().add(j[l] * width));
+        assert!(j.as_ref().iter().all(|&j| (j + 1) * width <= rec.len()));
+        let p = V::arr(|l| rec.as_ptr().add(j[l] * width));
         // room for the widest record (3D)
         let mut f = [zero; record_len(3)];
         for g in 0..groups {
-            f[4 * g..4 * g + 4].copy_from_slice(&transpose(&p, g));
+            f[4 * g..4 * g + 4].copy_from_slice(&transpose::<V>(&p, g));
         }
-        let xj: [__m256d; 3] = core::array::from_fn(|a| f[at.x + a.min(D - 1)]);
-        let geo = pair_lanes::<D>(kernel, &own.x, own.h, &xj, f[at.h], art);
+        let xj: [V; 3] = core::array::from_fn(|a| f[at.x + a.min(D - 1)]);
+        let geo = pair_lanes::<V, D>(kernel, &own.x, own.h, &xj, f[at.h], art);
         // outside the support `seen_from_i` gives n = +0 on the owner's side, -0 on the
         // other
-        let side: [Real; 4] = core::array::from_fn(|l| if q0 + l >= lower { 0.0 } else { -0.0 });
-        let side = _mm256_loadu_pd(side.as_ptr());
+        let side = V::load(&V::arr(|l| if q0 + l >= lower { 0.0 } else { -0.0 }));
         let mut nv = [zero; 3];
         let mut grad = [zero; 3];
         let minus_dw = neg(geo.dw);
@@ -70,19 +71,19 @@ pub(crate) unsafe fn rates_row<const D: usize, E: Effects>(
         }
         // (v_i - v_j).(x_i - x_j) = -r (v_ij . n); the viscosity where it is negative
         let r = geo.r;
-        let vr = mul(neg(r), dot::<D>(&vij, &nv));
+        let vr = mul(neg(r), dot::<V, D>(&vij, &nv));
         let approaching = lt(vr, zero);
         // the two divisions only where some lane approaches
-        let pi = if _mm256_movemask_pd(approaching) == 0 {
+        let pi = if V::bits(approaching) == 0 {
             zero
         } else {
             let hij = geo.hij;
-            let mu = _mm256_div_pd(
+            let mu = div(
                 mul(hij, vr),
                 add(mul(r, r), mul(mul(splat(0.01), hij), hij)),
             );
             let cij = mul(splat(0.5), add(splat(own.cl), f[at.cl]));
-            let pi = _mm256_div_pd(
+            let pi = div(
                 add(
                     mul(mul(splat(-alpha), cij), mu),
                     mul(mul(splat(beta), mu), mu),
@@ -119,13 +120,13 @@ pub(crate) unsafe fn rates_row<const D: usize, E: Effects>(
         }
         let mj = f[at.m];
         let vol = mul(mj, f[at.inv_rho]);
-        let mut acc = [[0.0; 4]; 3];
+        let mut acc = [V::arr(|_| 0.0); 3];
         for (ca, ta) in acc.iter_mut().zip(&t).take(D) {
             *ca = store(mul(*ta, mj));
         }
-        let de = store(mul(mul(splat(0.5), mj), dot::<D>(&vij, &t)));
-        let div = store(mul(vol, dot::<D>(&vij, &grad)));
-        let mut gv = [[[0.0; 4]; 3]; 3];
+        let de = store(mul(mul(splat(0.5), mj), dot::<V, D>(&vij, &t)));
+        let dv = store(mul(vol, dot::<V, D>(&vij, &grad)));
+        let mut gv = [[V::arr(|_| 0.0); 3]; 3];
         if E::STRENGTH {
             for (ga, va) in gv.iter_mut().zip(&vij).take(D) {
                 for (gab, gb) in ga.iter_mut().zip(&grad).take(D) {
@@ -138,7 +139,7 @@ pub(crate) unsafe fn rates_row<const D: usize, E: Effects>(
                 s.acc[a] += acc[a][l];
             }
             s.de -= de[l];
-            s.div -= div[l];
+            s.div -= dv[l];
             if E::STRENGTH {
                 for a in 0..D {
                     for b in 0..D {
@@ -149,4 +150,51 @@ pub(crate) unsafe fn rates_row<const D: usize, E: Effects>(
         }
         q0 += lanes;
     }
+}
+
+/// [`rates_row`] with four neighbours per AVX2 instruction.
+///
+/// # Safety
+/// As [`rates_row`], with AVX2.
+#[target_feature(enable = "avx2")]
+#[allow(clippy::too_many_arguments)]
+pub(crate) unsafe fn rates_row_avx2<const D: usize, E: Effects>(
+    kernel: Kernel,
+    art: Option<(Real, u32)>,
+    alpha: Real,
+    beta: Real,
+    rec: &[Real],
+    row: &[u32],
+    lower: usize,
+    own: &Owner<D>,
+    s: &mut Sums<D>,
+) {
+    rates_row::<__m256d, D, E>(kernel, art, alpha, beta, rec, row, lower, own, s)
+}
+
+/// [`rates_row`] with eight neighbours per AVX-512 instruction.
+///
+/// # Safety
+/// As [`rates_row`], with AVX-512F.
+#[target_feature(enable = "avx512f")]
+#[allow(clippy::too_many_arguments)]
+pub(crate) unsafe fn rates_row_avx512<const D: usize, E: Effects>(
+    kernel: Kernel,
+    art: Option<(Real, u32)>,
+    alpha: Real,
+    beta: Real,
+    rec: &[Real],
+    row: &[u32],
+    lower: usize,
+    own: &Owner<D>,
+    s: &mut Sums<D>,
+) {
+    // the full groups of eight in zmm registers, the rest in ymm ones (a last, partial
+    // group of eight would cost as much as a full one); the sums in the list's order
+    let m = row.len() / 8 * 8;
+    if m > 0 {
+        rates_row::<__m512d, D, E>(kernel, art, alpha, beta, rec, &row[..m], lower, own, s);
+    }
+    let rest = lower.saturating_sub(m);
+    rates_row::<__m256d, D, E>(kernel, art, alpha, beta, rec, &row[m..], rest, own, s)
 }
