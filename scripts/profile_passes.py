@@ -55,6 +55,12 @@ for a,g in zip(addrs,groups):
         if m and m.group(2) not in ("for_each_pair",):
             name=m.group(1)+"::"+m.group(2); break
     if name=="other":
+        # a vectorised row (gsph_core::simd, entered through its level's function): the
+        # outermost simd frame, so that its inlined lane arithmetic counts to the row
+        for fn,loc in reversed(g):
+            m=re.search(r"gsph_core::simd::(\w+)::(\w+)",fn)
+            if m: name="simd::"+m.group(1)+"::"+m.group(2); break
+    if name=="other":
         for fn,loc in g:
             m=re.search(r"(gsph\w*::[\w:]+)",fn)
             if m: name=m.group(1); break
