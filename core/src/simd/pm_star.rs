@@ -312,6 +312,92 @@ unsafe fn star_vector<V: Lanes, const D: usize>(
     (vs, ts, redo)
 }
 
+/// [`muscl_frame`] and [`star_vector`] as calls of their own, compiled for the level
+/// (`#[inline]`: the compiler keeps them out of the row, as the row's size asks).
+trait Calls: Lanes {
+    unsafe fn frame<const D: usize>(
+        superbee: bool,
+        basis: &[Vl<Self>; 3],
+        wi: &Vl<Self>,
+        wj: &Vl<Self>,
+        di: &Vl<Self>,
+        dj: &Vl<Self>,
+    ) -> (Vl<Self>, Vl<Self>);
+    #[allow(clippy::too_many_arguments)]
+    unsafe fn vector<const D: usize>(
+        n: &Vl<Self>,
+        v_l: &Vl<Self>,
+        t_l: &Vl<Self>,
+        zl: (Self, Self),
+        v_r: &Vl<Self>,
+        t_r: &Vl<Self>,
+        zr: (Self, Self),
+        shock: Option<(&Side<Self>, &Side<Self>)>,
+    ) -> (Vl<Self>, Vl<Self>, Self::Mask);
+}
+
+macro_rules! calls {
+    ($v:ty, $feature:literal, $frame:ident, $vector:ident) => {
+        #[target_feature(enable = $feature)]
+        #[inline]
+        unsafe fn $frame<const D: usize>(
+            superbee: bool,
+            basis: &[Vl<$v>; 3],
+            wi: &Vl<$v>,
+            wj: &Vl<$v>,
+            di: &Vl<$v>,
+            dj: &Vl<$v>,
+        ) -> (Vl<$v>, Vl<$v>) {
+            muscl_frame::<$v, D>(superbee, basis, wi, wj, di, dj)
+        }
+
+        #[target_feature(enable = $feature)]
+        #[inline]
+        #[allow(clippy::too_many_arguments)]
+        unsafe fn $vector<const D: usize>(
+            n: &Vl<$v>,
+            v_l: &Vl<$v>,
+            t_l: &Vl<$v>,
+            zl: ($v, $v),
+            v_r: &Vl<$v>,
+            t_r: &Vl<$v>,
+            zr: ($v, $v),
+            shock: Option<(&Side<$v>, &Side<$v>)>,
+        ) -> (Vl<$v>, Vl<$v>, <$v as Lanes>::Mask) {
+            star_vector::<$v, D>(n, v_l, t_l, zl.0, zl.1, v_r, t_r, zr.0, zr.1, shock)
+        }
+
+        impl Calls for $v {
+            #[inline(always)]
+            unsafe fn frame<const D: usize>(
+                superbee: bool,
+                basis: &[Vl<$v>; 3],
+                wi: &Vl<$v>,
+                wj: &Vl<$v>,
+                di: &Vl<$v>,
+                dj: &Vl<$v>,
+            ) -> (Vl<$v>, Vl<$v>) {
+                $frame::<D>(superbee, basis, wi, wj, di, dj)
+            }
+            #[inline(always)]
+            unsafe fn vector<const D: usize>(
+                n: &Vl<$v>,
+                v_l: &Vl<$v>,
+                t_l: &Vl<$v>,
+                zl: ($v, $v),
+                v_r: &Vl<$v>,
+                t_r: &Vl<$v>,
+                zr: ($v, $v),
+                shock: Option<(&Side<$v>, &Side<$v>)>,
+            ) -> (Vl<$v>, Vl<$v>, <$v as Lanes>::Mask) {
+                $vector::<D>(n, v_l, t_l, zl, v_r, t_r, zr, shock)
+            }
+        }
+    };
+}
+calls!(__m256d, "avx2", frame_avx2, vector_avx2);
+calls!(__m512d, "avx512f", frame_avx512, vector_avx512);
+
 /// The star states of the pairs particle `i` owns (its neighbours `owned`, their stored
 /// geometry `geom`), a register at a time, as the portable [`pair_star`] gives them, into `out`;
 /// the default record for a pair outside the support. Returns how many pairs it did (all).
@@ -321,7 +407,7 @@ unsafe fn star_vector<V: Lanes, const D: usize>(
 /// (Everything is indexed with bounds checks.)
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-unsafe fn star_row<V: Lanes, const D: usize, E: Effects>(
+unsafe fn star_row<V: Calls, const D: usize, E: Effects>(
     sys: &System<'_, D>,
     aux: &[Aux],
     corr: &[Correction<D>],
@@ -524,7 +610,7 @@ unsafe fn star_row<V: Lanes, const D: usize, E: Effects>(
                     e[a] = splat(1.0);
                 }
             }
-            (v_l, v_r) = muscl_frame::<V, D>(superbee, &basis, &v_l, &v_r, &dvi, &dvj);
+            (v_l, v_r) = V::frame::<D>(superbee, &basis, &v_l, &v_r, &dvi, &dvj);
             if E::STRENGTH {
                 // the slopes of the traction: Sym3 of the stress gradients along r_ji
                 // (only the components a, b < D enter), dotted with the axis
@@ -543,7 +629,7 @@ unsafe fn star_row<V: Lanes, const D: usize, E: Effects>(
                     sym_dot::<V, D>(&slope_i, &axis),
                     sym_dot::<V, D>(&slope_j, &axis),
                 );
-                (t_l, t_r) = muscl_frame::<V, D>(superbee, &basis, &t_l, &t_r, &si, &sj);
+                (t_l, t_r) = V::frame::<D>(superbee, &basis, &t_l, &t_r, &si, &sj);
             } else {
                 let pj = f[at.p];
                 let g_p_j: Vl<V> = vec_at(at.grad_p);
@@ -576,16 +662,14 @@ unsafe fn star_row<V: Lanes, const D: usize, E: Effects>(
         } else {
             None
         };
-        let (vs, ts, redo) = star_vector::<V, D>(
+        let (vs, ts, redo) = V::vector::<D>(
             &n,
             &v_l,
             &t_l,
-            mul(rho_l, cl_l),
-            mul(rho_l, ct_l),
+            (mul(rho_l, cl_l), mul(rho_l, ct_l)),
             &v_r,
             &t_r,
-            mul(rho_r, cl_r),
-            mul(rho_r, ct_r),
+            (mul(rho_r, cl_r), mul(rho_r, ct_r)),
             match &sides {
                 Some((l, r)) => Some((l, r)),
                 None => None,
