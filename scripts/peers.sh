@@ -15,7 +15,8 @@
 #           ratios are medians of the per-round ratios. The full runs are made once.
 # --only:   run these codes (comma-separated); the table still shows the rows earlier runs
 #           left for the others at the same resolution (delete out/peers/dx_DX/rows/ to
-#           start afresh). Ratios across codes are per round only when they ran together.
+#           start afresh; a run of gsph replaces all earlier gsph rows). Ratios across codes
+#           are per round only when they ran together.
 # gsph runs the schemes av pm ts1 ts2 tkc at the best SIMD level of the CPU, and av once
 # more at the baseline level (GSPH_SCHEMES overrides: entries SCHEME or SCHEME@LEVEL).
 # Default resolution 5e-4 (17,592 particles). Each peer/variant runs a 1,000-step timing
@@ -377,6 +378,9 @@ if wants lammps; then RUNS+=("lammps as" "lammps noas"); fi
 if wants gsph; then
   gsph_binary
   for s in "${GSPH_SCHEMES[@]}"; do RUNS+=("gsph $s"); done
+  # this run's gsph rows replace every earlier one (another GSPH_SCHEMES would number them
+  # differently, and an earlier binary's row would stand beside this one's)
+  rm -f "$ROWS"/[0-9]*-gsph-*.json
 fi
 for r in "${RUNS[@]}"; do read -r code arg <<<"$r"; "prep_$code" $arg; done
 for ((round = 1; round <= ROUNDS; round++)); do

@@ -10,7 +10,7 @@
 use core::arch::x86_64::{__m256d, __m512d};
 
 use super::lanes::Lanes;
-use super::ops::{add, div, dot, lt, mul, neg, pair_lanes, select, splat, store, sub, transpose};
+use super::ops::{add, div, dot, lt, mul, neg, pair_lanes, records, select, splat, store, sub};
 use crate::effects::Effects;
 use crate::kernel::Kernel;
 use crate::math::Real;
@@ -47,14 +47,8 @@ unsafe fn rates_row<V: Lanes, const D: usize, E: Effects>(
         // a last, partial group repeats its last neighbour in the spare lanes (not summed)
         let lanes = (n - q0).min(V::N);
         let j = V::arr(|l| row[q0 + l.min(lanes - 1)] as usize);
-        // the loads below read through raw pointers: every record checked
-        assert!(j.as_ref().iter().all(|&j| (j + 1) * width <= rec.len()));
-        let p = V::arr(|l| rec.as_ptr().add(j[l] * width));
-        // room for the widest record (3D)
-        let mut f = [zero; record_len(3)];
-        for g in 0..groups {
-            f[4 * g..4 * g + 4].copy_from_slice(&transpose::<V>(&p, g));
-        }
+        // the neighbours' records, transposed into lanes (room for the widest, 3D)
+        let f: [V; record_len(3)] = records::<V, { record_len(3) }>(rec, width, groups, &j);
         let xj: [V; 3] = core::array::from_fn(|a| f[at.x + a.min(D - 1)]);
         let geo = pair_lanes::<V, D>(kernel, &own.x, own.h, &xj, f[at.h], art);
         // outside the support `seen_from_i` gives n = +0 on the owner's side, -0 on the

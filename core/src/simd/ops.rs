@@ -316,10 +316,24 @@ pub(crate) unsafe fn geometry_row_avx512<const D: usize>(
     wide + geometry_row::<__m256d, D>(kernel, xi, hi, x, h, &owned[m..], o4, f4, art)
 }
 
-/// [`Lanes::transpose`] of the records at `p` for the group `g`.
+/// The neighbour records of the lanes' particles `js`, `width` reals each in `rec`, their
+/// first `4 groups` reals transposed into lanes: `f[k]` holds real `k` of each lane's
+/// record (the rest of `f` zero; `W` is room for the widest record). Panics if a record
+/// lies outside `rec`: the loads read through raw pointers.
 #[inline(always)]
-pub(super) unsafe fn transpose<V: Lanes>(p: &V::Arr<*const Real>, g: usize) -> [V; 4] {
-    V::transpose(p, g)
+pub(super) unsafe fn records<V: Lanes, const W: usize>(
+    rec: &[Real],
+    width: usize,
+    groups: usize,
+    js: &V::Arr<usize>,
+) -> [V; W] {
+    assert!(js.as_ref().iter().all(|&j| (j + 1) * width <= rec.len()));
+    let p = V::arr(|l| rec.as_ptr().add(js[l] * width));
+    let mut f = [V::zero(); W];
+    for g in 0..groups {
+        f[4 * g..4 * g + 4].copy_from_slice(&V::transpose(&p, g));
+    }
+    f
 }
 
 /// `math::real::abs`: `-x` if `x < 0`, else `x` (so `-0` stays `-0`).

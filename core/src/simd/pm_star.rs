@@ -15,8 +15,8 @@ use core::arch::x86_64::{__m256d, __m512d};
 
 use super::lanes::Lanes;
 use super::ops::{
-    add, div, dot, finite, gt, limit, load, minmod, mul, neg, select, shock_slope, splat, store,
-    sub, transpose, two_shock, Side,
+    add, div, dot, finite, gt, limit, load, minmod, mul, neg, records, select, shock_slope, splat,
+    store, sub, two_shock, Side,
 };
 use crate::effects::Effects;
 use crate::exec::{for_each_record, Executor};
@@ -479,15 +479,8 @@ unsafe fn star_row<V: Calls, const D: usize, E: Effects>(
         let lanes = (n_pairs - q0).min(V::N);
         let lane = |l: usize| q0 + l.min(lanes - 1);
         let js = V::arr(|l| owned[lane(l)] as usize);
-        // the neighbours' records, transposed into lanes: the loads read through raw
-        // pointers, every record checked
-        assert!(js.as_ref().iter().all(|&j| (j + 1) * width <= rec.len()));
-        let p = V::arr(|l| rec.as_ptr().add(js[l] * width));
-        // room for the widest record (3D)
-        let mut f = [zero; record_len(3)];
-        for g in 0..width / 4 {
-            f[4 * g..4 * g + 4].copy_from_slice(&transpose::<V>(&p, g));
-        }
+        // the neighbours' records, transposed into lanes (room for the widest, 3D)
+        let f: [V; record_len(3)] = records::<V, { record_len(3) }>(rec, width, width / 4, &js);
         // a record's vector at `o` and matrix at `o` (row by row) as lanes
         let vec_at =
             |o: usize| -> Vl<V> { core::array::from_fn(|a| if a < D { f[o + a] } else { zero }) };

@@ -14,8 +14,8 @@ use core::arch::x86_64::{__m256d, __m512d};
 
 use super::lanes::Lanes;
 use super::ops::{
-    add, div, dot, finite, gt, limit, load, minmod, mul, neg, select, shock_slope, splat, store,
-    sub, transpose, two_shock, Side,
+    add, div, dot, finite, gt, limit, load, minmod, mul, neg, records, select, shock_slope, splat,
+    store, sub, two_shock, Side,
 };
 use crate::effects::{EffectSet, Effects};
 use crate::exec::{for_each_record, Executor};
@@ -195,14 +195,8 @@ unsafe fn star_row<V: Lanes, const D: usize, E: Effects>(
         let lanes = (n - q0).min(V::N);
         let lane = |l: usize| q0 + l.min(lanes - 1);
         let js = V::arr(|l| owned[lane(l)] as usize);
-        // the loads below read through raw pointers: every record checked
-        assert!(js.as_ref().iter().all(|&j| (j + 1) * width <= rec.len()));
-        let p = V::arr(|l| rec.as_ptr().add(js[l] * width));
-        // room for the widest record (3D)
-        let mut f = [zero; record_len(3)];
-        for g in 0..groups {
-            f[4 * g..4 * g + 4].copy_from_slice(&transpose::<V>(&p, g));
-        }
+        // the neighbours' records, transposed into lanes (room for the widest, 3D)
+        let f: [V; record_len(3)] = records::<V, { record_len(3) }>(rec, width, groups, &js);
         let nv: [V; 3] = core::array::from_fn(|a| {
             if a < D {
                 load(&V::arr(|l| geom[lane(l)].n[a]))
