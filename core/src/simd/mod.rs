@@ -51,6 +51,8 @@ mod lanes;
 #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
 pub(crate) mod ops;
 #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
+mod pm_lanes;
+#[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
 pub(crate) mod pm_star;
 #[cfg(all(test, target_arch = "x86_64", not(feature = "f32")))]
 mod star_tests;
