@@ -125,3 +125,24 @@ pub fn check_threads(threads: usize) -> Result<(), String> {
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `auto` is the CPU's best level except AVX-512, which runs only when named; a named
+    /// level runs exactly where the CPU has it.
+    #[test]
+    fn auto_never_picks_avx512_and_named_levels_follow_the_cpu() {
+        let auto = parse_simd("auto").unwrap();
+        assert_ne!(auto, Simd::Avx512);
+        assert!(available(auto));
+        assert_eq!(auto == Simd::Avx2, available(Simd::Avx2));
+        assert!(highest() >= auto);
+        for l in Simd::ALL {
+            assert_eq!(parse_simd(l.name()).is_ok(), available(l), "{l}");
+        }
+        let err = parse_simd("avx1024").unwrap_err();
+        assert!(err.contains("one of auto, baseline, avx2, avx512"), "{err}");
+    }
+}
