@@ -220,13 +220,18 @@ pub(crate) fn ts_star_row<const D: usize, E: crate::effects::Effects>(
         // SAFETY: `params.simd` vouches for the instructions (`SimdLevel::assume`) and
         // `covers` holds
         return unsafe {
-            if params.simd.get() == Simd::Avx512 {
-                ts_star::star_row_avx512::<D, E>(
-                    sys, grad, rec, params, i, geom, owned, out, with_p,
-                )
-            } else {
-                ts_star::star_row_avx2::<D, E>(sys, grad, rec, params, i, geom, owned, out, with_p)
-            }
+            ts_star::star_row_at::<D, E>(
+                params.simd,
+                sys,
+                grad,
+                rec,
+                params,
+                i,
+                geom,
+                owned,
+                out,
+                with_p,
+            )
         };
     }
     0
@@ -285,15 +290,20 @@ pub(crate) fn pm_star_row<const D: usize, E: crate::effects::Effects>(
         // SAFETY: `params.simd` vouches for the instructions (`SimdLevel::assume`) and
         // `covers` holds
         return unsafe {
-            if params.simd.get() == Simd::Avx512 {
-                pm_star::star_row_avx512::<D, E>(
-                    sys, aux, corr, grad, grad_s, rec, params, i, geom, owned, out,
-                )
-            } else {
-                pm_star::star_row_avx2::<D, E>(
-                    sys, aux, corr, grad, grad_s, rec, params, i, geom, owned, out,
-                )
-            }
+            pm_star::star_row_at::<D, E>(
+                params.simd,
+                sys,
+                aux,
+                corr,
+                grad,
+                grad_s,
+                rec,
+                params,
+                i,
+                geom,
+                owned,
+                out,
+            )
         };
     }
     0

@@ -228,38 +228,10 @@ pub(super) trait Calls: Lanes {
 }
 
 macro_rules! calls {
-    ($v:ty, $feature:literal, $frame:ident, $vector:ident) => {
-        #[target_feature(enable = $feature)]
-        #[inline]
-        unsafe fn $frame<const D: usize>(
-            superbee: bool,
-            basis: &[Vl<$v>; 3],
-            wi: &Vl<$v>,
-            wj: &Vl<$v>,
-            di: &Vl<$v>,
-            dj: &Vl<$v>,
-        ) -> (Vl<$v>, Vl<$v>) {
-            muscl_frame::<$v, D>(superbee, basis, wi, wj, di, dj)
-        }
-
-        #[target_feature(enable = $feature)]
-        #[inline]
-        #[allow(clippy::too_many_arguments)]
-        unsafe fn $vector<const D: usize>(
-            n: &Vl<$v>,
-            v_l: &Vl<$v>,
-            t_l: &Vl<$v>,
-            zl: ($v, $v),
-            v_r: &Vl<$v>,
-            t_r: &Vl<$v>,
-            zr: ($v, $v),
-            shock: Option<(&Side<$v>, &Side<$v>)>,
-        ) -> (Vl<$v>, Vl<$v>, <$v as Lanes>::Mask) {
-            star_vector::<$v, D>(n, v_l, t_l, zl.0, zl.1, v_r, t_r, zr.0, zr.1, shock)
-        }
-
+    ($v:ty, $feature:literal) => {
         impl Calls for $v {
-            #[inline(always)]
+            #[target_feature(enable = $feature)]
+            #[inline]
             unsafe fn frame<const D: usize>(
                 superbee: bool,
                 basis: &[Vl<$v>; 3],
@@ -268,9 +240,10 @@ macro_rules! calls {
                 di: &Vl<$v>,
                 dj: &Vl<$v>,
             ) -> (Vl<$v>, Vl<$v>) {
-                $frame::<D>(superbee, basis, wi, wj, di, dj)
+                muscl_frame::<$v, D>(superbee, basis, wi, wj, di, dj)
             }
-            #[inline(always)]
+            #[target_feature(enable = $feature)]
+            #[inline]
             unsafe fn vector<const D: usize>(
                 n: &Vl<$v>,
                 v_l: &Vl<$v>,
@@ -281,10 +254,10 @@ macro_rules! calls {
                 zr: ($v, $v),
                 shock: Option<(&Side<$v>, &Side<$v>)>,
             ) -> (Vl<$v>, Vl<$v>, <$v as Lanes>::Mask) {
-                $vector::<D>(n, v_l, t_l, zl, v_r, t_r, zr, shock)
+                star_vector::<$v, D>(n, v_l, t_l, zl.0, zl.1, v_r, t_r, zr.0, zr.1, shock)
             }
         }
     };
 }
-calls!(__m256d, "avx2", frame_avx2, vector_avx2);
-calls!(__m512d, "avx512f", frame_avx512, vector_avx512);
+calls!(__m256d, "avx2");
+calls!(__m512d, "avx512f");

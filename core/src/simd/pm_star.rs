@@ -26,6 +26,7 @@ use crate::schemes::common::{failed, Pair};
 use crate::schemes::pm::gradients::objective;
 use crate::schemes::pm::pairs::pair_star;
 use crate::schemes::pm::records::{record_len, RecordAt};
+use crate::simd::{Simd, SimdLevel};
 use crate::state::{
     Aux, Correction, Gradients, PairGeom, PmStar, RiemannSolver, StepParams, System,
 };
@@ -435,7 +436,7 @@ unsafe fn star_row<V: Calls, const D: usize, E: Effects>(
 /// As [`star_row`], with AVX2.
 #[target_feature(enable = "avx2")]
 #[allow(clippy::too_many_arguments)]
-pub(crate) unsafe fn star_row_avx2<const D: usize, E: Effects>(
+unsafe fn star_row_avx2<const D: usize, E: Effects>(
     sys: &System<'_, D>,
     aux: &[Aux],
     corr: &[Correction<D>],
@@ -459,7 +460,7 @@ pub(crate) unsafe fn star_row_avx2<const D: usize, E: Effects>(
 /// As [`star_row`], with AVX-512F.
 #[target_feature(enable = "avx512f")]
 #[allow(clippy::too_many_arguments)]
-pub(crate) unsafe fn star_row_avx512<const D: usize, E: Effects>(
+unsafe fn star_row_avx512<const D: usize, E: Effects>(
     sys: &System<'_, D>,
     aux: &[Aux],
     corr: &[Correction<D>],
@@ -486,4 +487,35 @@ pub(crate) unsafe fn star_row_avx512<const D: usize, E: Effects>(
         0
     };
     wide + star_row::<__m256d, D, E>(sys, aux, corr, grad, grad_s, rec, params, i, g4, w4, o4)
+}
+
+/// [`star_row`] at `level`: its AVX2 or AVX-512 entry (0 pairs at the baseline level).
+///
+/// # Safety
+/// `level` must be one the CPU has (`SimdLevel::assume`), and the step's options must pass
+/// [`covers`].
+#[allow(clippy::too_many_arguments)]
+pub(crate) unsafe fn star_row_at<const D: usize, E: Effects>(
+    level: SimdLevel,
+    sys: &System<'_, D>,
+    aux: &[Aux],
+    corr: &[Correction<D>],
+    grad: &[Gradients<D>],
+    grad_s: &[[crate::math::Vector<D>; 6]],
+    rec: &[Real],
+    params: &StepParams<'_, D>,
+    i: usize,
+    geom: &[PairGeom<D>],
+    owned: &[u32],
+    out: &mut [PmStar<D>],
+) -> usize {
+    match level.get() {
+        Simd::Avx512 => star_row_avx512::<D, E>(
+            sys, aux, corr, grad, grad_s, rec, params, i, geom, owned, out,
+        ),
+        Simd::Avx2 => star_row_avx2::<D, E>(
+            sys, aux, corr, grad, grad_s, rec, params, i, geom, owned, out,
+        ),
+        Simd::Baseline => 0,
+    }
 }

@@ -15,7 +15,7 @@ use crate::schemes::common::geometry_pass;
 use crate::schemes::common::Pair;
 use crate::schemes::pm::pairs::pair_star;
 use crate::schemes::ts::pairs::star;
-use crate::simd::{pm_star, tested_levels, ts_star, Simd, SimdLevel};
+use crate::simd::{pm_star, tested_levels, ts_star, SimdLevel};
 use crate::state::{
     Aux, Correction, Gradients, PairGeom, PmStar, RiemannSolver, SchemeOptions, StepParams, System,
     TsStar,
@@ -303,8 +303,11 @@ fn same_stars<const D: usize, E: Effects>(
             // the kernel itself, whether or not it pays for E (`ts_star::pays`)
             assert!(ts_star::covers(params));
             // SAFETY: the caller checked that the CPU has the level; the options are covered
-            let done =
-                unsafe { ts_row::<D, E>(sys, &grad, &rec, params, i, gs, owned, &mut simd, true) };
+            let done = unsafe {
+                ts_star::star_row_at::<D, E>(
+                    level, sys, &grad, &rec, params, i, gs, owned, &mut simd, true,
+                )
+            };
             assert_eq!(done, owned.len(), "the row does every pair");
             for (q, (&j, pg)) in owned.iter().zip(gs).enumerate() {
                 let j = j as usize;
@@ -327,7 +330,20 @@ fn same_stars<const D: usize, E: Effects>(
             // without the pressure, the same velocities and p* = 0
             let mut simd_u = vec![TsStar { u: 7.0, p: 7.0 }; owned.len()];
             // SAFETY: as above
-            unsafe { ts_row::<D, E>(sys, &grad, &rec, params, i, gs, owned, &mut simd_u, false) };
+            unsafe {
+                ts_star::star_row_at::<D, E>(
+                    level,
+                    sys,
+                    &grad,
+                    &rec,
+                    params,
+                    i,
+                    gs,
+                    owned,
+                    &mut simd_u,
+                    false,
+                )
+            };
             for (a, b) in simd.iter().zip(&simd_u) {
                 assert_eq!(
                     (a.u.to_bits(), 0.0f64.to_bits()),
@@ -373,8 +389,8 @@ fn same_pm_stars<const D: usize, E: Effects>(
             assert!(pm_star::covers(params));
             // SAFETY: the caller checked that the CPU has the level; the options are covered
             let done = unsafe {
-                pm_row::<D, E>(
-                    sys, &aux, &corr, &grad, &grad_s, &rec, params, i, gs, owned, &mut simd,
+                pm_star::star_row_at::<D, E>(
+                    level, sys, &aux, &corr, &grad, &grad_s, &rec, params, i, gs, owned, &mut simd,
                 )
             };
             assert_eq!(done, owned.len(), "the row does every pair");
@@ -412,56 +428,6 @@ fn same_pm_stars<const D: usize, E: Effects>(
         }
     });
     met
-}
-
-/// The `ts` star row at `params.simd` (a vectorised level the CPU has).
-#[allow(clippy::too_many_arguments)]
-unsafe fn ts_row<const D: usize, E: Effects>(
-    sys: &System<'_, D>,
-    grad: &[Gradients<D>],
-    rec: &[Real],
-    params: &StepParams<'_, D>,
-    i: usize,
-    geom: &[PairGeom<D>],
-    owned: &[u32],
-    out: &mut [TsStar],
-    with_p: bool,
-) -> usize {
-    match params.simd.get() {
-        Simd::Avx512 => {
-            ts_star::star_row_avx512::<D, E>(sys, grad, rec, params, i, geom, owned, out, with_p)
-        }
-        Simd::Avx2 => {
-            ts_star::star_row_avx2::<D, E>(sys, grad, rec, params, i, geom, owned, out, with_p)
-        }
-        Simd::Baseline => unreachable!("the tests run the vectorised levels"),
-    }
-}
-
-/// The `pm` star row at `params.simd` (a vectorised level the CPU has).
-#[allow(clippy::too_many_arguments)]
-unsafe fn pm_row<const D: usize, E: Effects>(
-    sys: &System<'_, D>,
-    aux: &[Aux],
-    corr: &[Correction<D>],
-    grad: &[Gradients<D>],
-    grad_s: &[[Vector<D>; 6]],
-    rec: &[Real],
-    params: &StepParams<'_, D>,
-    i: usize,
-    geom: &[PairGeom<D>],
-    owned: &[u32],
-    out: &mut [PmStar<D>],
-) -> usize {
-    match params.simd.get() {
-        Simd::Avx512 => pm_star::star_row_avx512::<D, E>(
-            sys, aux, corr, grad, grad_s, rec, params, i, geom, owned, out,
-        ),
-        Simd::Avx2 => pm_star::star_row_avx2::<D, E>(
-            sys, aux, corr, grad, grad_s, rec, params, i, geom, owned, out,
-        ),
-        Simd::Baseline => unreachable!("the tests run the vectorised levels"),
-    }
 }
 
 fn every_case<const D: usize>() {

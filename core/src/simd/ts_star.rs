@@ -25,6 +25,7 @@ use crate::riemann::Dissipation;
 use crate::schemes::common::failed;
 use crate::schemes::ts::pairs::star;
 use crate::schemes::ts::records::{record_len, RecordAt};
+use crate::simd::{Simd, SimdLevel};
 use crate::state::{Gradients, MusclTime, PairGeom, RiemannSolver, StepParams, System, TsStar};
 
 /// Whether [`star_row`] pays for this step's scheme: the first-order star with the
@@ -294,7 +295,7 @@ unsafe fn star_row<V: Lanes, const D: usize, E: Effects>(
 /// As [`star_row`], with AVX2.
 #[target_feature(enable = "avx2")]
 #[allow(clippy::too_many_arguments)]
-pub(crate) unsafe fn star_row_avx2<const D: usize, E: Effects>(
+unsafe fn star_row_avx2<const D: usize, E: Effects>(
     sys: &System<'_, D>,
     grad: &[Gradients<D>],
     rec: &[Real],
@@ -314,7 +315,7 @@ pub(crate) unsafe fn star_row_avx2<const D: usize, E: Effects>(
 /// As [`star_row`], with AVX-512F.
 #[target_feature(enable = "avx512f")]
 #[allow(clippy::too_many_arguments)]
-pub(crate) unsafe fn star_row_avx512<const D: usize, E: Effects>(
+unsafe fn star_row_avx512<const D: usize, E: Effects>(
     sys: &System<'_, D>,
     grad: &[Gradients<D>],
     rec: &[Real],
@@ -357,4 +358,31 @@ pub(crate) unsafe fn star_row_avx512<const D: usize, E: Effects>(
         o4,
         with_p,
     )
+}
+
+/// [`star_row`] at `level`: its AVX2 or AVX-512 entry (0 pairs at the baseline level).
+///
+/// # Safety
+/// `level` must be one the CPU has (`SimdLevel::assume`), and the step's options must pass
+/// [`covers`].
+#[allow(clippy::too_many_arguments)]
+pub(crate) unsafe fn star_row_at<const D: usize, E: Effects>(
+    level: SimdLevel,
+    sys: &System<'_, D>,
+    grad: &[Gradients<D>],
+    rec: &[Real],
+    params: &StepParams<'_, D>,
+    i: usize,
+    geom: &[PairGeom<D>],
+    owned: &[u32],
+    out: &mut [TsStar],
+    with_p: bool,
+) -> usize {
+    match level.get() {
+        Simd::Avx512 => {
+            star_row_avx512::<D, E>(sys, grad, rec, params, i, geom, owned, out, with_p)
+        }
+        Simd::Avx2 => star_row_avx2::<D, E>(sys, grad, rec, params, i, geom, owned, out, with_p),
+        Simd::Baseline => 0,
+    }
 }
