@@ -281,6 +281,33 @@ fn killed_runs_leave_a_restartable_checkpoint() {
     assert_same_outputs(&a, &b);
 }
 
+/// What a kill between the last step's checkpoint and summary.json leaves (the case the
+/// kill test above reaches only by chance): a restart that has no step left to take
+/// writes the outputs of the uninterrupted run, summary.json included.
+#[test]
+fn a_restart_with_no_step_left_matches_the_uninterrupted_run() {
+    let scene = case("flyer_plate.toml");
+    let sets = ["resolution_scale=2", "output.snapshots=5"];
+    let tmp = tempfile::tempdir().unwrap();
+    let (a, b) = (tmp.path().join("a"), tmp.path().join("b"));
+    let (sa, sb) = (a.display().to_string(), b.display().to_string());
+    ok(&run_args(&scene, &sa, &sets, &[]));
+    ok(&run_args(
+        &scene,
+        &sb,
+        &sets,
+        &["--checkpoint-every-steps", "1"],
+    ));
+    std::fs::remove_file(b.join("summary.json")).unwrap();
+    let ck = Checkpoint::read(&b).unwrap();
+    let steps = serde_json::from_slice::<serde_json::Value>(&read(&a, "summary.json")).unwrap()
+        ["steps"]
+        .as_u64();
+    assert_eq!(Some(ck.step), steps, "the checkpoint is the last step's");
+    ok(&["run", "--restart", &sb, "--quiet"]);
+    assert_same_outputs(&a, &b);
+}
+
 #[test]
 fn a_partial_temp_file_does_not_hide_the_last_checkpoint() {
     let scene = case("flyer_plate.toml");

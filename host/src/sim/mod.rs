@@ -311,7 +311,19 @@ impl<const D: usize> Sim<D> {
         self.x.is_empty()
     }
 
-    /// Bytes of per-particle storage (state, workspace and neighbour lists) per particle.
+    /// Length of the neighbour records where a vectorised loop may read them (scratch: a
+    /// step sizes `rec` to this and writes it whole before it reads it).
+    fn records_len(&self) -> usize {
+        if self.simd.get() == gsph_core::simd::Simd::Baseline {
+            0
+        } else {
+            self.aux.len() * gsph_core::state::record_len(self.scheme.family(), D)
+        }
+    }
+
+    /// Bytes of per-particle storage (state, workspace and neighbour lists) per particle,
+    /// the scratch records counted at the size a step gives them (so the figure does not
+    /// depend on whether a step ran since a restart).
     pub fn bytes_per_particle(&self) -> usize {
         use std::mem::size_of;
         let n = self.len().max(1);
@@ -326,7 +338,7 @@ impl<const D: usize> Sim<D> {
             + self.corr.len() * size_of::<Correction<D>>()
             + self.av.len() * size_of::<AvRates<D>>()
             + self.art.len() * size_of::<Matrix<D>>()
-            + self.rec.len() * size_of::<Real>()
+            + self.records_len() * size_of::<Real>()
             + self.aux.len() * size_of::<Aux>()
             + self.fac.len() * size_of::<Real>()
             + self.geom.len() * size_of::<PairGeom<D>>()
@@ -455,14 +467,7 @@ impl<const D: usize> Sim<D> {
             effects: self.effects,
             simd: self.simd,
         };
-        // the neighbour records where a vectorised loop may read them (scratch: the step
-        // writes them whole before it reads them)
-        let records = if self.simd.get() == gsph_core::simd::Simd::Baseline {
-            0
-        } else {
-            self.aux.len() * gsph_core::state::record_len(self.scheme.family(), D)
-        };
-        self.rec.resize(records, 0.0);
+        self.rec.resize(self.records_len(), 0.0);
         let mut sys = gsph_core::particle_fields!(step each_state_field { system self });
         let mut ws = Workspace {
             sums: &mut self.sums,
