@@ -164,9 +164,9 @@ fn bitwise_identical_at_every_simd_level() {
                 "steel_sic_impact_3d {scheme} at {simd}"
             );
         }
-        // plasticity, damage and heat in 2D: av, and ts2 with the two-shock solver and
-        // failed particles (whose pairs the vectorised star leaves to the portable one)
-        for scheme in ["scheme=av", "scheme=ts2"] {
+        // plasticity, damage and heat in 2D: av, and ts2 and pm with the two-shock solver
+        // (where their first-order stars run vectorised) and failed particles
+        for scheme in ["scheme=av", "scheme=ts2", "scheme=pm"] {
             let set = [scheme, "resolution_scale=0.5", "t_end=2e-6"];
             assert_eq!(
                 run::<2>("steel_sic_impact", &set, Simd::Baseline),

@@ -256,7 +256,7 @@ pub(crate) fn pm_records<const D: usize, E: crate::effects::Effects, X: crate::e
     #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
     if params.simd.vectorised()
         && pm_star::covers(params)
-        && pm_star::pays::<E>()
+        && pm_star::pays::<D, E>(params)
         && rec.len() == sys.x.len() * crate::schemes::pm::record_len(D)
     {
         pm_star::write_records::<D, E, X>(sys, aux, corr, grad, grad_s, params, rec, exec);
@@ -286,7 +286,7 @@ pub(crate) fn pm_star_row<const D: usize, E: crate::effects::Effects>(
     out: &mut [crate::state::PmStar<D>],
 ) -> usize {
     #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
-    if params.simd.vectorised() && pm_star::covers(params) && pm_star::pays::<E>() {
+    if params.simd.vectorised() && pm_star::covers(params) && pm_star::pays::<D, E>(params) {
         // SAFETY: `params.simd` vouches for the instructions (`SimdLevel::assume`) and
         // `covers` holds
         return unsafe {
