@@ -172,6 +172,19 @@ pub(crate) fn av_row<const D: usize, E: crate::effects::Effects>(
     false
 }
 
+/// Whether the vectorised star rows (`ts_star`, `pm_star`) pay for this step's scheme: a
+/// first-order star with the acoustic solver is too light for the lanes' loads (measured
+/// on the colliding rings: ts1 1.01 to 1.19, pm 1.01 to 1.14 times the portable loop's
+/// time), the reconstruction (ts2, tkc) or the two-shock solver is not (the 2D impact's
+/// pm: 0.91 to 0.93; docs/performance.md).
+#[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
+#[inline(always)]
+fn stars_pay<const D: usize, E: crate::effects::Effects>(
+    params: &crate::state::StepParams<'_, D>,
+) -> bool {
+    E::MUSCL || params.options.riemann == crate::state::RiemannSolver::TwoShock
+}
+
 /// Writes every particle's neighbour record for [`ts_star_row`] into `rec` where the
 /// level and the step's options allow the vectorised row and it pays (AVX2 or AVX-512;
 /// `ts_star::covers` and `pays`) and `rec` has the room (`state::record_len`); returns
@@ -188,7 +201,7 @@ pub(crate) fn ts_records<const D: usize, E: crate::effects::Effects, X: crate::e
     #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
     if params.simd.vectorised()
         && ts_star::covers(params)
-        && ts_star::pays::<D, E>(params)
+        && stars_pay::<D, E>(params)
         && rec.len() == sys.x.len() * crate::schemes::ts::record_len(D)
     {
         ts_star::write_records::<D, E, X>(sys, grad, params, rec, exec);
@@ -216,7 +229,7 @@ pub(crate) fn ts_star_row<const D: usize, E: crate::effects::Effects>(
     with_p: bool,
 ) -> usize {
     #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
-    if params.simd.vectorised() && ts_star::covers(params) && ts_star::pays::<D, E>(params) {
+    if params.simd.vectorised() && ts_star::covers(params) && stars_pay::<D, E>(params) {
         // SAFETY: `params.simd` vouches for the instructions (`SimdLevel::assume`) and
         // `covers` holds
         return unsafe {
@@ -256,7 +269,7 @@ pub(crate) fn pm_records<const D: usize, E: crate::effects::Effects, X: crate::e
     #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
     if params.simd.vectorised()
         && pm_star::covers(params)
-        && pm_star::pays::<D, E>(params)
+        && stars_pay::<D, E>(params)
         && rec.len() == sys.x.len() * crate::schemes::pm::record_len(D)
     {
         pm_star::write_records::<D, E, X>(sys, aux, corr, grad, grad_s, params, rec, exec);
@@ -286,7 +299,7 @@ pub(crate) fn pm_star_row<const D: usize, E: crate::effects::Effects>(
     out: &mut [crate::state::PmStar<D>],
 ) -> usize {
     #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
-    if params.simd.vectorised() && pm_star::covers(params) && pm_star::pays::<D, E>(params) {
+    if params.simd.vectorised() && pm_star::covers(params) && stars_pay::<D, E>(params) {
         // SAFETY: `params.simd` vouches for the instructions (`SimdLevel::assume`) and
         // `covers` holds
         return unsafe {

@@ -107,16 +107,6 @@ fn stress<const D: usize, E: Effects>(sys: &System<'_, D>, k: usize, a: usize, b
     }
 }
 
-/// Whether [`star_row`] pays for this step's scheme: the first-order star (`pm`) with the
-/// acoustic solver is too light for the lanes' loads (measured on the colliding rings:
-/// 1.01 to 1.14 times the portable loop's time); the reconstruction (`tkc`) or the
-/// two-shock solver is not (the 2D impact's `pm`: 0.90 to 0.95; docs/performance.md), as
-/// for [`super::ts_star::pays`].
-#[inline(always)]
-pub(crate) fn pays<const D: usize, E: Effects>(params: &StepParams<'_, D>) -> bool {
-    E::MUSCL || params.options.riemann == RiemannSolver::TwoShock
-}
-
 /// Whether [`star_row`] covers the options of this step.
 #[inline(always)]
 pub(crate) fn covers<const D: usize>(params: &StepParams<'_, D>) -> bool {

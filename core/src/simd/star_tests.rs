@@ -300,7 +300,7 @@ fn same_stars<const D: usize, E: Effects>(
         for (i, p0, owned) in rows(params) {
             let gs = &geom[p0..p0 + owned.len()];
             let mut simd = vec![TsStar { u: 7.0, p: 7.0 }; owned.len()];
-            // the kernel itself, whether or not it pays for E (`ts_star::pays`)
+            // the kernel itself, whether or not it pays for E (`stars_pay`)
             assert!(ts_star::covers(params));
             // SAFETY: the caller checked that the CPU has the level; the options are covered
             let done = unsafe {
@@ -385,7 +385,7 @@ fn same_pm_stars<const D: usize, E: Effects>(
         for (i, p0, owned) in rows(params) {
             let gs = &geom[p0..p0 + owned.len()];
             let mut simd = vec![PmStar::<D>::default(); owned.len()];
-            // the kernel itself, whether or not it pays for E (`pm_star::pays`)
+            // the kernel itself, whether or not it pays for E (`stars_pay`)
             assert!(pm_star::covers(params));
             // SAFETY: the caller checked that the CPU has the level; the options are covered
             let done = unsafe {

@@ -28,15 +28,6 @@ use crate::schemes::ts::records::{record_len, RecordAt};
 use crate::simd::{Simd, SimdLevel};
 use crate::state::{Gradients, MusclTime, PairGeom, RiemannSolver, StepParams, System, TsStar};
 
-/// Whether [`star_row`] pays for this step's scheme: the first-order star with the
-/// acoustic solver is too light for the lanes' loads (measured on the colliding rings,
-/// `ts1`: 1.01 to 1.19 times the portable loop's time); the two-shock solver or the
-/// reconstruction is not (docs/performance.md).
-#[inline(always)]
-pub(crate) fn pays<const D: usize, E: Effects>(params: &StepParams<'_, D>) -> bool {
-    E::MUSCL || params.options.riemann == RiemannSolver::TwoShock
-}
-
 /// Whether [`star_row`] covers the options of this step.
 #[inline(always)]
 pub(crate) fn covers<const D: usize>(params: &StepParams<'_, D>) -> bool {
