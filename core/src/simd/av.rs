@@ -12,24 +12,23 @@ use core::arch::x86_64::{__m256d, __m512d};
 use super::lanes::Lanes;
 use super::ops::{add, div, dot, lt, mul, neg, pair_lanes, records, select, splat, store, sub};
 use crate::effects::Effects;
-use crate::kernel::Kernel;
 use crate::math::Real;
 use crate::schemes::av::pairs::{Owner, Sums};
 use crate::schemes::av::records::{record_len, sym_at, RecordAt};
+use crate::schemes::common::PairGeometry;
 
 /// The pair sums of particle `own` over its list `row` (entries from `lower` on are the
 /// pairs it owns), from the neighbours' records `rec`, into `s`: bitwise the portable
 /// loop of `av`'s `rates`.
 ///
 /// # Safety
-/// The CPU must have the level of `V`, `kernel` must pass [`super::ops::has_geometry`] and
-/// the run must have no periodic images. (The neighbour indices are checked against `rec`.)
+/// The CPU must have the level of `V` and `pg.kernel` must pass
+/// [`super::ops::has_geometry`]. (The neighbour indices are checked against `rec`.)
 #[inline(always)]
 // the sums index each lane across the terms' arrays
 #[allow(clippy::too_many_arguments, clippy::needless_range_loop)]
-unsafe fn rates_row<V: Lanes, const D: usize, E: Effects>(
-    kernel: Kernel,
-    art: Option<(Real, u32)>,
+unsafe fn rates_row<V: Lanes, const D: usize, E: Effects, const WRAP: bool>(
+    pg: &PairGeometry<D>,
     alpha: Real,
     beta: Real,
     rec: &[Real],
@@ -50,7 +49,7 @@ unsafe fn rates_row<V: Lanes, const D: usize, E: Effects>(
         // the neighbours' records, transposed into lanes (room for the widest, 3D)
         let f: [V; record_len(3)] = records::<V, { record_len(3) }>(rec, width, groups, &j);
         let xj: [V; 3] = core::array::from_fn(|a| f[at.x + a.min(D - 1)]);
-        let geo = pair_lanes::<V, D>(kernel, &own.x, own.h, &xj, f[at.h], art);
+        let geo = pair_lanes::<V, D, WRAP>(pg, &own.x, own.h, &xj, f[at.h]);
         // outside the support `seen_from_i` gives n = +0 on the owner's side, -0 on the
         // other
         let side = V::load(&V::arr(|l| if q0 + l >= lower { 0.0 } else { -0.0 }));
@@ -97,7 +96,7 @@ unsafe fn rates_row<V: Lanes, const D: usize, E: Effects>(
             }
             t[a] = sub(mul(sg, k), mul(grad[a], pi));
         }
-        if art.is_some() {
+        if pg.art.is_some() {
             // ((R_i + R_j) grad) f, nalgebra's gemv: column by column
             for (a, ta) in t.iter_mut().enumerate().take(D) {
                 let mut y = zero;
@@ -153,8 +152,7 @@ unsafe fn rates_row<V: Lanes, const D: usize, E: Effects>(
 #[target_feature(enable = "avx2")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) unsafe fn rates_row_avx2<const D: usize, E: Effects>(
-    kernel: Kernel,
-    art: Option<(Real, u32)>,
+    pg: &PairGeometry<D>,
     alpha: Real,
     beta: Real,
     rec: &[Real],
@@ -163,7 +161,11 @@ pub(crate) unsafe fn rates_row_avx2<const D: usize, E: Effects>(
     own: &Owner<D>,
     s: &mut Sums<D>,
 ) {
-    rates_row::<__m256d, D, E>(kernel, art, alpha, beta, rec, row, lower, own, s)
+    if pg.periodic.is_some() {
+        rates_row::<__m256d, D, E, true>(pg, alpha, beta, rec, row, lower, own, s)
+    } else {
+        rates_row::<__m256d, D, E, false>(pg, alpha, beta, rec, row, lower, own, s)
+    }
 }
 
 /// [`rates_row`] with eight neighbours per AVX-512 instruction.
@@ -173,8 +175,7 @@ pub(crate) unsafe fn rates_row_avx2<const D: usize, E: Effects>(
 #[target_feature(enable = "avx512f")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) unsafe fn rates_row_avx512<const D: usize, E: Effects>(
-    kernel: Kernel,
-    art: Option<(Real, u32)>,
+    pg: &PairGeometry<D>,
     alpha: Real,
     beta: Real,
     rec: &[Real],
@@ -186,9 +187,17 @@ pub(crate) unsafe fn rates_row_avx512<const D: usize, E: Effects>(
     // the full groups of eight in zmm registers, the rest in ymm ones (a last, partial
     // group of eight would cost as much as a full one); the sums in the list's order
     let m = row.len() / 8 * 8;
-    if m > 0 {
-        rates_row::<__m512d, D, E>(kernel, art, alpha, beta, rec, &row[..m], lower, own, s);
+    let (wide, rest) = (&row[..m], &row[m..]);
+    let lower_rest = lower.saturating_sub(m);
+    if pg.periodic.is_some() {
+        if m > 0 {
+            rates_row::<__m512d, D, E, true>(pg, alpha, beta, rec, wide, lower, own, s);
+        }
+        rates_row::<__m256d, D, E, true>(pg, alpha, beta, rec, rest, lower_rest, own, s)
+    } else {
+        if m > 0 {
+            rates_row::<__m512d, D, E, false>(pg, alpha, beta, rec, wide, lower, own, s);
+        }
+        rates_row::<__m256d, D, E, false>(pg, alpha, beta, rec, rest, lower_rest, own, s)
     }
-    let rest = lower.saturating_sub(m);
-    rates_row::<__m256d, D, E>(kernel, art, alpha, beta, rec, &row[m..], rest, own, s)
 }

@@ -73,11 +73,20 @@ fn bits<const D: usize>(r: &AvRates<D>) -> Vec<u64> {
     b
 }
 
-/// Every particle's rates at AVX2 (records given) against the baseline and against AVX2
-/// without records (the portable loop): asserts every bit equal, and that nine particles
-/// in ten have a finite, non-zero acceleration to compare.
-fn same_rates<const D: usize, E: Effects>(level: SimdLevel, kernel: Kernel, seed: u64) {
+/// Every particle's rates at `level` (records given) against the baseline and against
+/// `level` without records (the portable loop): asserts every bit equal, and that nine
+/// particles in ten have a finite, non-zero acceleration to compare; `periodic`: in a box
+/// periodic along x, with pairs across its faces.
+fn same_rates<const D: usize, E: Effects>(
+    level: SimdLevel,
+    kernel: Kernel,
+    seed: u64,
+    periodic: bool,
+) {
     let mut sc = scene::<D>(seed);
+    if periodic {
+        sc.periodic_along_x();
+    }
     // no zero densities (the star tests' fallback case): here their infinite 1/rho
     // would make every neighbour's rates NaN, and the comparison toothless
     for r in sc.rho.iter_mut().filter(|r| **r == 0.0) {
@@ -89,6 +98,16 @@ fn same_rates<const D: usize, E: Effects>(level: SimdLevel, kernel: Kernel, seed
         ..SchemeOptions::default()
     };
     with_pairs::<D, E>(level, &mut sc, options, |sys, params, _| {
+        if periodic {
+            // some pairs lie across the box's faces: their minimum image is not x_i - x_j
+            let len = params.periodic.len[0];
+            let across = (0..sys.x.len()).any(|i| {
+                let row = params.nbrs.of(i);
+                row.iter()
+                    .any(|&j| (sys.x[i][0] - sys.x[j as usize][0]).abs() > 0.5 * len)
+            });
+            assert!(across, "{D}D: no pair across the periodic faces");
+        }
         let vectorised = StepParams { kernel, ..*params };
         let base = StepParams {
             simd: SimdLevel::BASELINE,
@@ -124,9 +143,11 @@ fn all<const D: usize>() {
     for level in crate::simd::tested_levels() {
         for seed in 1..4 {
             for kernel in [Kernel::CubicSpline, Kernel::WendlandC2, Kernel::Gaussian] {
-                same_rates::<D, Solid>(level, kernel, seed);
-                same_rates::<D, SolidPlain>(level, kernel, seed);
-                same_rates::<D, Fluid>(level, kernel, seed);
+                for periodic in [false, true] {
+                    same_rates::<D, Solid>(level, kernel, seed, periodic);
+                    same_rates::<D, SolidPlain>(level, kernel, seed, periodic);
+                    same_rates::<D, Fluid>(level, kernel, seed, periodic);
+                }
             }
         }
     }

@@ -22,7 +22,7 @@
 //! What is vectorised:
 //! - the pair geometry (`schemes::common::geometry_pass` of the `pm` and `ts` families,
 //!   which store it for their several pair passes; the cubic spline and Wendland C2
-//!   kernels, non-periodic runs), `ops.rs`. (`av`, with one pair loop, computes the
+//!   kernels, periodic axes by the minimum image), `ops.rs`. (`av`, with one pair loop, computes the
 //!   geometry in that loop.)
 //! - the star states of `ts1` and `ts2` (MUSCL reconstruction, the acoustic or two-shock
 //!   solver; the default time and dissipation options, the superbee and minmod limiters),
@@ -31,10 +31,10 @@
 //!   stars are solved) as `av`'s are (below). A lane the vectorised path does not cover (a
 //!   failed particle, an impedance that is not positive and finite, a two-shock answer
 //!   that is not finite) is solved again by the portable code.
-//! - the star states of `tkc` (and `pm` with MUSCL): objective rotation, corrected
+//! - the star states of `tkc` (and `pm` with MUSCL or the two-shock solver): objective rotation, corrected
 //!   traction axis, MUSCL in the pair frame, the acoustic or two-shock solver,
 //!   `pm_star.rs`, from records as well; the same fallbacks.
-//! - `av`'s pair loop (the cubic spline and Wendland C2 kernels, non-periodic runs),
+//! - `av`'s pair loop (the cubic spline and Wendland C2 kernels),
 //!   `av.rs`. Its neighbours' fields come from one compact record per particle
 //!   (`Workspace::rec`, written once per rate evaluation), a register's records loaded four
 //!   reals at a time and transposed into lanes; each pair's terms are computed in lanes and
@@ -87,8 +87,8 @@ pub(crate) mod ts_star;
 /// The pair geometry of the pairs particle `i` (at `xi`, `hi`) owns, its neighbours
 /// `owned`, into `out` (and the artificial-stress factors into `fac`) by the vectorised loop
 /// where the level and the case allow it: AVX2 or AVX-512, the cubic spline or Wendland C2
-/// kernel, no periodic images. Returns how many of the pairs it did (0: none; the portable loop does
-/// the rest), each bitwise as [`PairGeometry::of`](crate::schemes::common::PairGeometry)
+/// kernel. Returns how many of the pairs it did (0: none; the portable loop does the
+/// rest), each bitwise as [`PairGeometry::of`](crate::schemes::common::PairGeometry)
 /// gives it.
 #[inline(always)]
 #[allow(clippy::too_many_arguments, unused_variables)]
@@ -104,17 +104,16 @@ pub(crate) fn geometry_row<const D: usize>(
     fac: &mut [crate::math::Real],
 ) -> usize {
     #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
-    if pg.periodic.is_none() && ops::has_geometry(pg.kernel) {
-        let (k, art) = (pg.kernel, pg.art);
+    if ops::has_geometry(pg.kernel) {
         // SAFETY: `level` vouches for the instructions (`SimdLevel::assume`) and the kernel
         // is one the loop computes; it checks the neighbour indices and indexes `out`,
         // `fac` checked
         match level.get() {
             Simd::Avx512 => unsafe {
-                return ops::geometry_row_avx512::<D>(k, xi, hi, x, h, owned, out, fac, art);
+                return ops::geometry_row_avx512::<D>(pg, xi, hi, x, h, owned, out, fac);
             },
             Simd::Avx2 => unsafe {
-                return ops::geometry_row_avx2::<D>(k, xi, hi, x, h, owned, out, fac, art);
+                return ops::geometry_row_avx2::<D>(pg, xi, hi, x, h, owned, out, fac);
             },
             Simd::Baseline => {}
         }
@@ -123,8 +122,7 @@ pub(crate) fn geometry_row<const D: usize>(
 }
 
 /// Whether [`av_row`] runs at this level with this geometry: AVX2 or AVX-512, the cubic
-/// spline or Wendland C2 kernel, no periodic images (the caller then writes the neighbour records
-/// it reads).
+/// spline or Wendland C2 kernel (the caller then writes the neighbour records it reads).
 #[inline(always)]
 #[allow(unused_variables)]
 pub(crate) fn av_rows<const D: usize>(
@@ -132,7 +130,7 @@ pub(crate) fn av_rows<const D: usize>(
     pg: &crate::schemes::common::PairGeometry<D>,
 ) -> bool {
     #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
-    if level.vectorised() && pg.periodic.is_none() && ops::has_geometry(pg.kernel) {
+    if level.vectorised() && ops::has_geometry(pg.kernel) {
         return true;
     }
     false
@@ -157,14 +155,14 @@ pub(crate) fn av_row<const D: usize, E: crate::effects::Effects>(
     #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
     if av_rows(params.simd, pg) {
         let (row, owned) = (params.nbrs.of(i), params.nbrs.owned(i));
-        let (k, art, lower) = (pg.kernel, pg.art, row.len() - owned.len());
+        let lower = row.len() - owned.len();
         // SAFETY: `params.simd` vouches for the instructions (`SimdLevel::assume`) and
         // `av_rows` holds; the row checks its neighbours against `rec`
         unsafe {
             if params.simd.get() == Simd::Avx512 {
-                av::rates_row_avx512::<D, E>(k, art, alpha, beta, rec, row, lower, own, s)
+                av::rates_row_avx512::<D, E>(pg, alpha, beta, rec, row, lower, own, s)
             } else {
-                av::rates_row_avx2::<D, E>(k, art, alpha, beta, rec, row, lower, own, s)
+                av::rates_row_avx2::<D, E>(pg, alpha, beta, rec, row, lower, own, s)
             }
         };
         return true;

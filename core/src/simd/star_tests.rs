@@ -93,16 +93,35 @@ pub(super) struct Scene<const D: usize> {
     grad_s: Vec<[Vector<D>; 6]>,
     aux: Vec<Aux>,
     corr: Vec<Correction<D>>,
+    /// The periodic box ([`Scene::periodic_along_x`]; none by default).
+    periodic: Periodic<D>,
+}
+
+impl<const D: usize> Scene<D> {
+    /// Makes the scene periodic along x: its particles (`1e-3 (k + jitter)`, `k` below
+    /// `side`) in a box of `side` spacings from -0.5e-3, so the pairs across the box's
+    /// faces take the minimum image from either side.
+    pub(super) fn periodic_along_x(&mut self) {
+        let mut p = Periodic::<D>::none();
+        p.lo[0] = -0.5e-3;
+        p.len[0] = 1e-3 * side::<D>() as Real;
+        p.axes[0] = true;
+        self.periodic = p;
+    }
+}
+
+fn side<const D: usize>() -> usize {
+    match D {
+        1 => 100,
+        2 => 9,
+        _ => 4,
+    }
 }
 
 const CAP: usize = 96;
 
 pub(super) fn scene<const D: usize>(seed: u64) -> Scene<D> {
-    let side = match D {
-        1 => 100,
-        2 => 9,
-        _ => 4,
-    };
+    let side = side::<D>();
     let n = (0..D).fold(1, |a, _| a * side);
     let mut g = Lcg(seed);
     let mut vec = |k: Real| Vector::<D>::from_fn(|_, _| k * g.next());
@@ -212,11 +231,13 @@ pub(super) fn scene<const D: usize>(seed: u64) -> Scene<D> {
         grad_s,
         aux,
         corr,
+        periodic: Periodic::none(),
     }
 }
 
-/// Calls `f` with the scene's particles, the step's parameters (AVX2, the options
-/// `options`, the effects of `E` and damage) and every pair's geometry.
+/// Calls `f` with the scene's particles, the step's parameters (the level `level`, the
+/// options `options`, the effects of `E`, damage and the scene's periodic box) and every
+/// pair's geometry.
 pub(super) fn with_pairs<const D: usize, E: Effects>(
     level: SimdLevel,
     sc: &mut Scene<D>,
@@ -227,17 +248,21 @@ pub(super) fn with_pairs<const D: usize, E: Effects>(
     let mut storage = vec![0u32; NeighborList::storage_len(n, CAP)];
     let mut list = NeighborList::new(CAP, n, &mut storage).unwrap();
     let hmax = sc.h.iter().cloned().fold(0.0, Real::max);
-    build_naive(&sc.x, &Periodic::none(), |_, _| 2.4 * hmax, &mut list).unwrap();
+    build_naive(&sc.x, &sc.periodic, |_, _| 2.4 * hmax, &mut list).unwrap();
     let mats = [material(1.2), material(1.5), material(-0.5)];
     let params = StepParams {
         dt: 1e-9,
         materials: &mats,
         kernel: Kernel::CubicSpline,
         h_factor: 1.2,
-        periodic: Periodic::none(),
+        periodic: sc.periodic,
         nbrs: list.view(),
         options,
-        effects: E::SET.union(EffectSet::DAMAGE),
+        effects: if sc.periodic.any() {
+            E::SET.union(EffectSet::DAMAGE).union(EffectSet::PERIODIC)
+        } else {
+            E::SET.union(EffectSet::DAMAGE)
+        },
         simd: level,
     };
     let mut geom = vec![PairGeom::<D>::default(); list.view().unordered_pairs()];

@@ -11,6 +11,7 @@ use crate::schemes::artificial_stress::ArtificialStress;
 use crate::schemes::common::geometry_pass;
 use crate::simd::SimdLevel;
 use crate::state::{PairGeom, SchemeOptions, StepParams};
+use std::format;
 use std::vec;
 use std::vec::Vec;
 
@@ -25,12 +26,14 @@ impl Effects for Hydro {
 
 /// The pair geometry and artificial-stress factors of `n` jittered particles with
 /// scattered smoothing lengths (some pairs of the lists lie outside the support, some
-/// particles have a partial last group of four) at `simd`.
+/// particles have a partial last group of four) at `simd`; `periodic`: in a box periodic
+/// along x, with pairs across its faces.
 fn geometry<const D: usize>(
     simd: SimdLevel,
     kernel: Kernel,
     exponent: Option<u32>,
     seed: u64,
+    periodic: bool,
 ) -> (Vec<PairGeom<D>>, Vec<Real>) {
     const CAP: usize = 96;
     let side = match D {
@@ -51,18 +54,29 @@ fn geometry<const D: usize>(
         })
         .collect();
     let h: Vec<Real> = (0..n).map(|_| 1e-3 * (1.0 + 0.6 * rng.unit())).collect();
+    let mut boxed = Periodic::<D>::none();
+    if periodic {
+        // positions 1e-3 (k +- 0.15) - 0.01, k below `side`
+        boxed.lo[0] = -0.0105;
+        boxed.len[0] = 1e-3 * side as Real;
+        boxed.axes[0] = true;
+    }
     let mut storage = vec![0u32; NeighborList::storage_len(n, CAP)];
     let mut list = NeighborList::new(CAP, n, &mut storage).unwrap();
     let hmax = h.iter().cloned().fold(0.0, Real::max);
-    build_naive(
-        &x,
-        &Periodic::none(),
-        |_, _| 1.2 * kernel.support() * hmax,
-        &mut list,
-    )
-    .unwrap();
+    build_naive(&x, &boxed, |_, _| 1.2 * kernel.support() * hmax, &mut list).unwrap();
     let mut options = SchemeOptions::default();
     let mut effects = EffectSet::HYDRO;
+    if periodic {
+        effects = effects.union(EffectSet::PERIODIC);
+        let across = (0..n).any(|i| {
+            list.view()
+                .of(i)
+                .iter()
+                .any(|&j| (x[i][0] - x[j as usize][0]).abs() > 0.5 * boxed.len[0])
+        });
+        assert!(across, "{D}D: no pair across the periodic faces");
+    }
     if let Some(e) = exponent {
         options.artificial_stress = ArtificialStress {
             epsilon: 0.3,
@@ -75,7 +89,7 @@ fn geometry<const D: usize>(
         materials: &[],
         kernel,
         h_factor: 1.5,
-        periodic: Periodic::none(),
+        periodic: boxed,
         nbrs: list.view(),
         options,
         effects,
@@ -113,21 +127,15 @@ fn same_geometry<const D: usize>() {
 fn same_geometry_at<const D: usize>(level: SimdLevel) {
     for kernel in [Kernel::CubicSpline, Kernel::WendlandC2, Kernel::Gaussian] {
         for exponent in [None, Some(4), Some(0), Some(3)] {
-            for seed in [1, 2, 3] {
-                let (g0, f0) = geometry::<D>(SimdLevel::BASELINE, kernel, exponent, seed);
-                let (g1, f1) = geometry::<D>(level, kernel, exponent, seed);
+            for (seed, periodic) in [1, 2, 3].into_iter().flat_map(|s| [(s, false), (s, true)]) {
+                let base = geometry::<D>(SimdLevel::BASELINE, kernel, exponent, seed, periodic);
+                let (g0, f0) = base;
+                let (g1, f1) = geometry::<D>(level, kernel, exponent, seed, periodic);
                 let at = level.get();
-                assert_eq!(
-                    bits(&g0),
-                    bits(&g1),
-                    "{at} {kernel} {D}D {exponent:?} seed {seed}"
-                );
+                let case = format!("{at} {kernel} {D}D {exponent:?} seed {seed} {periodic}");
+                assert_eq!(bits(&g0), bits(&g1), "{case}");
                 let fb = |f: &[Real]| f.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
-                assert_eq!(
-                    fb(&f0),
-                    fb(&f1),
-                    "{at} {kernel} {D}D {exponent:?} seed {seed}"
-                );
+                assert_eq!(fb(&f0), fb(&f1), "{case}");
             }
         }
     }
