@@ -33,6 +33,7 @@ mod runner {
     use gsph_core::material::{Material, Strength};
     use gsph_core::math::{Real, Sym3, Vector};
     use gsph_core::neighbors::{build_naive, NeighborList, Periodic};
+    use gsph_core::schemes::*;
     use gsph_core::state::*;
 
     /// Particles of the flyer plate (spacing 0.1 mm, the left half moving): 100 (the plate

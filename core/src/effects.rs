@@ -10,7 +10,7 @@
 //! - **Run-time** (plasticity, damage, heat, periodic boundaries, artificial stress) act per
 //!   particle or as one predictable term of a pair; the step reads them as flags where it
 //!   needs them: periodic boundaries and artificial stress from
-//!   [`crate::state::StepParams::effects`], plasticity, damage and heat from the storage
+//!   [`crate::schemes::workspace::StepParams::effects`], plasticity, damage and heat from the storage
 //!   their fields have (a run without an effect stores nothing for it:
 //!   [`crate::state::System::has_plasticity`] and siblings). `cargo bench -p gsph --bench
 //!   effects` measures what each flag costs when it is off.

@@ -15,7 +15,7 @@
 //! A serial caller passes [`NoHalo`] (no ghosts; every call is a no-op). The exchanges of
 //! each family are a constant of its step
 //! ([`SchemeFamily::EXCHANGES`](crate::schemes::SchemeFamily::EXCHANGES)), handed out at
-//! run time by [`Family::exchanges`](crate::state::Family::exchanges), so a caller can print
+//! run time by [`Family::exchanges`](crate::schemes::scheme::Family::exchanges), so a caller can print
 //! and account for them.
 
 use crate::effects::EffectSet;
@@ -45,11 +45,11 @@ impl Fields {
     pub const S: Fields = Fields(1 << 7);
     /// Damage (empty without damage).
     pub const DAMAGE: Fields = Fields(1 << 8);
-    /// MUSCL gradients ([`crate::state::Workspace::grad`]).
+    /// MUSCL gradients ([`crate::schemes::workspace::Workspace::grad`]).
     pub const GRAD: Fields = Fields(1 << 9);
-    /// Stress gradients ([`crate::state::Workspace::grad_stress`]).
+    /// Stress gradients ([`crate::schemes::workspace::Workspace::grad_stress`]).
     pub const GRAD_STRESS: Fields = Fields(1 << 10);
-    /// Kernel corrections ([`crate::state::Workspace::corr`]).
+    /// Kernel corrections ([`crate::schemes::workspace::Workspace::corr`]).
     pub const CORR: Fields = Fields(1 << 11);
     /// The state a stress-based pair pass reads at the start of a step: geometry (x, h)
     /// and the Cauchy stress, velocity and wave speed of the other side (`av`'s rates,

@@ -87,6 +87,9 @@ impl Kernel {
 
     /// The dimensionless shape `f(q)` and its derivative `f'(q)` (module doc), both zero
     /// for `q >= support()`.
+    ///
+    /// Lane twin: `shape` in `core/src/simd/ops.rs` (the cubic spline and Wendland C2;
+    /// held bitwise equal by `schemes/pairs/lanes_tests.rs`).
     #[inline(always)]
     fn shape<const D: usize>(self, q: Real) -> (Real, Real) {
         match self {

@@ -65,6 +65,9 @@ impl Limiter {
     /// `minmod(a, b)`, `maxmod(minmod(beta b, a), minmod(b, beta a))` (Sweby, superbee),
     /// `minmod(2a, (a+b)/2, 2b)` (MC) and `2ab/(a+b)` (van Leer), so the result is
     /// symmetric, `limit(a, b) == limit(b, a)`, exactly.
+    ///
+    /// Lane twin (superbee and minmod): `limit` in `core/src/simd/ops.rs`, held bitwise
+    /// equal through the star tests (`schemes/star_tests.rs`).
     #[inline(always)]
     pub fn limit(self, d_own: Real, d_other: Real) -> Real {
         let (a, b) = (d_own, d_other);
@@ -146,6 +149,9 @@ pub fn bounded_extrapolation(ext: Real, half_jump: Real) -> Real {
 
 /// minmod(a, b): 0 if `a` and `b` differ in sign (or either is zero or NaN), otherwise the
 /// one of smaller magnitude (TKC eqs 14–15, seed 004).
+///
+/// Lane twin: `minmod` in `core/src/simd/ops.rs` (held bitwise equal through the star tests,
+/// `schemes/star_tests.rs`).
 #[inline(always)]
 pub fn minmod(a: Real, b: Real) -> Real {
     if a > 0.0 && b > 0.0 {

@@ -68,8 +68,8 @@ mod impls {
     use crate::kernel::Kernel;
     use crate::limiter::Limiter;
     use crate::riemann::Dissipation;
-    use crate::schemes::Scheme;
-    use crate::state::{Integrator, MusclTime, RiemannSolver, SpecificVolume};
+    use crate::schemes::options::{Integrator, MusclTime, RiemannSolver, SpecificVolume};
+    use crate::schemes::scheme::Scheme;
 
     serde_by_name!(Scheme, "scheme", "av, pm, ts1, ts2, tkc");
     serde_by_name!(Kernel, "kernel", "cubic_spline, wendland_c2, gaussian");

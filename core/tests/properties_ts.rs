@@ -11,6 +11,7 @@ use gsph_core::material::eos::MieGruneisen;
 use gsph_core::material::{Material, Strength};
 use gsph_core::math::{Real, Sym3, Vector};
 use gsph_core::neighbors::{build_naive, NeighborList, Periodic};
+use gsph_core::schemes::*;
 use gsph_core::schemes::{ts::Ts, SchemeFamily};
 use gsph_core::state::*;
 use proptest::prelude::*;

@@ -3,7 +3,8 @@
 //! length-prefixed strings and arrays, and the FNV-1a checksum of the payload.
 
 use gsph_core::math::Sym3;
-use gsph_core::state::{AvRates, Correction, Gradients, PairSums};
+use gsph_core::schemes::AvRates;
+use gsph_core::state::{Correction, Gradients, PairSums};
 use nalgebra::SMatrix;
 
 /// 64-bit FNV-1a of `bytes`. Any change of a single byte changes the hash (each step of

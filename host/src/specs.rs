@@ -4,7 +4,7 @@
 
 use gsph_core::dispatch::{Specialisation, CATALOGUE};
 use gsph_core::effects::EffectSet;
-use gsph_core::state::Family;
+use gsph_core::schemes::Family;
 
 /// The feature that compiles the specialisations containing each compiled effect, as
 /// declared to `specialise!` in `core/src/dispatch.rs` (a unit test checks the two agree).

@@ -174,20 +174,20 @@ fn step_fn(m: &Model, s: &Specialisation) -> TokenStream {
         #[inline(never)]
         pub fn #ident<X: crate::exec::Executor>(
             sys: &mut crate::state::System<'_, #d>,
-            ws: &mut crate::state::Workspace<'_, #d>,
-            params: &crate::state::StepParams<'_, #d>,
+            ws: &mut crate::schemes::workspace::Workspace<'_, #d>,
+            params: &crate::schemes::workspace::StepParams<'_, #d>,
             exec: &X,
             halo: &mut dyn crate::halo::Halo<#d>,
         ) -> ::core::result::Result<(), crate::state::StepError> {
-            <#path as crate::schemes::SchemeFamily>::checked_step::<#d, #marker, X>(sys, ws, params, exec, halo)
+            <#path as crate::schemes::family::SchemeFamily>::checked_step::<#d, #marker, X>(sys, ws, params, exec, halo)
         }
     }
 }
 
-/// `crate::state::Family::Pm` for family `pm`.
+/// `crate::schemes::scheme::Family::Pm` for family `pm`.
 fn family_variant(m: &Model, family: usize) -> TokenStream {
     let v = format_ident!("{}", camel(&m.families[family].name.to_string()));
-    quote! { crate::state::Family::#v }
+    quote! { crate::schemes::scheme::Family::#v }
 }
 
 /// The dispatch function of one dimension: one cfg-gated `if` per specialisation.
@@ -200,7 +200,7 @@ fn select_fn(m: &Model, dim: usize, specs: &[&Specialisation]) -> TokenStream {
         quote! {
             #[cfg(#cfg)]
             if family == #variant && effects == <#marker as crate::effects::Effects>::SET {
-                return ::core::option::Option::Some(#step::<X> as crate::schemes::StepFn<#d, X>);
+                return ::core::option::Option::Some(#step::<X> as crate::schemes::family::StepFn<#d, X>);
             }
         }
     });
@@ -214,9 +214,9 @@ fn select_fn(m: &Model, dim: usize, specs: &[&Specialisation]) -> TokenStream {
         #docs
         #[allow(unused_variables)]
         pub fn #ident<X: crate::exec::Executor>(
-            family: crate::state::Family,
+            family: crate::schemes::scheme::Family,
             effects: crate::effects::EffectSet,
-        ) -> ::core::option::Option<crate::schemes::StepFn<#d, X>> {
+        ) -> ::core::option::Option<crate::schemes::family::StepFn<#d, X>> {
             #(#arms)*
             ::core::option::Option::None
         }
@@ -248,7 +248,7 @@ fn catalogue(m: &Model, specs: &[Specialisation]) -> TokenStream {
             /// The dimension.
             pub dim: usize,
             /// The scheme family.
-            pub family: crate::state::Family,
+            pub family: crate::schemes::scheme::Family,
             /// The effect set.
             pub effects: crate::effects::EffectSet,
             /// The name of its step function.

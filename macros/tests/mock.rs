@@ -57,9 +57,8 @@ mod exec {
 }
 
 mod state {
-    use core::marker::PhantomData;
-
     use crate::effects::EffectSet;
+    use crate::schemes::scheme::Family;
 
     /// What a step was called with: dimension, family, effect set and the four constants.
     pub type Call = (usize, Family, EffectSet, [bool; 4]);
@@ -69,25 +68,37 @@ mod state {
         pub calls: &'a mut Vec<Call>,
     }
 
-    pub struct Workspace<'a, const D: usize>(pub PhantomData<&'a ()>);
-
-    pub struct StepParams<'a, const D: usize>(pub PhantomData<&'a ()>);
-
     #[derive(Debug)]
     pub enum StepError {}
-
-    #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-    pub enum Family {
-        Av,
-        Pm,
-        Ts,
-    }
 }
 
 mod schemes {
     use crate::effects::Effects;
     use crate::exec::Executor;
-    use crate::state::{Family, StepError, StepParams, System, Workspace};
+    use crate::state::{StepError, System};
+    use scheme::Family;
+    use workspace::{StepParams, Workspace};
+
+    pub mod workspace {
+        use core::marker::PhantomData;
+
+        pub struct Workspace<'a, const D: usize>(pub PhantomData<&'a ()>);
+
+        pub struct StepParams<'a, const D: usize>(pub PhantomData<&'a ()>);
+    }
+
+    pub mod scheme {
+        #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+        pub enum Family {
+            Av,
+            Pm,
+            Ts,
+        }
+    }
+
+    pub mod family {
+        pub use super::{SchemeFamily, StepFn};
+    }
 
     pub trait SchemeFamily {
         fn checked_step<const D: usize, E: Effects, X: Executor>(
@@ -162,7 +173,9 @@ use core::marker::PhantomData;
 
 use effects::EffectSet;
 use exec::Serial;
-use state::{Call, Family, StepParams, System, Workspace};
+use schemes::scheme::Family;
+use schemes::workspace::{StepParams, Workspace};
+use state::{Call, System};
 
 /// Runs a selected 2D step on a fresh mock system and returns what it recorded.
 fn run_2d(step: schemes::StepFn<2, Serial>) -> Vec<Call> {

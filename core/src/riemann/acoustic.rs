@@ -54,6 +54,9 @@ pub struct AcousticSide {
 /// `Z_l + Z_r` is not positive and finite (both sides without impedance, or invalid input)
 /// the answer is the arithmetic mean of the two sides, which is finite and keeps the i/j
 /// swap symmetry.
+///
+/// Lane twin: `acoustic` in `core/src/simd/riemann.rs` (held bitwise equal through the star tests,
+/// `schemes/star_tests.rs`).
 #[inline(always)]
 pub fn acoustic_star(l: AcousticSide, r: AcousticSide) -> (Real, Real) {
     let zs = l.z + r.z;
@@ -84,6 +87,9 @@ pub struct PressureSide {
 /// `u* = (Z_l u_l + Z_r u_r + p_l - p_r)/(Z_l + Z_r)`,
 /// `p* = (Z_r p_l + Z_l p_r + Z_l Z_r (u_l - u_r))/(Z_l + Z_r)`.
 /// Axis from l (particle i) to r (particle j); `p*` is positive in compression.
+///
+/// Lane twin: `pressure_star` in `core/src/simd/riemann.rs` (held bitwise equal through the star tests,
+/// `schemes/star_tests.rs`).
 #[inline(always)]
 pub fn pressure_star(l: PressureSide, r: PressureSide) -> (Real, Real) {
     let (u, s) = acoustic_star(
@@ -121,6 +127,9 @@ pub fn pressure_star(l: PressureSide, r: PressureSide) -> (Real, Real) {
 /// No rotation matrices are needed and the result is frame invariant; it works for `D` = 1,
 /// 2 and 3 (in 1D the tangential part is empty). Under the swap of i and j (`n -> -n`) the
 /// result transforms as `V*' = V*`, `T*' = -T*` (the traction on the opposite face).
+///
+/// Lane twin: `star_vector` in `core/src/simd/riemann.rs` (held bitwise equal through the star tests,
+/// `schemes/star_tests.rs`).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)] // API fixed: two sides of four quantities plus the axis
 pub fn acoustic_star_vector<const D: usize>(
@@ -162,6 +171,9 @@ pub fn acoustic_star_vector<const D: usize>(
 /// The vector star state of [`acoustic_star_vector`] with the longitudinal problem solved
 /// by `longitudinal(u_l, s_l, u_r, s_r) -> (u*, s*)` (normal velocities and tractions,
 /// tension positive) and the transverse one acoustically with the impedances `z*_trans`.
+///
+/// Lane twin: `star_vector` in `core/src/simd/riemann.rs` (held bitwise equal through the star tests,
+/// `schemes/star_tests.rs`).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub fn elastic_star_vector<const D: usize>(

@@ -88,6 +88,9 @@ impl ShockSide {
 /// (particle i) and the right side `r` (particle j), axis from l to r, `p*` positive in
 /// compression. Exact for the piecewise model `p* - p_K = rho_K (c_K + s_K max(w, 0)) w`
 /// described in the module documentation; equal to [`pressure_star`] when `s = 0`.
+///
+/// Lane twin: `two_shock` in `core/src/simd/riemann.rs` (held bitwise equal through the star tests,
+/// `schemes/star_tests.rs`).
 pub fn two_shock_star(l: ShockSide, r: ShockSide) -> (Real, Real) {
     let acoustic = || {
         pressure_star(

@@ -1,14 +1,14 @@
 //! Pieces shared by every scheme: the pair loop, the SPH gradient, the constitutive
 //! update (Hooke + Jaumann + plastic return) and the equation-of-state refresh.
 
+use super::pairs::for_each_pair;
 use crate::effects::{EffectSet, Effects};
-use crate::exec::{Executor, Rows, Split};
+use crate::exec::Executor;
 use crate::halo::{Exchange, GhostWorkspace, Halo};
-use crate::kernel::Kernel;
 use crate::material::{strength, Material, Strength};
 use crate::math::{real, Matrix, Real, Sym3, Vector};
-use crate::neighbors::{Entry, Periodic};
-use crate::state::{smoothing_length, Aux, Correction, Gradients, PairGeom, StepParams, System};
+use crate::schemes::workspace::StepParams;
+use crate::state::{smoothing_length, Aux, Correction, Gradients, PairGeom, System};
 
 /// Calls the caller's halo hook with `x` when the step of a run with `effects` makes it
 /// (see [`crate::halo`]). Takes the three workspace arrays neighbours read, not the workspace,
@@ -50,268 +50,6 @@ macro_rules! halo_exchange {
     };
 }
 pub(crate) use halo_exchange;
-
-/// One interacting pair (i, j) as seen from particle i.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Pair<const D: usize> {
-    /// Neighbour index.
-    pub j: usize,
-    /// Distance, m.
-    pub r: Real,
-    /// Unit vector from i to j (the Riemann axis; seed 004's e_R).
-    pub n: Vector<D>,
-    /// dW/dr at (r, h_ij), <= 0.
-    pub dw: Real,
-    /// `grad_i W_ij = (x_i - x_j)/r dW/dr = -n dW/dr`.
-    pub grad: Vector<D>,
-}
-
-/// The geometry of every pair at the start of a pass sequence, computed once, on the side
-/// of its owner: `n` from the owner to the other particle; `r = 0` outside the kernel
-/// support. With the effect `artificial_stress`, also each pair's factor `f_ij^n` into
-/// `fac` (see [`super::artificial_stress`]; empty otherwise). Positions and smoothing
-/// lengths must not change while they are in use.
-pub(crate) fn geometry_pass<const D: usize, E: Effects, X: Executor>(
-    x: &[Vector<D>],
-    h: &[Real],
-    params: &StepParams<'_, D>,
-    geom: &mut [PairGeom<D>],
-    fac: &mut [Real],
-    exec: &X,
-) {
-    let nb = params.nbrs;
-    let pg = PairGeometry::new::<E>(params);
-    let art = pg.art;
-    exec.run(
-        (
-            Rows {
-                start: nb.pair_start,
-                data: geom,
-            },
-            Rows {
-                start: nb.pair_start,
-                data: fac,
-            },
-        ),
-        |off, (mut gs, mut fs): (Rows<'_, PairGeom<D>>, Rows<'_, Real>)| {
-            for k in 0..gs.len() {
-                let i = off + k;
-                let (xi, hi) = (x[i], h[i]);
-                let fk: &mut [Real] = if art.is_some() { fs.of(k) } else { &mut [] };
-                let (gk, owned) = (gs.of(k), nb.owned(i));
-                // the vectorised loop where the CPU and the case allow it (`crate::simd`);
-                // this loop whatever it left
-                let done =
-                    crate::simd::geometry_row::<D>(params.simd, &pg, &xi, hi, x, h, owned, gk, fk);
-                for (q, (g, &j)) in gk.iter_mut().zip(owned).enumerate().skip(done) {
-                    let (geo, f) = pg.of(&xi, hi, &x[j as usize], h[j as usize]);
-                    *g = geo;
-                    if art.is_some() {
-                        fk[q] = f;
-                    }
-                }
-            }
-        },
-    );
-}
-
-/// The constants of a pair's geometry, and the geometry itself ([`PairGeometry::of`]): one
-/// piece of code for the pass that stores it ([`geometry_pass`]) and the loop that
-/// computes it in place (`av`).
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct PairGeometry<const D: usize> {
-    pub kernel: Kernel,
-    support: Real,
-    /// The periodic box with the effect `periodic`.
-    pub periodic: Option<Periodic<D>>,
-    /// `(1/W_ref shape, n)` with the effect `artificial_stress`.
-    pub art: Option<(Real, u32)>,
-}
-
-impl<const D: usize> PairGeometry<D> {
-    pub fn new<E: Effects>(params: &StepParams<'_, D>) -> Self {
-        let kernel = params.kernel;
-        let art = params.has::<E>(EffectSet::ARTIFICIAL_STRESS).then(|| {
-            (
-                super::artificial_stress::inverse_reference::<D>(kernel, params.h_factor),
-                params.options.artificial_stress.exponent,
-            )
-        });
-        PairGeometry {
-            kernel,
-            support: kernel.support(),
-            periodic: params
-                .has::<E>(EffectSet::PERIODIC)
-                .then_some(params.periodic),
-            art,
-        }
-    }
-
-    /// The geometry of the pair (i, j) from i's side (`n` from i to j) and its
-    /// artificial-stress factor (0 without); zero outside the kernel support. Bitwise the
-    /// same from either side but for the sign of `n`: `x_i - x_j = -(x_j - x_i)` and
-    /// `h_i + h_j = h_j + h_i` exactly.
-    #[inline(always)]
-    pub fn of(&self, xi: &Vector<D>, hi: Real, xj: &Vector<D>, hj: Real) -> (PairGeom<D>, Real) {
-        match self.inside(xi, hi, xj, hj) {
-            Some((n, r, dw, f)) => (PairGeom { n, r, dw }, f),
-            None => (PairGeom::default(), 0.0),
-        }
-    }
-
-    /// `(n, r, dW/dr, factor)` of [`PairGeometry::of`] inside the kernel support.
-    #[inline(always)]
-    fn inside(
-        &self,
-        xi: &Vector<D>,
-        hi: Real,
-        xj: &Vector<D>,
-        hj: Real,
-    ) -> Option<(Vector<D>, Real, Real, Real)> {
-        let mut rij = xi - xj;
-        if let Some(p) = &self.periodic {
-            rij = p.min_image(rij);
-        }
-        let r2 = rij.norm_squared();
-        let hij = 0.5 * (hi + hj);
-        let rmax = self.support * hij;
-        if r2 < rmax * rmax && r2 > 0.0 {
-            let r = real::sqrt(r2);
-            let (shape, dw) = self.kernel.shape_dw::<D>(r, hij);
-            let f = match self.art {
-                Some((inv_wref, exponent)) => real::powi(shape * inv_wref, exponent),
-                None => 0.0,
-            };
-            Some((rij * (-1.0 / r), r, dw, f))
-        } else {
-            None
-        }
-    }
-
-    /// The pair (i, j) seen from i, as [`for_each_pair`] hands over the stored geometry of
-    /// [`geometry_pass`] (bitwise), and its artificial-stress factor: computed here.
-    #[inline(always)]
-    pub fn seen_from_i(
-        &self,
-        x: &[Vector<D>],
-        h: &[Real],
-        xi: &Vector<D>,
-        hi: Real,
-        e: Entry,
-    ) -> (Pair<D>, Real) {
-        let j = e.j;
-        match self.inside(xi, hi, &x[j], h[j]) {
-            // i's own side: the owner's n, negated where i does not own the pair, as
-            // `seen_from` gives the stored one
-            Some((n, r, dw, f)) => (
-                Pair {
-                    j,
-                    r,
-                    n,
-                    dw,
-                    grad: n * (-dw),
-                },
-                f,
-            ),
-            None => {
-                // the stored zero geometry as `seen_from` gives it: n = -0 on the side
-                // that does not own the pair
-                let z = Vector::<D>::zeros();
-                let n = if e.owner { z } else { -z };
-                (
-                    Pair {
-                        j,
-                        r: 0.0,
-                        n,
-                        dw: 0.0,
-                        grad: n * (-0.0),
-                    },
-                    0.0,
-                )
-            }
-        }
-    }
-}
-
-/// The pair seen from `i` from its cached geometry. A pair outside the support has zero
-/// `n`, `r`, `dw` and `grad`, so every sum it enters gets an exact zero: the gathers do not
-/// branch on it (a branch on a pattern this irregular costs more than the arithmetic).
-#[inline(always)]
-fn seen_from<const D: usize>(g: &PairGeom<D>, e: Entry) -> Pair<D> {
-    let n = if e.owner { g.n } else { -g.n };
-    Pair {
-        j: e.j,
-        r: g.r,
-        n,
-        dw: g.dw,
-        grad: n * (-g.dw),
-    }
-}
-
-/// Calls `f` for every neighbour of `i`, in the canonical order of the lists (see
-/// [`crate::neighbors`]), with the pair seen from `i` (from the cached geometry of
-/// [`geometry_pass`]), the pair's number (its record in a pair buffer) and whether `i`
-/// owns it (a record solved with `i` on the left, along `pr.n`; otherwise along `-pr.n`).
-/// Pairs outside the kernel support are included with zero geometry (`r = 0`, zero `n`,
-/// `dw` and `grad`): `f` must give them zero weight, which every sum weighted by `dw` or
-/// `grad` does.
-#[inline(always)]
-pub(crate) fn for_each_pair<const D: usize>(
-    params: &StepParams<'_, D>,
-    geom: &[PairGeom<D>],
-    i: usize,
-    mut f: impl FnMut(&Pair<D>, Entry),
-) {
-    params
-        .nbrs
-        .for_each(i, |e| f(&seen_from(&geom[e.pair], e), e));
-}
-
-/// Solves every pair once, on the side of its owner: `recs[p] = solve(i, &pair)` for each
-/// pair `p` owned by `i` inside the kernel support (`pair` seen from `i`, the left side);
-/// pairs outside the support get the default (zero) record. A row solver is tried first:
-/// `row(i, geom, owned, out)` may solve the first pairs of `i`'s row itself (a vectorised
-/// loop, [`crate::simd`]; their geometry, neighbours and records) and returns how many it
-/// did, exactly as `solve` would have; `solve` does the rest.
-pub(crate) fn solve_pair_rows<const D: usize, X: Executor, R: Send + Default>(
-    params: &StepParams<'_, D>,
-    geom: &[PairGeom<D>],
-    recs: &mut [R],
-    exec: &X,
-    row: impl Fn(usize, &[PairGeom<D>], &[u32], &mut [R]) -> usize + Sync,
-    solve: impl Fn(usize, &Pair<D>) -> R + Sync,
-) {
-    let nb = params.nbrs;
-    exec.run(
-        Rows {
-            start: nb.pair_start,
-            data: recs,
-        },
-        |off, mut chunk: Rows<'_, R>| {
-            for k in 0..chunk.len() {
-                let i = off + k;
-                let p0 = nb.pair_start[i] as usize;
-                let owned = nb.owned(i);
-                let out = chunk.of(k);
-                let g = &geom[p0..p0 + out.len()];
-                let done = row(i, g, owned, out);
-                for (q, (slot, &j)) in out.iter_mut().zip(owned).enumerate().skip(done) {
-                    let g = &g[q];
-                    *slot = if g.r > 0.0 {
-                        let e = Entry {
-                            j: j as usize,
-                            pair: p0 + q,
-                            owner: true,
-                        };
-                        solve(i, &seen_from(g, e))
-                    } else {
-                        R::default()
-                    };
-                }
-            }
-        },
-    );
-}
 
 /// Fills the per-particle quantities the pair loops read ([`Aux`]) from the current
 /// density: `1/rho`, `m/rho`, and with `CT` the transverse sound speed `sqrt(G/rho)`.
@@ -460,7 +198,7 @@ pub(crate) fn deviator_rate<const D: usize>(s: &Sym3, mat: &Material, grad_v: &M
 }
 
 /// Refreshes pressure, sound speeds and smoothing length of local particle `k` of a chunk
-/// (the smoothing length stays as it is with [`crate::state::SchemeOptions::constant_h`]).
+/// (the smoothing length stays as it is with [`crate::schemes::options::SchemeOptions::constant_h`]).
 #[inline(always)]
 pub(crate) fn refresh_eos<const D: usize>(
     sys: &mut System<'_, D>,

@@ -26,8 +26,10 @@
 use crate::effects::{EffectSet, Effects};
 use crate::exec::Executor;
 use crate::math::{real, Real};
+use crate::schemes::av::records::AvRates;
 use crate::schemes::common::{refresh_eos, return_deviator};
-use crate::state::{AvRates, StepError, StepParams, System, Workspace};
+use crate::schemes::workspace::{StepParams, Workspace};
+use crate::state::{StepError, System};
 
 /// One leap-frog step (see the module); `rates(sys, ws)` evaluates every rate of the
 /// state in `sys` into `ws.av`.

@@ -16,130 +16,30 @@
 pub mod artificial_stress;
 pub mod av;
 pub(crate) mod common;
+pub mod family;
 pub(crate) mod leapfrog;
 pub mod options;
+pub(crate) mod pairs;
 pub mod pm;
+pub mod scheme;
+#[cfg(all(test, target_arch = "x86_64", not(feature = "f32")))]
+mod star_tests;
 pub mod ts;
+pub mod workspace;
 
-use crate::effects::{EffectSet, Effects};
-use crate::exec::Executor;
-use crate::halo::{Exchange, Halo};
-use crate::state::{Family, Layout, SchemeOptions, StepError, StepParams, System, Workspace};
+pub use av::records::AvRates;
+pub use family::{SchemeFamily, StepFn};
+pub use options::{
+    Integrator, MusclTime, NotRead, OptionKey, RiemannSolver, SceneOptions, SchemeOptions,
+    SpecificVolume,
+};
+pub use pm::records::PmStar;
+pub use scheme::{Family, Scheme};
+pub use ts::records::TsStar;
+pub use workspace::{record_len, Layout, StepParams, Workspace};
 
-/// One scheme family: advances the particles by one step of `params.dt`. What the rest
-/// of the code needs to know of a family is here, declared by the family's module: the
-/// effects it runs with, the exchanges its step makes, the workspace it needs; [`Family`]
-/// hands them out at run time.
-pub trait SchemeFamily {
-    /// The family.
-    const FAMILY: Family;
-    /// The effects this family can run with (others are rejected before stepping).
-    const SUPPORTED: EffectSet;
-    /// The halo exchanges a step makes, in order (see [`crate::halo`]).
-    const EXCHANGES: &'static [Exchange];
-    /// The workspace arrays a step with `effects` and `options` reads and writes.
-    fn layout(effects: EffectSet, options: &SchemeOptions) -> Layout;
-    /// [`SchemeFamily::step`] after checking the particle and workspace arrays have the
-    /// lengths `params.effects` and [`SchemeFamily::layout`] give them (the one storage
-    /// check of every family).
-    #[inline]
-    fn checked_step<const D: usize, E: Effects, X: Executor>(
-        sys: &mut System<'_, D>,
-        ws: &mut Workspace<'_, D>,
-        params: &StepParams<'_, D>,
-        exec: &X,
-        halo: &mut dyn Halo<D>,
-    ) -> Result<(), StepError> {
-        sys.check_storage(params.effects)?;
-        let layout = Self::layout(params.effects, &params.options);
-        ws.check(&layout, sys.len(), params.nbrs.unordered_pairs())?;
-        Self::step::<D, E, X>(sys, ws, params, exec, halo)
-    }
-    /// Advances `sys` by one time step, calling `halo` before each pass that reads a
-    /// neighbour field an earlier pass changed (see [`crate::halo`]; serial: [`NoHalo`]).
-    ///
-    /// [`NoHalo`]: crate::halo::NoHalo
-    fn step<const D: usize, E: Effects, X: Executor>(
-        sys: &mut System<'_, D>,
-        ws: &mut Workspace<'_, D>,
-        params: &StepParams<'_, D>,
-        exec: &X,
-        halo: &mut dyn Halo<D>,
-    ) -> Result<(), StepError>;
-}
-
-/// A compiled step function (one specialisation).
-pub type StepFn<const D: usize, X> = fn(
-    &mut System<'_, D>,
-    &mut Workspace<'_, D>,
-    &StepParams<'_, D>,
-    &X,
-    &mut dyn Halo<D>,
-) -> Result<(), StepError>;
-
-/// The scheme names of the CLI and scenes.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum Scheme {
-    /// Artificial-viscosity SPH.
-    Av,
-    /// Parshikov–Medin contact SPH (first order).
-    Pm,
-    /// Time-split Godunov SPH, first order.
-    Ts1,
-    /// Time-split Godunov SPH with MUSCL.
-    Ts2,
-    /// TKC-MUSCL-SPH: contact SPH with kernel correction and MUSCL.
-    Tkc,
-}
-
-impl Scheme {
-    /// All schemes, in the order tables list them.
-    pub const ALL: [Scheme; 5] = [
-        Scheme::Av,
-        Scheme::Pm,
-        Scheme::Ts1,
-        Scheme::Ts2,
-        Scheme::Tkc,
-    ];
-
-    /// The CLI/scene name.
-    pub const fn name(self) -> &'static str {
-        match self {
-            Scheme::Av => "av",
-            Scheme::Pm => "pm",
-            Scheme::Ts1 => "ts1",
-            Scheme::Ts2 => "ts2",
-            Scheme::Tkc => "tkc",
-        }
-    }
-    /// Parses a CLI/scene name.
-    pub fn from_name(s: &str) -> Option<Scheme> {
-        Scheme::ALL.into_iter().find(|x| x.name() == s)
-    }
-    /// The family that implements it.
-    pub const fn family(self) -> Family {
-        match self {
-            Scheme::Av => Family::Av,
-            Scheme::Pm | Scheme::Tkc => Family::Pm,
-            Scheme::Ts1 | Scheme::Ts2 => Family::Ts,
-        }
-    }
-    /// The effects the scheme itself brings (on top of the scene's).
-    pub const fn effects(self) -> EffectSet {
-        match self {
-            Scheme::Av | Scheme::Pm | Scheme::Ts1 => EffectSet::HYDRO,
-            Scheme::Ts2 => EffectSet::MUSCL,
-            Scheme::Tkc => EffectSet::CORRECTION.union(EffectSet::MUSCL),
-        }
-    }
-}
-
-/// The CLI/scene name.
-impl core::fmt::Display for Scheme {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        f.write_str(self.name())
-    }
-}
+use crate::effects::EffectSet;
+use crate::halo::Exchange;
 
 impl Family {
     /// The effects the family supports ([`SchemeFamily::SUPPORTED`]).
@@ -167,6 +67,72 @@ impl Family {
             Family::Av => av::Av::layout(effects, options),
             Family::Pm => pm::Pm::layout(effects, options),
             Family::Ts => ts::Ts::layout(effects, options),
+        }
+    }
+}
+
+impl SceneOptions {
+    /// The first key the scene sets that `scheme` does not read, with the reason.
+    pub fn first_not_read(&self, scheme: Scheme) -> Option<(OptionKey, NotRead)> {
+        OptionKey::ALL.into_iter().find_map(|k| {
+            if self.is_set(k) {
+                scheme.reads(k, self.asked()).err().map(|why| (k, why))
+            } else {
+                None
+            }
+        })
+    }
+
+    /// The options a run of `scheme` steps with: the scheme's defaults
+    /// ([`Scheme::default_options`]), then every key the scene sets.
+    pub fn resolve(&self, scheme: Scheme, constant_h: bool) -> SchemeOptions {
+        let mut o = scheme.default_options();
+        let d = o;
+        o.av_alpha = self.av_alpha.unwrap_or(d.av_alpha);
+        o.av_beta = self.av_beta.unwrap_or(d.av_beta);
+        o.limiter = self.limiter.unwrap_or(d.limiter);
+        o.riemann = self.riemann.unwrap_or(d.riemann);
+        o.dissipation = self.dissipation.unwrap_or(d.dissipation);
+        o.transverse_dissipation = self
+            .transverse_dissipation
+            .unwrap_or(d.transverse_dissipation);
+        o.objective = self.objective.unwrap_or(d.objective);
+        o.corrected_slopes = self.corrected_slopes.unwrap_or(d.corrected_slopes);
+        o.integrator = self.integrator.unwrap_or(d.integrator);
+        o.muscl_time = self.muscl_time.unwrap_or(d.muscl_time);
+        o.surface_lambda = self.surface_lambda.unwrap_or(d.surface_lambda);
+        o.surface_scan = self.surface_scan.unwrap_or(d.surface_scan);
+        o.specific_volume = self.specific_volume.unwrap_or(d.specific_volume);
+        o.det_epsilon = self.det_epsilon.unwrap_or(d.det_epsilon);
+        if let Some(eps) = self.artificial_stress {
+            o.artificial_stress.epsilon = eps;
+        }
+        if let Some(n) = self.artificial_stress_exponent {
+            o.artificial_stress.exponent = n;
+        }
+        o.constant_h = constant_h;
+        o
+    }
+}
+
+impl Scheme {
+    /// Whether the scheme reads `key` when the scene's `correction`/`muscl` ask for
+    /// `asked`, or why not (its family answers).
+    pub fn reads(self, key: OptionKey, asked: EffectSet) -> Result<(), NotRead> {
+        match self.family() {
+            Family::Av => av::reads(self, key),
+            Family::Pm => pm::reads(self, key, self.effects().union(asked)),
+            Family::Ts => ts::reads(self, key),
+        }
+    }
+
+    /// The options before a scene's keys: the seeds' defaults, with the family's choices
+    /// per scheme name (tkc's minmod limiter).
+    pub fn default_options(self) -> SchemeOptions {
+        match self.family() {
+            Family::Av => SchemeOptions::default(),
+            Family::Pm => pm::defaults(self),
+            Family::Ts => SchemeOptions::default(),
         }
     }
 }

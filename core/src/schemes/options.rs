@@ -20,13 +20,202 @@
 //! | `correction`, `muscl` | `pm` (tkc always has both) |
 //! | `artificial_stress`, `artificial_stress_exponent` | every scheme |
 
-use super::{av, pm, ts, Scheme};
+use super::artificial_stress::ArtificialStress;
+use super::scheme::Scheme;
 use crate::effects::EffectSet;
 use crate::limiter::Limiter;
 use crate::math::Real;
 use crate::riemann::Dissipation;
-use crate::state::{Family, MusclTime, RiemannSolver, SchemeOptions};
 use core::fmt;
+
+/// `NAMES`, `name`, `from_name` and `Display` (the scene name) of an enum chosen by name
+/// in a scene's `[options]`.
+macro_rules! scene_names {
+    ($t:ident { $($v:ident => $s:literal),+ $(,)? }) => {
+        impl $t {
+            /// The scene names, in the order messages list them.
+            pub const NAMES: [&'static str; [$($s),+].len()] = [$($s),+];
+
+            /// The scene name.
+            pub const fn name(self) -> &'static str {
+                match self {
+                    $($t::$v => $s),+
+                }
+            }
+
+            /// The choice of a scene name.
+            pub fn from_name(name: &str) -> Option<$t> {
+                match name {
+                    $($s => Some($t::$v),)+
+                    _ => None,
+                }
+            }
+        }
+
+        /// The scene name.
+        impl core::fmt::Display for $t {
+            fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+                f.write_str(self.name())
+            }
+        }
+    };
+}
+
+/// Riemann solver of the hydrodynamic step of `ts`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RiemannSolver {
+    /// Linearised acoustic solver.
+    Acoustic,
+    /// Two-shock approximate solver (Dukowicz 1985).
+    TwoShock,
+}
+
+/// The time dimension of the MUSCL reconstruction of `ts2`. Seed 000 eq 23 multiplies the
+/// slope by `[1 - c_i dt]`, which has units of length: see `schemes::ts` for the choice.
+/// Whatever is chosen applies to every use of the pair's star state (continuity, momentum
+/// and energy), as seed 000 eqs 22 and 34 use the same contact velocity.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MusclTime {
+    /// MUSCL–Hancock predictor: the particle's state is advanced half a step with the
+    /// Lagrangian acoustic equations before the spatial reconstruction.
+    Predictor,
+    /// The seed's factor made dimensionless: slopes scaled by `max(0, 1 - c_i dt / r_ij)`.
+    CourantFactor,
+    /// Spatial reconstruction only (default).
+    None,
+}
+
+/// The scene name.
+impl core::fmt::Display for MusclTime {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(match self {
+            MusclTime::Predictor => "predictor",
+            MusclTime::CourantFactor => "courant",
+            MusclTime::None => "none",
+        })
+    }
+}
+
+impl MusclTime {
+    /// The scene names, in the order messages list them.
+    pub const NAMES: [&'static str; 3] = ["predictor", "courant", "none"];
+
+    /// The time treatment of a scene name.
+    pub fn from_name(name: &str) -> Option<MusclTime> {
+        match name {
+            "predictor" => Some(MusclTime::Predictor),
+            "courant" => Some(MusclTime::CourantFactor),
+            "none" => Some(MusclTime::None),
+            _ => None,
+        }
+    }
+}
+
+scene_names!(RiemannSolver { Acoustic => "acoustic", TwoShock => "two_shock" });
+
+/// How the contact family (`pm`, `tkc`) advances in time (`options.integrator`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Integrator {
+    /// The seeds': every rate from the state at the start of the step (pm, explicit
+    /// Euler), or with MUSCL density and deviator first and the forces from the new
+    /// stresses (tkc, symplectic Euler). First order in time.
+    Euler,
+    /// The predictor–corrector leap-frog of `av` (kick, drift, predict, one rate
+    /// evaluation at the predicted end state, kick): second order in time, one pair
+    /// pass per step; with tkc's total-energy equation, energy stays exact.
+    Leapfrog,
+}
+
+scene_names!(Integrator { Euler => "euler", Leapfrog => "leapfrog" });
+
+/// The specific volumes a pair force of the contact family (`pm`, `tkc`) carries
+/// (`options.specific_volume`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SpecificVolume {
+    /// The seeds': `1/(rho_i rho_j)`.
+    Product,
+    /// Sugiura & Inutsuka (2016, 2017): `1/rho` interpolated along the pair, linear
+    /// through both values where the pair is compressed and cubic through the values and
+    /// the slopes of the plain kernel sum where it is stretched, and its square averaged
+    /// over the pair's kernel product (Inutsuka 2002; `schemes::pm::volume`).
+    Interpolated,
+}
+
+scene_names!(SpecificVolume { Product => "product", Interpolated => "interpolated" });
+
+/// Scheme options (with the defaults of the seeds).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SchemeOptions {
+    /// Monaghan viscosity alpha (`av`).
+    pub av_alpha: Real,
+    /// Monaghan viscosity beta (`av`).
+    pub av_beta: Real,
+    /// Slope limiter of `ts2`.
+    pub limiter: Limiter,
+    /// Riemann solver of `ts`.
+    pub riemann: RiemannSolver,
+    /// Where the Riemann solver's dissipation acts (every Godunov scheme;
+    /// [`crate::riemann::low_dissipation`]).
+    pub dissipation: crate::riemann::Dissipation,
+    /// Where the transverse Riemann problems' dissipation acts (`pm`, `tkc`), on top of
+    /// `dissipation`.
+    pub transverse_dissipation: crate::riemann::Dissipation,
+    /// The transverse Riemann problems of `pm` and `tkc` see the velocity jump of a pair
+    /// less its rigid rotation (the pair's mean spin times its separation): a rigid
+    /// rotation is not dissipated (`schemes::pm`).
+    pub objective: bool,
+    /// The MUSCL slopes of a free-surface particle (`L = I` there) corrected with its full
+    /// `L^-1` where `L` is invertible, so that they are exact for linear fields at the
+    /// surface as inside (`tkc`, `pm` with correction and MUSCL); the forces keep the
+    /// surface rule. Off: seed 004's `L = I` for the slopes too.
+    pub corrected_slopes: bool,
+    /// The time integration of `pm` and `tkc`.
+    pub integrator: Integrator,
+    /// How `ts2` accounts for the time step when it reconstructs the contact states (seed
+    /// 000 eq 23; one choice for continuity, momentum and energy, see `schemes::ts`).
+    pub muscl_time: MusclTime,
+    /// Threshold on the smallest eigenvalue of L below which a particle is a free-surface
+    /// particle (`tkc`: L = I there; `ts`: consistent divergence there).
+    pub surface_lambda: Real,
+    /// A particle below `surface_lambda` is a free-surface particle only if its
+    /// neighbourhood is open by the umbrella scan (`tkc`, `pm` with correction; see
+    /// `open_neighbourhood` in the schemes' common module); `false` (default): seed 004's
+    /// eigenvalue test alone. Off by default: the particles it keeps corrected at
+    /// compacting pore surfaces break momentum conservation (docs/elastic.md).
+    pub surface_scan: bool,
+    /// L is not inverted where det L is below this (`tkc`, `ts`).
+    pub det_epsilon: Real,
+    /// The specific volumes of the contact family's pair force (`pm`, `tkc`).
+    pub specific_volume: SpecificVolume,
+    /// Artificial stress (read with the effect `artificial_stress`).
+    pub artificial_stress: ArtificialStress,
+    /// Keep every particle's smoothing length as it starts (the peers' colliding rings,
+    /// and codes with a fixed h); otherwise `h = h_factor (m/rho)^(1/D)` after each step.
+    pub constant_h: bool,
+}
+
+impl Default for SchemeOptions {
+    fn default() -> Self {
+        SchemeOptions {
+            av_alpha: 1.0,
+            av_beta: 1.0,
+            limiter: Limiter::Superbee,
+            riemann: RiemannSolver::Acoustic,
+            dissipation: crate::riemann::Dissipation::Full,
+            transverse_dissipation: crate::riemann::Dissipation::Full,
+            objective: true,
+            corrected_slopes: false,
+            integrator: Integrator::Euler,
+            muscl_time: MusclTime::None,
+            specific_volume: SpecificVolume::Product,
+            surface_lambda: 0.75,
+            surface_scan: false,
+            det_epsilon: 0.05,
+            artificial_stress: ArtificialStress::default(),
+            constant_h: false,
+        }
+    }
+}
 
 /// A key of a scene's `[options]` table.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -215,7 +404,7 @@ pub struct SceneOptions {
     /// MUSCL slopes corrected at free surfaces too (tkc, pm with correction and MUSCL).
     pub corrected_slopes: Option<bool>,
     /// Time integration of pm and tkc.
-    pub integrator: Option<crate::state::Integrator>,
+    pub integrator: Option<Integrator>,
     /// Time treatment of the ts2 reconstruction.
     pub muscl_time: Option<MusclTime>,
     /// Free-surface eigenvalue threshold.
@@ -223,7 +412,7 @@ pub struct SceneOptions {
     /// The umbrella scan confirms each free-surface particle (tkc, pm with correction).
     pub surface_scan: Option<bool>,
     /// The specific volumes of the pair force (pm, tkc).
-    pub specific_volume: Option<crate::state::SpecificVolume>,
+    pub specific_volume: Option<SpecificVolume>,
     /// det L threshold below which L is not inverted.
     pub det_epsilon: Option<Real>,
     /// Kernel gradient correction for scheme pm.
@@ -295,70 +484,6 @@ impl SceneOptions {
             e = e.union(EffectSet::MUSCL);
         }
         e
-    }
-
-    /// The first key the scene sets that `scheme` does not read, with the reason.
-    pub fn first_not_read(&self, scheme: Scheme) -> Option<(OptionKey, NotRead)> {
-        OptionKey::ALL.into_iter().find_map(|k| {
-            if self.is_set(k) {
-                scheme.reads(k, self.asked()).err().map(|why| (k, why))
-            } else {
-                None
-            }
-        })
-    }
-
-    /// The options a run of `scheme` steps with: the scheme's defaults
-    /// ([`Scheme::default_options`]), then every key the scene sets.
-    pub fn resolve(&self, scheme: Scheme, constant_h: bool) -> SchemeOptions {
-        let mut o = scheme.default_options();
-        let d = o;
-        o.av_alpha = self.av_alpha.unwrap_or(d.av_alpha);
-        o.av_beta = self.av_beta.unwrap_or(d.av_beta);
-        o.limiter = self.limiter.unwrap_or(d.limiter);
-        o.riemann = self.riemann.unwrap_or(d.riemann);
-        o.dissipation = self.dissipation.unwrap_or(d.dissipation);
-        o.transverse_dissipation = self
-            .transverse_dissipation
-            .unwrap_or(d.transverse_dissipation);
-        o.objective = self.objective.unwrap_or(d.objective);
-        o.corrected_slopes = self.corrected_slopes.unwrap_or(d.corrected_slopes);
-        o.integrator = self.integrator.unwrap_or(d.integrator);
-        o.muscl_time = self.muscl_time.unwrap_or(d.muscl_time);
-        o.surface_lambda = self.surface_lambda.unwrap_or(d.surface_lambda);
-        o.surface_scan = self.surface_scan.unwrap_or(d.surface_scan);
-        o.specific_volume = self.specific_volume.unwrap_or(d.specific_volume);
-        o.det_epsilon = self.det_epsilon.unwrap_or(d.det_epsilon);
-        if let Some(eps) = self.artificial_stress {
-            o.artificial_stress.epsilon = eps;
-        }
-        if let Some(n) = self.artificial_stress_exponent {
-            o.artificial_stress.exponent = n;
-        }
-        o.constant_h = constant_h;
-        o
-    }
-}
-
-impl Scheme {
-    /// Whether the scheme reads `key` when the scene's `correction`/`muscl` ask for
-    /// `asked`, or why not (its family answers).
-    pub fn reads(self, key: OptionKey, asked: EffectSet) -> Result<(), NotRead> {
-        match self.family() {
-            Family::Av => av::reads(self, key),
-            Family::Pm => pm::reads(self, key, self.effects().union(asked)),
-            Family::Ts => ts::reads(self, key),
-        }
-    }
-
-    /// The options before a scene's keys: the seeds' defaults, with the family's choices
-    /// per scheme name (tkc's minmod limiter).
-    pub fn default_options(self) -> SchemeOptions {
-        match self.family() {
-            Family::Av => SchemeOptions::default(),
-            Family::Pm => pm::defaults(self),
-            Family::Ts => SchemeOptions::default(),
-        }
     }
 }
 

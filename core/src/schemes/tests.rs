@@ -8,6 +8,9 @@ use crate::material::eos::Hugoniot;
 use crate::material::{Material, Strength};
 use crate::math::{Real, Sym3, Vector};
 use crate::neighbors::{build_naive, NeighborList, Periodic};
+use crate::schemes::options::*;
+use crate::schemes::workspace::*;
+use crate::schemes::{AvRates, PmStar, TsStar};
 use crate::state::*;
 
 /// Whether a test's effect set stores plastic strains (the run-time effect `plasticity`).
@@ -374,7 +377,7 @@ fn neighbourhood<E: Effects>(
     let mut sums = [PairSums::<2>::default(); M];
     let mut geom = [PairGeom::<2>::default(); M * 64];
     let geom = &mut geom[..params.nbrs.unordered_pairs()];
-    super::common::geometry_pass::<2, PlasticTkc2, Serial>(
+    super::pairs::geometry_pass::<2, PlasticTkc2, Serial>(
         sys.x,
         sys.h,
         &params,

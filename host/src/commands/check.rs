@@ -65,7 +65,7 @@ pub fn command(args: CheckArgs) -> Result<(), String> {
         }
     }
     out!("effects   {effects}");
-    if sc.options.riemann == Some(gsph_core::state::RiemannSolver::TwoShock) {
+    if sc.options.riemann == Some(gsph_core::schemes::RiemannSolver::TwoShock) {
         // the two-shock solver's Us = c + s up slope of each material
         let slopes: Vec<String> = sc
             .materials

@@ -2,7 +2,8 @@
 //! as an `f64` and read back unchanged; small integers are exact in an `f64`).
 
 use gsph_core::math::{Sym3, Vector};
-use gsph_core::state::{AvRates, Correction, Gradients};
+use gsph_core::schemes::AvRates;
+use gsph_core::state::{Correction, Gradients};
 use nalgebra::SMatrix;
 
 /// A value that travels as a fixed number of `f64` words.

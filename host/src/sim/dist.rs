@@ -6,7 +6,7 @@ use super::Sim;
 use crate::dist::{self, rcb::Rcb, words::Words, Dist, Plan, REBALANCE_THRESHOLD};
 use crate::sim::SimError;
 use gsph_core::math::Vector;
-use gsph_core::state::AvRates;
+use gsph_core::schemes::AvRates;
 use std::time::Instant;
 
 impl<const D: usize> Sim<D> {

@@ -6,7 +6,8 @@
 use super::{vec_of, Particle, Sim};
 use crate::scene::InitialParticles;
 use gsph_core::math::{Sym3, Vector};
-use gsph_core::state::{smoothing_length, AvRates, Correction, Gradients, Layout, PairSums};
+use gsph_core::schemes::{AvRates, Layout};
+use gsph_core::state::{smoothing_length, Correction, Gradients, PairSums};
 
 /// Keeps the elements of `v` whose mask entry is true (an empty `v`, storage of an absent
 /// effect, stays empty).

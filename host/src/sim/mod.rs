@@ -10,6 +10,7 @@ use gsph_core::kernel::Kernel;
 use gsph_core::material::Material;
 use gsph_core::math::{Matrix, Real, Sym3, Vector};
 use gsph_core::neighbors::{NeighborError, Periodic};
+use gsph_core::schemes::*;
 use gsph_core::schemes::{Scheme, StepFn};
 use gsph_core::state::*;
 use rayon::prelude::*;
@@ -317,7 +318,7 @@ impl<const D: usize> Sim<D> {
         if self.simd.get() == gsph_core::simd::Simd::Baseline {
             0
         } else {
-            self.aux.len() * gsph_core::state::record_len(self.scheme.family(), D)
+            self.aux.len() * gsph_core::schemes::record_len(self.scheme.family(), D)
         }
     }
 

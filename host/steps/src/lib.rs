@@ -9,8 +9,8 @@
 use gsph_core::effects::EffectSet;
 use gsph_core::exec::{Executor, Split};
 
+use gsph_core::schemes::Family;
 use gsph_core::schemes::StepFn;
-use gsph_core::state::Family;
 
 /// The 1D step of a scheme family and effect set, if this build contains it.
 pub fn select_1d(family: Family, effects: EffectSet) -> Option<StepFn<1, Rayon>> {

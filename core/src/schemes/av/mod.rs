@@ -18,6 +18,10 @@
 //! the pair force gains `f_ij^n (R_i + R_j) . grad_i W_ij` (see
 //! [`super::artificial_stress`]), in the force and so in the energy rate.
 
+#[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
+pub(crate) mod lanes;
+#[cfg(all(test, target_arch = "x86_64", not(feature = "f32")))]
+mod lanes_tests;
 mod options;
 pub(crate) mod pairs;
 pub(crate) mod records;
@@ -29,9 +33,12 @@ use crate::effects::{EffectSet, Effects};
 use crate::exec::Executor;
 use crate::halo::{Exchange, Fields, Halo};
 use crate::schemes::common::halo_exchange;
+use crate::schemes::family::SchemeFamily;
 use crate::schemes::leapfrog;
-use crate::schemes::SchemeFamily;
-use crate::state::{Family, Layout, SchemeOptions, StepError, StepParams, System, Workspace};
+use crate::schemes::options::SchemeOptions;
+use crate::schemes::scheme::Family;
+use crate::schemes::workspace::{Layout, StepParams, Workspace};
+use crate::state::{StepError, System};
 pub use records::{record_len, AvRates};
 
 /// The halo exchanges of an `av` step (see [`crate::halo`]). The step is: kick and drift

@@ -1,7 +1,7 @@
 //! The `[options]` keys `av` reads ([`crate::schemes::options`]).
 
 use crate::schemes::options::{read_if, why, NotRead, OptionKey};
-use crate::schemes::Scheme;
+use crate::schemes::scheme::Scheme;
 
 /// Whether scheme `av` reads `key`, or why not ([`crate::schemes::options`]).
 pub(crate) fn reads(scheme: Scheme, key: OptionKey) -> Result<(), NotRead> {

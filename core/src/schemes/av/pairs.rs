@@ -5,11 +5,13 @@ use crate::effects::{EffectSet, Effects};
 use crate::exec::{for_each_record, Executor};
 use crate::math::{Matrix, Real, Sym3, Vector};
 use crate::schemes::artificial_stress::pair_acceleration;
+use crate::schemes::av::records::AvRates;
 use crate::schemes::common::{
     artificial_stress_tensors, cauchy, deviator_rate, equivalent_strain_rate, outer, refresh_aux,
 };
-use crate::schemes::common::{Pair, PairGeometry};
-use crate::state::{Aux, AvRates, StepParams, System, Workspace};
+use crate::schemes::pairs::{Pair, PairGeometry};
+use crate::schemes::workspace::{StepParams, Workspace};
+use crate::state::{Aux, System};
 
 /// The pair sums of one particle: `sum_j m_j t_ij`, `-1/2 sum_j m_j v_ij . t_ij`,
 /// `-sum_j V_j v_ij . grad_i W_ij` and `-sum_j V_j v_ij ⊗ grad_i W_ij` (module docs of
@@ -51,6 +53,9 @@ pub(crate) struct Owner<const D: usize> {
 /// Evaluates the rates of every particle at the current state into `ws.av` (the
 /// artificial-stress tensors, per-particle aux and neighbour records of `ws` are its
 /// scratch; the pair geometry is computed in the loop, `PairGeometry::seen_from_i`).
+///
+/// Lane twin: `rates_row` in `schemes/av/lanes.rs` (entered by [`av_row`]), held bitwise
+/// equal by `schemes/av/lanes_tests.rs`; a change here is a change there.
 pub(crate) fn rates<const D: usize, E: Effects, X: Executor>(
     sys: &System<'_, D>,
     ws: &mut Workspace<'_, D>,
@@ -73,8 +78,7 @@ pub(crate) fn rates<const D: usize, E: Effects, X: Executor>(
     let pg = PairGeometry::<D>::new::<E>(params);
     // the vectorised loop reads each neighbour's compact record: written here where it
     // runs (and the caller gave the room)
-    let records =
-        crate::simd::av_rows(params.simd, &pg) && ws.rec.len() == aux.len() * record_len(D);
+    let records = av_rows(params.simd, &pg) && ws.rec.len() == aux.len() * record_len(D);
     if records {
         write_records::<D, E, X>(sys, aux, art, art_on, ws.rec, exec);
     }
@@ -93,8 +97,8 @@ pub(crate) fn rates<const D: usize, E: Effects, X: Executor>(
                 art: if art_on { art[i] } else { Matrix::<D>::zeros() },
             };
             let mut s = Sums::<D>::zero();
-            let vectorised = records
-                && crate::simd::av_row::<D, E>(params, &pg, rec, i, &own, alpha, beta, &mut s);
+            let vectorised =
+                records && av_row::<D, E>(params, &pg, rec, i, &own, alpha, beta, &mut s);
             if !vectorised {
                 let (vi, rhoi, hi, cli, inv_i) = (own.v, own.rho, own.h, own.cl, own.inv_rho);
                 let mut body = |pr: &Pair<D>, f_art: Real| {
@@ -145,7 +149,7 @@ pub(crate) fn rates<const D: usize, E: Effects, X: Executor>(
     });
 }
 
-/// Writes every particle's neighbour record (`crate::state::Workspace::rec`): what
+/// Writes every particle's neighbour record (`crate::schemes::workspace::Workspace::rec`): what
 /// its neighbours' pair loops read of it, exactly the values the portable loop reads
 /// (its Cauchy stress as [`cauchy`] gives it).
 fn write_records<const D: usize, E: Effects, X: Executor>(
@@ -177,4 +181,53 @@ fn write_records<const D: usize, E: Effects, X: Executor>(
             }
         }
     });
+}
+
+/// Whether [`av_row`] runs at this level with this geometry: AVX2 or AVX-512, the cubic
+/// spline or Wendland C2 kernel (the caller then writes the neighbour records it reads).
+#[inline(always)]
+#[allow(unused_variables)]
+pub(crate) fn av_rows<const D: usize>(
+    level: crate::simd::SimdLevel,
+    pg: &crate::schemes::pairs::PairGeometry<D>,
+) -> bool {
+    #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
+    if level.vectorised() && crate::schemes::pairs::lanes::has_geometry(pg.kernel) {
+        return true;
+    }
+    false
+}
+
+/// The pair sums of particle `i` (`av`; what it brings to its pairs `own`) from its
+/// neighbours' records `rec` into `s` by the vectorised loop where [`av_rows`] holds.
+/// Returns whether it did them (false: the portable loop does), bitwise as the portable
+/// loop of `av`'s rates.
+#[inline(always)]
+#[allow(clippy::too_many_arguments, unused_variables)]
+pub(crate) fn av_row<const D: usize, E: crate::effects::Effects>(
+    params: &crate::schemes::workspace::StepParams<'_, D>,
+    pg: &crate::schemes::pairs::PairGeometry<D>,
+    rec: &[crate::math::Real],
+    i: usize,
+    own: &Owner<D>,
+    alpha: crate::math::Real,
+    beta: crate::math::Real,
+    s: &mut Sums<D>,
+) -> bool {
+    #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
+    if av_rows(params.simd, pg) {
+        let (row, owned) = (params.nbrs.of(i), params.nbrs.owned(i));
+        let lower = row.len() - owned.len();
+        // SAFETY: `params.simd` vouches for the instructions (`SimdLevel::assume`) and
+        // `av_rows` holds; the row checks its neighbours against `rec`
+        unsafe {
+            if params.simd.get() == crate::simd::Simd::Avx512 {
+                super::lanes::rates_row_avx512::<D, E>(pg, alpha, beta, rec, row, lower, own, s)
+            } else {
+                super::lanes::rates_row_avx2::<D, E>(pg, alpha, beta, rec, row, lower, own, s)
+            }
+        };
+        return true;
+    }
+    false
 }

@@ -45,7 +45,7 @@ impl<const D: usize> Default for AvRates<D> {
 /// dimensions: the fields of `RecordAt`, padded to whole groups of four (one AVX2 load
 /// each).
 ///
-/// [`Workspace::rec`]: crate::state::Workspace::rec
+/// [`Workspace::rec`]: crate::schemes::workspace::Workspace::rec
 pub const fn record_len(d: usize) -> usize {
     RecordAt::of(d).end.div_ceil(4) * 4
 }

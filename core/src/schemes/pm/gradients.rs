@@ -4,10 +4,10 @@
 use crate::effects::Effects;
 use crate::exec::{Executor, Optional};
 use crate::math::{det, inverse, Matrix, Real, Sym3, Vector};
-use crate::schemes::common::{
-    cauchy, for_each_pair, min_sym_eigenvalue, open_neighbourhood, outer, Pair,
-};
-use crate::state::{Aux, Correction, Gradients, PairGeom, PairSums, StepParams, System};
+use crate::schemes::common::{cauchy, min_sym_eigenvalue, open_neighbourhood, outer};
+use crate::schemes::pairs::{for_each_pair, Pair};
+use crate::schemes::workspace::StepParams;
+use crate::state::{Aux, Correction, Gradients, PairGeom, PairSums, System};
 
 /// Relative tolerance of the near-surface test: a boundary particle at `r <= h (1 + tol)`
 /// counts as within the smoothing length `h`.

@@ -10,9 +10,11 @@ use super::prepare;
 use crate::effects::{EffectSet, Effects};
 use crate::exec::Executor;
 use crate::halo::Halo;
+use crate::schemes::av::records::AvRates;
 use crate::schemes::common::{artificial_stress_tensors, deviator_rate, equivalent_strain_rate};
 use crate::schemes::leapfrog;
-use crate::state::{AvRates, PairSums, StepError, StepParams, System, Workspace};
+use crate::schemes::workspace::{StepParams, Workspace};
+use crate::state::{PairSums, StepError, System};
 
 /// One leap-frog step of `pm`/`tkc` (`core/src/schemes/leapfrog.rs`): density by its
 /// exponential, the total energy with correction (tkc), the internal energy without (pm).

@@ -39,6 +39,10 @@
 //! is unchanged.
 
 pub(crate) mod gradients;
+#[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
+pub(crate) mod lanes;
+#[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
+mod lanes_frame;
 mod leapfrog;
 mod options;
 pub(crate) mod pairs;
@@ -56,14 +60,14 @@ use crate::effects::{EffectSet, Effects};
 use crate::exec::Executor;
 use crate::halo::{Exchange, Fields, Halo};
 use crate::schemes::common::{
-    artificial_stress_tensors, geometry_pass, halo_exchange, refresh_aux, refresh_eos,
-    refresh_pressure,
+    artificial_stress_tensors, halo_exchange, refresh_aux, refresh_eos, refresh_pressure,
 };
-use crate::schemes::SchemeFamily;
-use crate::state::{
-    Family, Integrator, Layout, PairGeom, PairSums, SchemeOptions, SpecificVolume, StepError,
-    StepParams, System, Workspace,
-};
+use crate::schemes::family::SchemeFamily;
+use crate::schemes::options::{Integrator, SchemeOptions, SpecificVolume};
+use crate::schemes::pairs::geometry_pass;
+use crate::schemes::scheme::Family;
+use crate::schemes::workspace::{Layout, StepParams, Workspace};
+use crate::state::{PairGeom, PairSums, StepError, System};
 pub use records::{record_len, PmStar};
 
 /// The halo exchanges of a `pm`/`tkc` step, in order (see [`crate::halo`]).

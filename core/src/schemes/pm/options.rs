@@ -3,9 +3,9 @@
 
 use crate::effects::EffectSet;
 use crate::limiter::Limiter;
+use crate::schemes::options::SchemeOptions;
 use crate::schemes::options::{read_if, why, NotRead, OptionKey};
-use crate::schemes::Scheme;
-use crate::state::SchemeOptions;
+use crate::schemes::scheme::Scheme;
 
 /// Whether a scheme of the contact family (`pm`, `tkc`) reads `key` with `effects` (its
 /// own and those the scene's `correction` and `muscl` ask for), or why not

@@ -9,11 +9,12 @@ use crate::math::{Matrix, Real, Sym3, Vector};
 use crate::riemann::low_dissipation::central_vector;
 use crate::riemann::{acoustic_star_vector, elastic_star_vector, two_shock_star, ShockSide};
 use crate::schemes::artificial_stress::pair_acceleration;
-use crate::schemes::common::{cauchy, failed, for_each_pair, outer, solve_pair_rows, Pair};
-use crate::state::{
-    Aux, Correction, Gradients, PairGeom, PairSums, PmStar, RiemannSolver, SpecificVolume,
-    StepParams, System, Workspace,
-};
+use crate::schemes::common::{cauchy, failed, outer};
+use crate::schemes::options::{RiemannSolver, SpecificVolume};
+use crate::schemes::pairs::{for_each_pair, solve_pair_rows, Pair};
+use crate::schemes::pm::records::PmStar;
+use crate::schemes::workspace::{StepParams, Workspace};
+use crate::state::{Aux, Correction, Gradients, PairGeom, PairSums, System};
 
 /// Reconstructed contact values of a pair: `Phi_l = Phi_i + phi(r) (grad Phi_i . r_ji)/2`
 /// with `r = (Phi_j - Phi_i)/(grad Phi_i . r_ji)` (and likewise for j), each side's
@@ -84,6 +85,8 @@ fn pair_basis<const D: usize>(n: &Vector<D>) -> [Vector<D>; D] {
 
 /// MUSCL of a vector quantity component by component in the pair's frame ([`pair_basis`]):
 /// the limiter sees the normal and tangential parts, whatever the axes of the scene.
+///
+/// Lane twin: `muscl_frame` in `schemes/pm/lanes_frame.rs`.
 #[inline(always)]
 fn muscl_frame<const D: usize>(
     lim: Limiter,
@@ -124,8 +127,7 @@ pub(super) fn pair_pass<
     let art: &[Matrix<D>] = ws.art;
     let (fac, aux): (&[Real], &[Aux]) = (ws.fac, ws.aux);
     // the neighbour records of the vectorised rows (written where they run)
-    let records =
-        crate::simd::pm_records::<D, E, X>(sys, aux, corr, grad, grad_s, params, ws.rec, exec);
+    let records = pm_records::<D, E, X>(sys, aux, corr, grad, grad_s, params, ws.rec, exec);
     let rec: &[Real] = ws.rec;
     solve_pair_rows::<D, X, PmStar<D>>(
         params,
@@ -134,7 +136,7 @@ pub(super) fn pair_pass<
         exec,
         |i, geom, owned, out| {
             if records {
-                crate::simd::pm_star_row::<D, E>(
+                pm_star_row::<D, E>(
                     sys, aux, corr, grad, grad_s, rec, params, i, geom, owned, out,
                 )
             } else {
@@ -201,6 +203,10 @@ pub(super) struct GatherCtx<'a, const D: usize> {
 /// The star state of pair (i, j) with `i` on the left (`pr` seen from `i`): MUSCL states
 /// (with `E::MUSCL`), tractions on the (corrected, with `E::CORRECTION`) axis, the elastic
 /// Riemann problem, and no tension across the contact of a failed particle.
+///
+/// Lane twin: `star_row` in `schemes/pm/lanes.rs` (entered by [`pm_star_row`]; the MUSCL
+/// frame and the vector Riemann problem in `lanes_frame.rs` and `simd/riemann.rs`), held
+/// bitwise equal by `schemes/star_tests.rs`; a change here is a change there.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn pair_star<const D: usize, E: Effects>(
@@ -418,6 +424,81 @@ pub(super) fn gather<
         }
     }
     out
+}
+
+/// Writes every particle's neighbour record for [`pm_star_row`] into `rec` where the
+/// level and the step's options allow the vectorised row and it pays (AVX2 or AVX-512;
+/// `super::lanes::covers` and `pays`) and `rec` has the room (`state::record_len`); returns
+/// whether it did (false: the rows run the portable loop).
+#[inline(always)]
+#[allow(clippy::too_many_arguments, unused_variables)]
+pub(crate) fn pm_records<const D: usize, E: crate::effects::Effects, X: crate::exec::Executor>(
+    sys: &crate::state::System<'_, D>,
+    aux: &[crate::state::Aux],
+    corr: &[crate::state::Correction<D>],
+    grad: &[crate::state::Gradients<D>],
+    grad_s: &[[crate::math::Vector<D>; 6]],
+    params: &crate::schemes::workspace::StepParams<'_, D>,
+    rec: &mut [crate::math::Real],
+    exec: &X,
+) -> bool {
+    #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
+    if params.simd.vectorised()
+        && super::lanes::covers(params)
+        && crate::schemes::pairs::stars_pay::<D, E>(params)
+        && rec.len() == sys.x.len() * crate::schemes::pm::record_len(D)
+    {
+        super::lanes::write_records::<D, E, X>(sys, aux, corr, grad, grad_s, params, rec, exec);
+        return true;
+    }
+    false
+}
+
+/// The star states of the pairs particle `i` owns (`pm`, `tkc`: its neighbours `owned`,
+/// their geometry `geom`) into `out` by the vectorised loop, from the neighbour records
+/// `rec` [`pm_records`] wrote (call only where it returned true). Returns how many pairs it
+/// did (0: none; the portable loop does the rest), each bitwise as
+/// [`crate::schemes::pm::pairs::pair_star`] gives it.
+#[inline(always)]
+#[allow(clippy::too_many_arguments, unused_variables)]
+pub(crate) fn pm_star_row<const D: usize, E: crate::effects::Effects>(
+    sys: &crate::state::System<'_, D>,
+    aux: &[crate::state::Aux],
+    corr: &[crate::state::Correction<D>],
+    grad: &[crate::state::Gradients<D>],
+    grad_s: &[[crate::math::Vector<D>; 6]],
+    rec: &[crate::math::Real],
+    params: &crate::schemes::workspace::StepParams<'_, D>,
+    i: usize,
+    geom: &[crate::state::PairGeom<D>],
+    owned: &[u32],
+    out: &mut [crate::schemes::pm::records::PmStar<D>],
+) -> usize {
+    #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
+    if params.simd.vectorised()
+        && super::lanes::covers(params)
+        && crate::schemes::pairs::stars_pay::<D, E>(params)
+    {
+        // SAFETY: `params.simd` vouches for the instructions (`SimdLevel::assume`) and
+        // `covers` holds
+        return unsafe {
+            super::lanes::star_row_at::<D, E>(
+                params.simd,
+                sys,
+                aux,
+                corr,
+                grad,
+                grad_s,
+                rec,
+                params,
+                i,
+                geom,
+                owned,
+                out,
+            )
+        };
+    }
+    0
 }
 
 #[cfg(test)]

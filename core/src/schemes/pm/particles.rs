@@ -4,7 +4,8 @@
 use crate::effects::{EffectSet, Effects};
 use crate::math::Real;
 use crate::schemes::common::advance_deviator;
-use crate::state::{PairSums, StepParams, System};
+use crate::schemes::workspace::StepParams;
+use crate::state::{PairSums, System};
 
 /// Density (eq 16) and deviator (Hooke + Jaumann + return) of local particle `k`.
 #[inline(always)]

@@ -27,8 +27,9 @@
 
 use crate::exec::Executor;
 use crate::math::Real;
-use crate::schemes::common::for_each_pair;
-use crate::state::{Gradients, PairGeom, StepParams, System};
+use crate::schemes::pairs::for_each_pair;
+use crate::schemes::workspace::StepParams;
+use crate::state::{Gradients, PairGeom, System};
 
 /// `V_ij^2` of a pair at distance `ds` with specific volumes `vi`, `vj`, their slopes
 /// `vpi`, `vpj` along the pair (towards `i`) and the kernel width `mu = <s^2>`: cubic

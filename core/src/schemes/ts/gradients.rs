@@ -4,8 +4,10 @@
 use crate::effects::Effects;
 use crate::exec::{Executor, Optional};
 use crate::math::{det, inverse, Matrix, Real};
-use crate::schemes::common::{failed, for_each_pair, min_sym_eigenvalue, outer, pair_pressure};
-use crate::state::{Aux, Gradients, PairGeom, PairSums, StepParams, System};
+use crate::schemes::common::{failed, min_sym_eigenvalue, outer, pair_pressure};
+use crate::schemes::pairs::for_each_pair;
+use crate::schemes::workspace::StepParams;
+use crate::state::{Aux, Gradients, PairGeom, PairSums, System};
 
 /// Gradients at the start of the step: the velocity gradient
 /// `dv_a/dx_b = sum_j V_j (v_j - v_i)_a (grad_i W_ij)_b` (for the deviator) and, with MUSCL,

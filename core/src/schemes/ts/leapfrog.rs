@@ -14,11 +14,13 @@ use crate::effects::{EffectSet, Effects};
 use crate::exec::Executor;
 use crate::halo::Halo;
 use crate::math::{Real, Vector};
+use crate::schemes::av::records::AvRates;
 use crate::schemes::common::{
     artificial_stress_tensors, deviator_rate, equivalent_strain_rate, halo_exchange,
 };
 use crate::schemes::leapfrog;
-use crate::state::{AvRates, PairGeom, PairSums, StepError, StepParams, System, Workspace};
+use crate::schemes::workspace::{StepParams, Workspace};
+use crate::state::{PairGeom, PairSums, StepError, System};
 
 /// One leap-frog step of `ts1`/`ts2` (see the module).
 pub(super) fn step<const D: usize, E: Effects, X: Executor>(

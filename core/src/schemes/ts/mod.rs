@@ -38,9 +38,9 @@
 //! contact pressure and velocity of the momentum and energy equations (eq 34) come from
 //! the same left/right states, as in the seed. Eq 23 prints the factor `[1 - c_i dt]`,
 //! which has units of length; divided by the pair distance it becomes the MUSCL–Hancock
-//! factor `f_i = max(0, 1 - c_i dt / r_ij)` ([`MusclTime::CourantFactor`](crate::state::MusclTime::CourantFactor)); a genuine
-//! half-step predictor is [`MusclTime::Predictor`](crate::state::MusclTime::Predictor); the default is the spatial
-//! reconstruction alone (`f = 1`, [`MusclTime::None`](crate::state::MusclTime::None)): the most accurate of the three,
+//! factor `f_i = max(0, 1 - c_i dt / r_ij)` ([`MusclTime::CourantFactor`](crate::schemes::options::MusclTime::CourantFactor)); a genuine
+//! half-step predictor is [`MusclTime::Predictor`](crate::schemes::options::MusclTime::Predictor); the default is the spatial
+//! reconstruction alone (`f = 1`, [`MusclTime::None`](crate::schemes::options::MusclTime::None)): the most accurate of the three,
 //! and with the bounded extrapolation and the symplectic-Euler ordering it keeps an
 //! elastic standing wave bounded (measurements in docs/ts2_reconstruction.md).
 //!
@@ -48,6 +48,8 @@
 //! `riemann_states`: the place where first order is forced and tension is cut.
 
 mod gradients;
+#[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
+pub(crate) mod lanes;
 mod leapfrog;
 mod options;
 pub(crate) mod pairs;
@@ -62,14 +64,15 @@ use crate::exec::Executor;
 use crate::halo::{Exchange, Fields, Halo};
 use crate::math::{real, Real};
 use crate::schemes::common::{
-    advance_deviator, artificial_stress_tensors, geometry_pass, halo_exchange, refresh_aux,
-    refresh_eos, refresh_pressure,
+    advance_deviator, artificial_stress_tensors, halo_exchange, refresh_aux, refresh_eos,
+    refresh_pressure,
 };
-use crate::schemes::SchemeFamily;
-use crate::state::{
-    Family, Integrator, Layout, PairGeom, PairSums, SchemeOptions, StepError, StepParams, System,
-    Workspace,
-};
+use crate::schemes::family::SchemeFamily;
+use crate::schemes::options::{Integrator, SchemeOptions};
+use crate::schemes::pairs::geometry_pass;
+use crate::schemes::scheme::Family;
+use crate::schemes::workspace::{Layout, StepParams, Workspace};
+use crate::state::{PairGeom, PairSums, StepError, System};
 pub use records::{record_len, TsStar};
 
 /// The halo exchanges of a `ts` step, in order (see [`crate::halo`]).

@@ -2,7 +2,7 @@
 
 use crate::effects::EffectSet;
 use crate::schemes::options::{read_if, why, NotRead, OptionKey};
-use crate::schemes::Scheme;
+use crate::schemes::scheme::Scheme;
 
 /// Whether a scheme of the time-split family (`ts1`, `ts2`) reads `key`, or why not
 /// ([`crate::schemes::options`]).

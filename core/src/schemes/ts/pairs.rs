@@ -8,10 +8,12 @@ use crate::math::{inverse, real, Matrix, Real, Sym3, Vector};
 use crate::riemann::low_dissipation::{blend, central};
 use crate::riemann::{pressure_star, two_shock_star, PressureSide, ShockSide};
 use crate::schemes::artificial_stress::pair_acceleration;
-use crate::schemes::common::{failed, for_each_pair, outer, pair_pressure, solve_pair_rows};
-use crate::state::{
-    Aux, Gradients, MusclTime, PairGeom, PairSums, RiemannSolver, StepParams, System, TsStar,
-};
+use crate::schemes::common::{failed, outer, pair_pressure};
+use crate::schemes::options::{MusclTime, RiemannSolver};
+use crate::schemes::pairs::{for_each_pair, solve_pair_rows};
+use crate::schemes::ts::records::TsStar;
+use crate::schemes::workspace::StepParams;
+use crate::state::{Aux, Gradients, PairGeom, PairSums, System};
 
 /// Continuity: `div_i = 2 sum_j m_j/rho_j (v*_ij - v_i) . grad_i W_ij` with the contact
 /// velocities of the hydrodynamic Riemann problem at the start of the step (seed 000 eq
@@ -86,7 +88,7 @@ pub(super) fn continuity_pass<const D: usize, E: Effects, X: Executor>(
 
 /// Every pair's star state once, on its owner's side ([`star`]; `p* = 0` unless `with_p`),
 /// a row four pairs at a time where the SIMD level and the options allow
-/// ([`crate::simd::ts_star_row`], reading the neighbour records it has `rec` written
+/// ([`ts_star_row`], reading the neighbour records it has `rec` written
 /// first), bitwise the same.
 #[allow(clippy::too_many_arguments)]
 fn solve_stars<const D: usize, E: Effects, X: Executor>(
@@ -99,7 +101,7 @@ fn solve_stars<const D: usize, E: Effects, X: Executor>(
     exec: &X,
     with_p: bool,
 ) {
-    let records = crate::simd::ts_records::<D, E, X>(sys, grad, params, rec, exec);
+    let records = ts_records::<D, E, X>(sys, grad, params, rec, exec);
     let rec: &[Real] = rec;
     solve_pair_rows::<D, X, TsStar>(
         params,
@@ -108,9 +110,7 @@ fn solve_stars<const D: usize, E: Effects, X: Executor>(
         exec,
         |i, geom, owned, out| {
             if records {
-                crate::simd::ts_star_row::<D, E>(
-                    sys, grad, rec, params, i, geom, owned, out, with_p,
-                )
+                ts_star_row::<D, E>(sys, grad, rec, params, i, geom, owned, out, with_p)
             } else {
                 0
             }
@@ -126,6 +126,9 @@ fn solve_stars<const D: usize, E: Effects, X: Executor>(
 }
 
 /// The hydrodynamic star state `(u*, P*)` of pair (i, j) along `n`.
+///
+/// Lane twin: `star_row` in `schemes/ts/lanes.rs` (entered by [`ts_star_row`]), held
+/// bitwise equal by `schemes/star_tests.rs`; a change here is a change there.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn star<const D: usize, E: Effects>(
@@ -380,4 +383,72 @@ pub(super) fn hydro_pass<const D: usize, E: Effects, X: Executor>(
             out.power = power;
         }
     });
+}
+
+/// Writes every particle's neighbour record for [`ts_star_row`] into `rec` where the
+/// level and the step's options allow the vectorised row and it pays (AVX2 or AVX-512;
+/// `super::lanes::covers` and `pays`) and `rec` has the room (`state::record_len`); returns
+/// whether it did (false: the rows run the portable loop).
+#[inline(always)]
+#[allow(unused_variables)]
+pub(crate) fn ts_records<const D: usize, E: crate::effects::Effects, X: crate::exec::Executor>(
+    sys: &crate::state::System<'_, D>,
+    grad: &[crate::state::Gradients<D>],
+    params: &crate::schemes::workspace::StepParams<'_, D>,
+    rec: &mut [crate::math::Real],
+    exec: &X,
+) -> bool {
+    #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
+    if params.simd.vectorised()
+        && super::lanes::covers(params)
+        && crate::schemes::pairs::stars_pay::<D, E>(params)
+        && rec.len() == sys.x.len() * crate::schemes::ts::record_len(D)
+    {
+        super::lanes::write_records::<D, E, X>(sys, grad, params, rec, exec);
+        return true;
+    }
+    false
+}
+
+/// The star states of the pairs particle `i` owns (`ts1`, `ts2`: its neighbours `owned`,
+/// their geometry `geom`) into `out` by the vectorised loop, from the neighbour records
+/// `rec` [`ts_records`] wrote (call only where it returned true). Returns how many pairs it
+/// did (0: none; the portable loop does the rest), each bitwise as
+/// [`crate::schemes::ts::pairs::star`] gives it (`p* = 0` unless `with_p`).
+#[inline(always)]
+#[allow(clippy::too_many_arguments, unused_variables)]
+pub(crate) fn ts_star_row<const D: usize, E: crate::effects::Effects>(
+    sys: &crate::state::System<'_, D>,
+    grad: &[crate::state::Gradients<D>],
+    rec: &[crate::math::Real],
+    params: &crate::schemes::workspace::StepParams<'_, D>,
+    i: usize,
+    geom: &[crate::state::PairGeom<D>],
+    owned: &[u32],
+    out: &mut [crate::schemes::ts::records::TsStar],
+    with_p: bool,
+) -> usize {
+    #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
+    if params.simd.vectorised()
+        && super::lanes::covers(params)
+        && crate::schemes::pairs::stars_pay::<D, E>(params)
+    {
+        // SAFETY: `params.simd` vouches for the instructions (`SimdLevel::assume`) and
+        // `covers` holds
+        return unsafe {
+            super::lanes::star_row_at::<D, E>(
+                params.simd,
+                sys,
+                grad,
+                rec,
+                params,
+                i,
+                geom,
+                owned,
+                out,
+                with_p,
+            )
+        };
+    }
+    0
 }

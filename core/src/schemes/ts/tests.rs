@@ -9,8 +9,9 @@ use crate::material::{Material, Strength};
 use crate::math::Sym3;
 use crate::math::Vector;
 use crate::neighbors::{build_naive, NeighborList, Periodic};
-use crate::schemes::common::{for_each_pair, pair_pressure};
-use crate::state::SchemeOptions;
+use crate::schemes::common::pair_pressure;
+use crate::schemes::options::SchemeOptions;
+use crate::schemes::pairs::for_each_pair;
 use crate::state::{Aux, Gradients};
 
 #[derive(Clone, Copy, Debug)]

@@ -14,22 +14,25 @@
 
 use core::arch::x86_64::{__m256d, __m512d};
 
-use super::ops::{add, dot, load, mul, neg, records, shock_slope, splat, store, sub, Side};
-use super::pm_lanes::{gemv, muscl_pair, scale, sym_dot, Calls, Ml, Vl};
+use super::lanes_frame::{muscl_pair, Calls};
 use crate::effects::Effects;
 use crate::exec::{for_each_record, Executor};
 use crate::limiter::Limiter;
 use crate::math::{Real, Sym3};
 use crate::riemann::Dissipation;
 use crate::schemes::av::records::sym_at;
-use crate::schemes::common::{failed, Pair};
+use crate::schemes::common::failed;
+use crate::schemes::options::RiemannSolver;
+use crate::schemes::pairs::Pair;
 use crate::schemes::pm::gradients::objective;
 use crate::schemes::pm::pairs::pair_star;
+use crate::schemes::pm::records::PmStar;
 use crate::schemes::pm::records::{record_len, RecordAt};
+use crate::schemes::workspace::StepParams;
+use crate::simd::ops::*;
+use crate::simd::riemann::*;
 use crate::simd::{Simd, SimdLevel};
-use crate::state::{
-    Aux, Correction, Gradients, PairGeom, PmStar, RiemannSolver, StepParams, System,
-};
+use crate::state::{Aux, Correction, Gradients, PairGeom, System};
 
 /// Writes every particle's neighbour record ([`RecordAt`]) for [`star_row`]: exactly the
 /// values the portable [`pair_star`] reads of a neighbour (its Cauchy stress as the row's

@@ -3,15 +3,18 @@
 
 extern crate std;
 
-use super::star_tests::{scene, with_pairs};
 use crate::effects::{EffectSet, Effects};
 use crate::exec::Serial;
 use crate::kernel::Kernel;
 use crate::math::{Matrix, Real};
 use crate::schemes::av::pairs::rates;
 use crate::schemes::av::record_len;
+use crate::schemes::av::records::AvRates;
+use crate::schemes::options::SchemeOptions;
+use crate::schemes::star_tests::{scene, with_pairs};
+use crate::schemes::workspace::{StepParams, Workspace};
 use crate::simd::SimdLevel;
-use crate::state::{Aux, AvRates, SchemeOptions, StepParams, System, Workspace};
+use crate::state::{Aux, System};
 use std::vec;
 use std::vec::Vec;
 

@@ -9,13 +9,14 @@
 
 use core::arch::x86_64::{__m256d, __m512d};
 
-use super::lanes::Lanes;
-use super::ops::{add, div, dot, lt, mul, neg, pair_lanes, records, select, splat, store, sub};
 use crate::effects::Effects;
 use crate::math::Real;
 use crate::schemes::av::pairs::{Owner, Sums};
 use crate::schemes::av::records::{record_len, sym_at, RecordAt};
-use crate::schemes::common::PairGeometry;
+use crate::schemes::pairs::lanes::pair_lanes;
+use crate::schemes::pairs::PairGeometry;
+use crate::simd::lanes::Lanes;
+use crate::simd::ops::*;
 
 /// The pair sums of particle `own` over its list `row` (entries from `lower` on are the
 /// pairs it owns), from the neighbours' records `rec`, into `s`: bitwise the portable

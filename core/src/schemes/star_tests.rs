@@ -11,15 +11,18 @@ use crate::material::eos::Hugoniot;
 use crate::material::{Material, Strength};
 use crate::math::{Lcg, Matrix, Real, Sym3, Vector};
 use crate::neighbors::{build_naive, NeighborList, Periodic};
-use crate::schemes::common::geometry_pass;
-use crate::schemes::common::Pair;
+use crate::schemes::options::{RiemannSolver, SchemeOptions};
+use crate::schemes::pairs::geometry_pass;
+use crate::schemes::pairs::Pair;
+use crate::schemes::pm::lanes as pm_star;
 use crate::schemes::pm::pairs::pair_star;
+use crate::schemes::pm::records::PmStar;
+use crate::schemes::ts::lanes as ts_star;
 use crate::schemes::ts::pairs::star;
-use crate::simd::{pm_star, tested_levels, ts_star, SimdLevel};
-use crate::state::{
-    Aux, Correction, Gradients, PairGeom, PmStar, RiemannSolver, SchemeOptions, StepParams, System,
-    TsStar,
-};
+use crate::schemes::ts::records::TsStar;
+use crate::schemes::workspace::StepParams;
+use crate::simd::{tested_levels, SimdLevel};
+use crate::state::{Aux, Correction, Gradients, PairGeom, System};
 use std::vec;
 use std::vec::Vec;
 

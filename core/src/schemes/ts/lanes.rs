@@ -12,21 +12,22 @@
 
 use core::arch::x86_64::{__m256d, __m512d};
 
-use super::lanes::Lanes;
-use super::ops::{
-    add, div, dot, finite, gt, limit, load, minmod, mul, neg, records, select, shock_slope, splat,
-    store, sub, two_shock, Side,
-};
 use crate::effects::{EffectSet, Effects};
 use crate::exec::{for_each_record, Executor};
 use crate::limiter::Limiter;
 use crate::math::Real;
 use crate::riemann::Dissipation;
 use crate::schemes::common::failed;
+use crate::schemes::options::{MusclTime, RiemannSolver};
 use crate::schemes::ts::pairs::star;
+use crate::schemes::ts::records::TsStar;
 use crate::schemes::ts::records::{record_len, RecordAt};
+use crate::schemes::workspace::StepParams;
+use crate::simd::lanes::Lanes;
+use crate::simd::ops::*;
+use crate::simd::riemann::*;
 use crate::simd::{Simd, SimdLevel};
-use crate::state::{Gradients, MusclTime, PairGeom, RiemannSolver, StepParams, System, TsStar};
+use crate::state::{Gradients, PairGeom, System};
 
 /// Whether [`star_row`] covers the options of this step.
 #[inline(always)]
@@ -99,25 +100,6 @@ unsafe fn slopes<V: Lanes, const D: usize>(
         }
     }
     [dot::<V, D>(n, &gvn), dot::<V, D>(gp, n), dot::<V, D>(gr, n)]
-}
-
-/// [`crate::riemann::pressure_star`] (the acoustic solver with `s = -p`) with impedances
-/// `zl`, `zr`; lanes where `zl + zr` is not positive and finite take the mean of the sides.
-#[inline(always)]
-unsafe fn pressure_star<V: Lanes>(ul: V, pl: V, zl: V, ur: V, pr: V, zr: V) -> (V, V) {
-    let (sl, sr) = (neg(pl), neg(pr));
-    let zs = add(zl, zr);
-    let ok = V::and(gt(zs, V::zero()), finite(zs));
-    let inv = div(splat(1.0), zs);
-    let u = mul(sub(add(add(mul(zl, ul), mul(zr, ur)), sr), sl), inv);
-    let s = mul(
-        add(add(mul(zr, sl), mul(zl, sr)), mul(mul(zl, zr), sub(ur, ul))),
-        inv,
-    );
-    let half = splat(0.5);
-    let u = select(ok, u, mul(half, add(ul, ur)));
-    let s = select(ok, s, mul(half, add(sl, sr)));
-    (u, neg(s))
 }
 
 /// The star states of the pairs particle `i` owns (its neighbours `owned`, their stored
