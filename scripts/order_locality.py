@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """How far apart in memory a particle's neighbours lie, for a 1D order of a 2D lattice.
 
-docs/performance.md, issue 28 "continued (6)": a pass over the particles in index order
+docs/performance.md "Size and threads" (measured in docs/notes/performance_history_28_continued.md,
+issue 28 "continued (6)"): a pass over the particles in index order
 finds a neighbour's data in L2 only when it was touched recently, i.e. when the neighbour
 lies few places away in the order. This script lays out two rings of lattice particles
 like cases/rings.toml (about 4,416 / 17,592 / 70,320 particles), orders them in Morton

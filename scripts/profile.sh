@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Time per pass of each scheme on the colliding rings (docs/performance_history.md "Profiles"):
+# Time per pass of each scheme on the colliding rings (docs/notes/performance_history.md "Profiles"):
 # builds a 2D-only gsph with full debug info (target/prof, about 2.5 minutes), records 300
 # steps of cases/rings.toml per scheme on one thread with `perf record` (Linux perf; apt
 # package linux-perf), and prints the share of each pass (scripts/profile_passes.py).

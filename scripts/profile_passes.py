@@ -1,4 +1,4 @@
-"""Where a gsph step spends its time, by pass (docs/performance.md "Profiles").
+"""Where a gsph step spends its time, by pass (docs/notes/performance_history.md "Profiles").
 
     scripts/profile.sh [SCHEME ...]     (builds target/prof with full debug info, runs perf)
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Do the colliding rings bounce apart intact? (issue 14 item 2; docs/performance.md "Rings")
+# Do the colliding rings bounce apart intact? (issue 14 item 2; docs/rings.md)
 # Runs cases/rings.toml in every gsph scheme with and without artificial stress, at
 # dx = 1e-3 m (4,416 particles; --resolution 5e-4 for 17,592) to t_end = 2.5e-4 s (the rings
 # meet at about 1.6e-5 s and, if they stay whole, separate again before 1.5e-4 s), and
