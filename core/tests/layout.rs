@@ -80,8 +80,18 @@ fn the_ladder_test_finds_a_cycle_across_folders_and_allows_one_inside() {
     assert!(p.contains(&("crate".into(), vec!["c".into(), "D".into()])));
     assert!(p.contains(&("super".into(), vec!["d".into(), "e".into()])));
     assert!(graph::paths("pub(super) fn f() {}").is_empty());
+    // a child module's path: relative to the file's module
+    let p = graph::paths("mod lanes;\nfn f() { lanes::row(); x::lanes::y(); }");
     assert_eq!(
-        graph::code_of("use crate::a; // crate::b\n#[cfg(test)]\nuse crate::c;"),
-        "use crate::a; "
+        p,
+        vec![("self".to_string(), vec!["lanes".into(), "row".into()])]
+    );
+    assert_eq!(
+        graph::code_of("use crate::a; // crate::b\n#[cfg(test)]\nuse crate::c;\nuse crate::d;"),
+        "use crate::a; \nuse crate::d;"
+    );
+    assert_eq!(
+        graph::code_of("use crate::a;\n#[cfg(test)]\nmod tests {\n    use crate::c;\n}"),
+        "use crate::a;"
     );
 }

@@ -41,8 +41,8 @@
 //! are aluminium. The paper's discontinuous (rarefaction-shock) treatment gives a contact
 //! stress within about 1e-6 relative of the fan solution (see the tests).
 
+use super::error::{positive, ExactError};
 use super::root::brent;
-use super::{positive, ExactError};
 use crate::math::real::{exp, ln, sqrt};
 use crate::math::Real;
 

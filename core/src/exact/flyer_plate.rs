@@ -27,8 +27,8 @@
 //! `u(x_c - s) = v - u(x_c + s)`. The solution is valid until the precursors reach the free
 //! ends ([`FlyerPlate::valid_until`]).
 
+use super::error::{positive, ExactError};
 use super::root::brent;
-use super::{positive, ExactError};
 use crate::math::real::{exp, sqrt};
 use crate::math::Real;
 

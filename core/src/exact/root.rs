@@ -1,6 +1,6 @@
 //! Robust bracketed scalar root finding (Brent's method), always terminating.
 
-use super::ExactError;
+use super::error::ExactError;
 use crate::math::real::{abs, min};
 use crate::math::Real;
 

@@ -18,8 +18,8 @@
 //! `F = int_lambda^1 x ln(1 + (2 alpha + alpha²)/x²) dx`, `lambda = r1_stop/R1`.
 //! The radius history follows from `K(r1) = K0 - W(r1)`, `dr1/dt = -A/r1`.
 
+use super::error::ExactError;
 use super::root::brent;
-use super::ExactError;
 use crate::math::{real, Real, PI};
 
 /// Parameters (SI).

@@ -15,7 +15,7 @@
 //! right-going wave has `sigma = -rho0 c u`, a left-going one `sigma = +rho0 c u`), and
 //! `rho = rho0 (1 - sigma_xx / (rho0 c²))` to first order.
 
-use super::{positive, ExactError};
+use super::error::{positive, ExactError};
 use crate::math::real::{exp, sqrt};
 use crate::math::Real;
 

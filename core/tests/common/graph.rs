@@ -50,22 +50,32 @@ fn is_test_file(p: &Path) -> bool {
     name == "tests.rs" || name.ends_with("_tests.rs")
 }
 
-/// The code of a file that the graph reads: before its first test module, without
-/// comments.
+/// The code of a file that the graph reads: without comments and without test code (an
+/// item under `#[cfg(test)]` or `#[cfg(all(test, …))]`: a one-line item such as a `use`
+/// or `mod x;` is dropped; a `mod tests {` block ends the code, as test modules close a
+/// file). Other multi-line test items are read as code: they can only add edges.
 pub fn code_of(text: &str) -> String {
-    let end = ["#[cfg(test)]", "#[cfg(all(test"]
-        .iter()
-        .filter_map(|m| text.find(m))
-        .min()
-        .unwrap_or(text.len());
-    text[..end]
-        .lines()
-        .map(|l| match l.find("//") {
-            Some(i) => &l[..i],
-            None => l,
-        })
-        .collect::<Vec<_>>()
-        .join("\n")
+    let mut out = Vec::new();
+    let mut lines = text.lines().map(|l| match l.find("//") {
+        Some(i) => &l[..i],
+        None => l,
+    });
+    while let Some(l) = lines.next() {
+        let t = l.trim();
+        if t.starts_with("#[cfg(test)]") || t.starts_with("#[cfg(all(test") {
+            // the item the attribute is on (further attributes first)
+            let mut item = lines.next().unwrap_or("").trim().to_string();
+            while item.starts_with("#[") {
+                item = lines.next().unwrap_or("").trim().to_string();
+            }
+            if item.contains("mod ") && item.ends_with('{') {
+                break;
+            }
+            continue;
+        }
+        out.push(l);
+    }
+    out.join("\n")
 }
 
 fn ident_at(s: &str) -> &str {
@@ -75,16 +85,38 @@ fn ident_at(s: &str) -> &str {
     &s[..n]
 }
 
-/// The paths `code` names from `crate::`, `super::` and `self::`, as (head, segments);
-/// a group `crate::a::{b, c::d}` gives `a::b` and `a::c::d`.
+/// The child modules a file declares (`mod x;`, `pub(crate) mod x;`).
+pub fn children(code: &str) -> Vec<String> {
+    code.lines()
+        .filter_map(|l| {
+            let t = l.trim();
+            let rest = t.split("mod ").nth(1)?;
+            let before = &t[..t.len() - rest.len() - "mod ".len()];
+            let visibility = before.is_empty() || before.starts_with("pub");
+            let name = ident_at(rest);
+            (visibility && !name.is_empty() && rest[name.len()..].trim() == ";")
+                .then(|| name.to_string())
+        })
+        .collect()
+}
+
+/// The paths `code` names from `crate::`, `super::` and `self::`, and from the file's
+/// own child modules (`x::…` where it declares `mod x;`: the head `self` then), as
+/// (head, segments); a group `crate::a::{b, c::d}` gives `a::b` and `a::c::d`.
 pub fn paths(code: &str) -> Vec<(String, Vec<String>)> {
     let bytes = code.as_bytes();
     let mut out = Vec::new();
-    for head in ["crate", "super", "self"] {
+    let kids = children(code);
+    let heads: Vec<&str> = ["crate", "super", "self"]
+        .into_iter()
+        .chain(kids.iter().map(String::as_str))
+        .collect();
+    for head in heads {
         let pat = format!("{head}::");
         for (i, _) in code.match_indices(&pat) {
             let before = if i == 0 { b' ' } else { bytes[i - 1] };
-            if before.is_ascii_alphanumeric() || before == b'_' || before == b'$' {
+            if before.is_ascii_alphanumeric() || before == b'_' || before == b'$' || before == b':'
+            {
                 continue;
             }
             let mut rest = &code[i + pat.len()..];
@@ -113,6 +145,12 @@ pub fn paths(code: &str) -> Vec<(String, Vec<String>)> {
                 }
             }
             out.push((head.to_string(), segs));
+        }
+    }
+    // a child module's path is relative to the file's own module
+    for p in &mut out {
+        if !["crate", "super", "self"].contains(&p.0.as_str()) {
+            p.1.insert(0, std::mem::replace(&mut p.0, "self".into()));
         }
     }
     out

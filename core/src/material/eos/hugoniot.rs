@@ -26,7 +26,7 @@
 //! **Guard:** beyond [`super::guard_density`] the curve continues along its tangent
 //! (parent module doc).
 
-use super::{guard_density, EosState};
+use super::state::{guard_density, EosState};
 use crate::material::params::{non_negative, positive, ParamError};
 use crate::math::Real;
 

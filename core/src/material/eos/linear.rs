@@ -8,7 +8,7 @@
 //! With `gamma > 1` this reaches zero in deep tension (`rho < rho0/2` for `gamma = 2`,
 //! `e = 0`) or at negative energies; there `c²` is floored (see the parent module).
 
-use super::{floor_c2, EosState};
+use super::state::{floor_c2, EosState};
 use crate::material::params::{finite, positive, ParamError};
 use crate::math::Real;
 

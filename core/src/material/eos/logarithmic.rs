@@ -3,7 +3,7 @@
 //! `rho > 0` (no floor needed). Seed 004 eq 36 drops the factor `B` (DESIGN §8); here it
 //! is kept.
 
-use super::EosState;
+use super::state::EosState;
 use crate::material::params::{positive, ParamError};
 use crate::math::{real, Real};
 

@@ -20,7 +20,7 @@
 //! [`super::guard_density`] `Q` continues along its tangent in `rho`, so `P` and `c²` stay
 //! finite and continuous for every finite `rho`.
 
-use super::{floor_c2, guard_density, EosState};
+use super::state::{floor_c2, guard_density, EosState};
 use crate::material::params::{finite, non_negative, positive, ParamError};
 use crate::math::Real;
 

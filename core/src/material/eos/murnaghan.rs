@@ -5,7 +5,7 @@
 //! the bulk modulus `K = rho c² = rho0 c0² + gamma P` grows linearly with pressure
 //! (`K' = gamma`), so the weak-shock slope is `(1 + gamma)/4` ([`super::Eos::hugoniot_slope`]).
 
-use super::EosState;
+use super::state::EosState;
 use crate::material::params::{positive, ParamError};
 use crate::math::{real, Real};
 

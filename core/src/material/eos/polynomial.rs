@@ -6,7 +6,7 @@
 //! of the parent module applies only if the fit's coefficients make `dP/drho <= 0` (a
 //! negative `k3` at large `z`), where the fit is outside its range.
 
-use super::{floor_c2, EosState};
+use super::state::{floor_c2, EosState};
 use crate::material::params::{finite, positive, ParamError};
 use crate::math::Real;
 

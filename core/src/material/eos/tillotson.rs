@@ -45,7 +45,7 @@
 //! `eta = 1 - A/(2B)`, and a negative `P` times `dP/de`); there `c²` is floored at
 //! [`super::C2_FLOOR_FRACTION`] times the reference `c0² = A/rho0` (parent module).
 
-use super::{floor_c2, EosState};
+use super::state::{floor_c2, EosState};
 use crate::material::params::{check, finite, non_negative, positive, ParamError, Rule};
 use crate::math::{real, Real};
 

@@ -22,7 +22,7 @@
 //! curves continue along their tangents beyond [`super::guard_density`].
 
 use super::hugoniot::{linear_us_up_hugoniot, RefCurve};
-use super::{floor_c2, EosState};
+use super::state::{floor_c2, EosState};
 use crate::material::params::{finite, non_negative, positive, ParamError};
 use crate::math::Real;
 

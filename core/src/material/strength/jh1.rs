@@ -26,7 +26,7 @@
 //! unlike the gradual softening of JH2) and follows the failed curve. When the increment that
 //! completes the damage happens within a step, the deviator is returned onto the failed
 //! curve in that same step (its extra plastic strain and work are reported).
-use super::radial_return;
+use super::von_mises::radial_return;
 use crate::material::params::{check, exceeds, non_negative, positive, ParamError, Rule};
 use crate::math::real::{ln, max, min};
 use crate::math::{Real, Sym3};

@@ -26,7 +26,8 @@
 //! Newton steps safeguarded by bisection on `[0, d_pp]` find the root in at most
 //! [`MAX_ITERATIONS`] iterations. Then `S = s_trial sigma_y/sigma_tr`, and as in the von Mises
 //! module `W = sigma_y d` (J/m³) and `dT = chi W / (rho c_p)` (K).
-use super::{radial_return, ReturnMap};
+use super::return_map::ReturnMap;
+use super::von_mises::radial_return;
 use crate::material::params::{check, exceeds, non_negative, positive, ParamError, Rule};
 use crate::math::real::{abs, ln, max, min, powf};
 use crate::math::{Real, Sym3};

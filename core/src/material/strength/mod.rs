@@ -1,7 +1,7 @@
 //! Strength models: the plastic correction of the trial deviator.
 //!
 //! Conventions (DESIGN §2): Cauchy stress `sigma = S - P I`, tension positive; the deviator
-//! `S` is always the full symmetric 3x3 tensor ([`Sym3`]), also in 1D (uniaxial strain) and
+//! `S` is always the full symmetric 3x3 tensor ([`Sym3`](crate::math::Sym3)), also in 1D (uniaxial strain) and
 //! 2D (plane strain), because the out-of-plane components enter the von Mises invariant
 //! `sigma_vm = sqrt(3/2 S:S)`. A return mapping takes the elastic trial deviator of one time
 //! step and brings it back onto the yield surface, reporting the plastic strain and the
@@ -13,35 +13,13 @@
 //!   the updated plastic strain and rate, and adiabatic heating `chi W/(rho c_p)`.
 //! * [`jh1`]: Johnson–Holmquist JH1 ceramic model (intact and failed strength curves,
 //!   damage from seed 000 eq 41, tensile limit, Algorithm 1's no-tension pressure).
-use crate::math::{Real, Sym3};
 
 pub mod jh1;
 pub mod johnson_cook;
+mod return_map;
 pub mod von_mises;
 
 pub use jh1::{failed_pair_pressure, Jh1, Jh1Update};
 pub use johnson_cook::{JohnsonCook, JohnsonCookReturn};
+pub use return_map::ReturnMap;
 pub use von_mises::radial_return;
-
-/// Result of the plastic return mapping.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ReturnMap {
-    /// Deviator after the return.
-    pub s: Sym3,
-    /// Equivalent plastic strain increment (>= 0).
-    pub d_eps_p: Real,
-    /// Plastic work per unit volume dissipated in this increment, J/m³ (>= 0).
-    pub plastic_work: Real,
-}
-
-impl ReturnMap {
-    /// The unchanged (elastic) result: deviator `s`, no plastic strain, no plastic work.
-    #[inline]
-    pub const fn elastic(s: Sym3) -> Self {
-        ReturnMap {
-            s,
-            d_eps_p: 0.0,
-            plastic_work: 0.0,
-        }
-    }
-}

@@ -23,7 +23,7 @@
 //! mean of trial and returned deviator contracted with `de_p`), agrees to first order in the
 //! overshoot `sigma_tr - Y`; the difference `(sigma_tr - Y) d_eps_p / 2` is the error of the
 //! elastic predictor, not a dissipation.
-use super::ReturnMap;
+use super::return_map::ReturnMap;
 use crate::math::real::max;
 use crate::math::{Real, Sym3};
 
