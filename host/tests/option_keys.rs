@@ -185,3 +185,90 @@ fn specific_volume_is_refused_without_strength() {
         );
     }
 }
+
+/// `docs/scene-keys.md` is the reference generated from the options table
+/// (`gsph::scene::applies::options_reference`); `GSPH_BLESS=1` rewrites it.
+#[test]
+fn the_scene_key_reference_is_generated_from_the_options_table() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/scene-keys.md");
+    let want = gsph::scene::applies::options_reference();
+    if std::env::var_os("GSPH_BLESS").is_some() {
+        std::fs::write(&path, &want).unwrap();
+    }
+    let have = std::fs::read_to_string(&path).unwrap_or_default();
+    assert!(
+        have == want,
+        "docs/scene-keys.md is not the generated reference: rerun with GSPH_BLESS=1\n{want}"
+    );
+    // every key of the table is in it, with its doc line
+    for key in gsph_core::schemes::options::OptionKey::ALL {
+        assert!(want.contains(&format!("`{}`", key.path())) && want.contains(key.doc()));
+    }
+}
+
+/// The readers [`KEYS`] lists are the schemes' own answers (`Scheme::reads`, from the
+/// options table), and every key of the table is exercised here or, named below, by
+/// another test: a new option cannot go untested.
+#[test]
+fn the_keys_tested_here_are_the_tables() {
+    use gsph_core::effects::EffectSet;
+    use gsph_core::schemes::options::OptionKey;
+    use gsph_core::schemes::Scheme;
+    let config = |c: &str| -> (Scheme, EffectSet) {
+        let scheme = Scheme::from_name(c.split('+').next().unwrap()).unwrap();
+        let mut asked = EffectSet::HYDRO;
+        if c.contains("+muscl") {
+            asked = asked.union(EffectSet::MUSCL);
+        }
+        if c.contains("+correction") {
+            asked = asked.union(EffectSet::CORRECTION);
+        }
+        (scheme, asked)
+    };
+    let mut tested = std::collections::BTreeSet::new();
+    for &(kv, readers) in KEYS {
+        let name = kv
+            .split('=')
+            .next()
+            .unwrap()
+            .strip_prefix("options.")
+            .unwrap();
+        let key = OptionKey::from_name(name).unwrap();
+        tested.insert(key.name());
+        for &(c, extra) in SCHEMES {
+            if extra
+                .iter()
+                .any(|x| x.starts_with(kv.split('=').next().unwrap()))
+            {
+                continue; // the configuration itself sets this key
+            }
+            let (scheme, asked) = config(c);
+            assert_eq!(
+                scheme.reads(key, asked).is_ok(),
+                readers.contains(&c),
+                "{kv} for {c}: the list here and the scheme's answer differ"
+            );
+        }
+    }
+    // the keys shown elsewhere: transverse_dissipation and objective act only in 2D/3D
+    // (host/tests/elastic_monitor.rs), surface_scan above and host/tests/correction_flags.rs,
+    // artificial stress tests/tests/artificial_stress.rs
+    for other in [
+        "transverse_dissipation",
+        "objective",
+        "surface_scan",
+        "artificial_stress",
+        "artificial_stress_exponent",
+    ] {
+        tested.insert(other);
+    }
+    let untested: Vec<&str> = OptionKey::ALL
+        .into_iter()
+        .map(|k| k.name())
+        .filter(|k| !tested.contains(k))
+        .collect();
+    assert!(
+        untested.is_empty(),
+        "options no test exercises: {untested:?}"
+    );
+}

@@ -20,29 +20,11 @@
 //! spacing for any resolution and smoothing length (with a constant `h` it is `W(r)/W(dx)`
 //! exactly). The force is antisymmetric in i, j, so momentum stays conserved; each scheme
 //! books its work in the internal energy the way it books the stress's (see the schemes),
-//! so total energy is conserved as before.
+//! so total energy is conserved as before. Its parameters are the scheme options
+//! `artificial_stress` (epsilon, 0.3 in Gray et al.) and `artificial_stress_exponent` (n, 4).
 
 use crate::kernel::Kernel;
 use crate::math::{real, Matrix, Real, Sym3, Vector};
-
-/// The parameters of the artificial stress.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ArtificialStress {
-    /// `eps`, the fraction of a tensile principal stress added as repulsion (0.3 in Gray
-    /// et al.).
-    pub epsilon: Real,
-    /// `n`, the exponent of `f_ij` (4 in Gray et al.).
-    pub exponent: u32,
-}
-
-impl Default for ArtificialStress {
-    fn default() -> Self {
-        ArtificialStress {
-            epsilon: 0.3,
-            exponent: 4,
-        }
-    }
-}
 
 /// `r_k` of one principal stress.
 #[inline(always)]

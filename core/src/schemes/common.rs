@@ -84,7 +84,7 @@ pub(crate) fn artificial_stress_tensors<const D: usize, E: Effects, X: Executor>
     params: &StepParams<'_, D>,
     exec: &X,
 ) {
-    let eps = params.options.artificial_stress.epsilon;
+    let eps = params.options.artificial_stress;
     exec.run(art, |off, chunk: &mut [Matrix<D>]| {
         for (k, r) in chunk.iter_mut().enumerate() {
             let i = off + k;

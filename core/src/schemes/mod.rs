@@ -84,32 +84,14 @@ impl SceneOptions {
     }
 
     /// The options a run of `scheme` steps with: the scheme's defaults
-    /// ([`Scheme::default_options`]), then every key the scene sets.
+    /// ([`Scheme::default_options`]), then every key the scene sets; `correction` and
+    /// `muscl` say whether the run has the effect (the scheme's own or the scene's).
     pub fn resolve(&self, scheme: Scheme, constant_h: bool) -> SchemeOptions {
         let mut o = scheme.default_options();
-        let d = o;
-        o.av_alpha = self.av_alpha.unwrap_or(d.av_alpha);
-        o.av_beta = self.av_beta.unwrap_or(d.av_beta);
-        o.limiter = self.limiter.unwrap_or(d.limiter);
-        o.riemann = self.riemann.unwrap_or(d.riemann);
-        o.dissipation = self.dissipation.unwrap_or(d.dissipation);
-        o.transverse_dissipation = self
-            .transverse_dissipation
-            .unwrap_or(d.transverse_dissipation);
-        o.objective = self.objective.unwrap_or(d.objective);
-        o.corrected_slopes = self.corrected_slopes.unwrap_or(d.corrected_slopes);
-        o.integrator = self.integrator.unwrap_or(d.integrator);
-        o.muscl_time = self.muscl_time.unwrap_or(d.muscl_time);
-        o.surface_lambda = self.surface_lambda.unwrap_or(d.surface_lambda);
-        o.surface_scan = self.surface_scan.unwrap_or(d.surface_scan);
-        o.specific_volume = self.specific_volume.unwrap_or(d.specific_volume);
-        o.det_epsilon = self.det_epsilon.unwrap_or(d.det_epsilon);
-        if let Some(eps) = self.artificial_stress {
-            o.artificial_stress.epsilon = eps;
-        }
-        if let Some(n) = self.artificial_stress_exponent {
-            o.artificial_stress.exponent = n;
-        }
+        self.apply(&mut o);
+        let effects = scheme.effects().union(self.asked());
+        o.correction = effects.contains(EffectSet::CORRECTION);
+        o.muscl = effects.contains(EffectSet::MUSCL);
         o.constant_h = constant_h;
         o
     }
@@ -117,16 +99,18 @@ impl SceneOptions {
 
 impl Scheme {
     /// Whether the scheme reads `key` when the scene's `correction`/`muscl` ask for
-    /// `asked`, or why not (its family answers).
+    /// `asked`, or why not: its family's answer where it gives one (a key it reads only
+    /// with some effects, or refuses for a reason of its own), else the options table's.
     pub fn reads(self, key: OptionKey, asked: EffectSet) -> Result<(), NotRead> {
-        match self.family() {
+        let family = match self.family() {
             Family::Av => av::reads(self, key),
             Family::Pm => pm::reads(self, key, self.effects().union(asked)),
             Family::Ts => ts::reads(self, key),
-        }
+        };
+        family.unwrap_or_else(|| key.table_reads(self))
     }
 
-    /// The options before a scene's keys: the seeds' defaults, with the family's choices
+    /// The options before a scene's keys: the table's defaults, with the family's choices
     /// per scheme name (tkc's minmod limiter).
     pub fn default_options(self) -> SchemeOptions {
         match self.family() {

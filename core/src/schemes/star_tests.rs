@@ -15,10 +15,10 @@ use crate::schemes::options::{RiemannSolver, SchemeOptions};
 use crate::schemes::pairs::geometry_pass;
 use crate::schemes::pairs::Pair;
 use crate::schemes::pm::lanes as pm_star;
-use crate::schemes::pm::pairs::pair_star;
+use crate::schemes::pm::pairs::{pair_star, StarRows as PmRows};
 use crate::schemes::pm::records::PmStar;
 use crate::schemes::ts::lanes as ts_star;
-use crate::schemes::ts::pairs::star;
+use crate::schemes::ts::pairs::{star, StarRows};
 use crate::schemes::ts::records::TsStar;
 use crate::schemes::workspace::StepParams;
 use crate::simd::{tested_levels, SimdLevel};
@@ -332,9 +332,14 @@ fn same_stars<const D: usize, E: Effects>(
             assert!(ts_star::covers(params));
             // SAFETY: the caller checked that the CPU has the level; the options are covered
             let done = unsafe {
-                ts_star::star_row_at::<D, E>(
-                    level, sys, &grad, &rec, params, i, gs, owned, &mut simd, true,
-                )
+                let rows = StarRows {
+                    sys,
+                    grad: &grad,
+                    rec: &rec,
+                    params,
+                    with_p: true,
+                };
+                ts_star::star_row_at::<D, E>(level, &rows, i, gs, owned, &mut simd)
             };
             assert_eq!(done, owned.len(), "the row does every pair");
             for (q, (&j, pg)) in owned.iter().zip(gs).enumerate() {
@@ -359,18 +364,14 @@ fn same_stars<const D: usize, E: Effects>(
             let mut simd_u = vec![TsStar { u: 7.0, p: 7.0 }; owned.len()];
             // SAFETY: as above
             unsafe {
-                ts_star::star_row_at::<D, E>(
-                    level,
+                let rows = StarRows {
                     sys,
-                    &grad,
-                    &rec,
+                    grad: &grad,
+                    rec: &rec,
                     params,
-                    i,
-                    gs,
-                    owned,
-                    &mut simd_u,
-                    false,
-                )
+                    with_p: false,
+                };
+                ts_star::star_row_at::<D, E>(level, &rows, i, gs, owned, &mut simd_u)
             };
             for (a, b) in simd.iter().zip(&simd_u) {
                 assert_eq!(
@@ -417,9 +418,16 @@ fn same_pm_stars<const D: usize, E: Effects>(
             assert!(pm_star::covers(params));
             // SAFETY: the caller checked that the CPU has the level; the options are covered
             let done = unsafe {
-                pm_star::star_row_at::<D, E>(
-                    level, sys, &aux, &corr, &grad, &grad_s, &rec, params, i, gs, owned, &mut simd,
-                )
+                let rows = PmRows {
+                    sys,
+                    aux: &aux,
+                    corr: &corr,
+                    grad: &grad,
+                    grad_s: &grad_s,
+                    rec: &rec,
+                    params,
+                };
+                pm_star::star_row_at::<D, E>(level, &rows, i, gs, owned, &mut simd)
             };
             assert_eq!(done, owned.len(), "the row does every pair");
             for (q, (&j, pg)) in owned.iter().zip(gs).enumerate() {

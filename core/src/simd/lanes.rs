@@ -388,3 +388,129 @@ impl Lanes for __m512d {
         _mm512_maskz_mov_pd(m, a)
     }
 }
+
+/// Emulated lanes (the core's unit tests only): `N` lanes of `f64` in a plain array, each
+/// operation the instruction's rule written out lane by lane (`maxpd`'s `a > b ? a : b`,
+/// the sign bit for `neg`, `magnitude` and `copysign`, ordered comparisons, the correctly
+/// rounded square root). The rows run on them through the same generic code as on the
+/// registers, so that a CPU without AVX-512 still tests the eight-lane rows
+/// ([`super::Simd::Emu8`], [`super::Simd::Emu4`]).
+#[cfg(test)]
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Emu<const N: usize>(pub [Real; N]);
+
+#[cfg(test)]
+impl<const N: usize> Emu<N> {
+    #[inline(always)]
+    fn map(a: Self, f: impl Fn(Real) -> Real) -> Self {
+        Emu(core::array::from_fn(|l| f(a.0[l])))
+    }
+    #[inline(always)]
+    fn zip(a: Self, b: Self, f: impl Fn(Real, Real) -> Real) -> Self {
+        Emu(core::array::from_fn(|l| f(a.0[l], b.0[l])))
+    }
+    #[inline(always)]
+    fn cmp(a: Self, b: Self, f: impl Fn(Real, Real) -> bool) -> [bool; N] {
+        core::array::from_fn(|l| f(a.0[l], b.0[l]))
+    }
+}
+
+#[cfg(test)]
+const SIGN: u64 = 1 << 63;
+
+#[cfg(test)]
+impl<const N: usize> Lanes for Emu<N> {
+    const N: usize = N;
+    type Mask = [bool; N];
+    type Arr<T: Copy> = [T; N];
+
+    fn arr<T: Copy>(f: impl FnMut(usize) -> T) -> [T; N] {
+        core::array::from_fn(f)
+    }
+    unsafe fn zero() -> Self {
+        Emu([0.0; N])
+    }
+    unsafe fn splat(x: Real) -> Self {
+        Emu([x; N])
+    }
+    unsafe fn load(a: &[Real; N]) -> Self {
+        Emu(*a)
+    }
+    unsafe fn store(a: Self) -> [Real; N] {
+        a.0
+    }
+    unsafe fn gather(base: *const Real, j: &[usize; N], stride: usize, offset: usize) -> Self {
+        Emu(core::array::from_fn(|l| *base.add(j[l] * stride + offset)))
+    }
+    unsafe fn transpose(p: &[*const Real; N], g: usize) -> [Self; 4] {
+        core::array::from_fn(|k| Emu(core::array::from_fn(|l| *p[l].add(4 * g + k))))
+    }
+    unsafe fn add(a: Self, b: Self) -> Self {
+        Self::zip(a, b, |x, y| x + y)
+    }
+    unsafe fn sub(a: Self, b: Self) -> Self {
+        Self::zip(a, b, |x, y| x - y)
+    }
+    unsafe fn mul(a: Self, b: Self) -> Self {
+        Self::zip(a, b, |x, y| x * y)
+    }
+    unsafe fn div(a: Self, b: Self) -> Self {
+        Self::zip(a, b, |x, y| x / y)
+    }
+    unsafe fn sqrt(a: Self) -> Self {
+        Self::map(a, crate::math::real::sqrt)
+    }
+    unsafe fn max(a: Self, b: Self) -> Self {
+        Self::zip(a, b, |x, y| if x > y { x } else { y })
+    }
+    unsafe fn min(a: Self, b: Self) -> Self {
+        Self::zip(a, b, |x, y| if x < y { x } else { y })
+    }
+    unsafe fn neg(a: Self) -> Self {
+        Self::map(a, |x| Real::from_bits(x.to_bits() ^ SIGN))
+    }
+    unsafe fn magnitude(a: Self) -> Self {
+        Self::map(a, |x| Real::from_bits(x.to_bits() & !SIGN))
+    }
+    unsafe fn copysign(m: Self, s: Self) -> Self {
+        Self::zip(m, s, |x, y| {
+            Real::from_bits((x.to_bits() & !SIGN) | (y.to_bits() & SIGN))
+        })
+    }
+    unsafe fn lt(a: Self, b: Self) -> [bool; N] {
+        Self::cmp(a, b, |x, y| x < y)
+    }
+    unsafe fn le(a: Self, b: Self) -> [bool; N] {
+        Self::cmp(a, b, |x, y| x <= y)
+    }
+    unsafe fn gt(a: Self, b: Self) -> [bool; N] {
+        Self::cmp(a, b, |x, y| x > y)
+    }
+    unsafe fn ge(a: Self, b: Self) -> [bool; N] {
+        Self::cmp(a, b, |x, y| x >= y)
+    }
+    unsafe fn and(a: [bool; N], b: [bool; N]) -> [bool; N] {
+        core::array::from_fn(|l| a[l] && b[l])
+    }
+    unsafe fn or(a: [bool; N], b: [bool; N]) -> [bool; N] {
+        core::array::from_fn(|l| a[l] || b[l])
+    }
+    unsafe fn not(a: [bool; N]) -> [bool; N] {
+        core::array::from_fn(|l| !a[l])
+    }
+    unsafe fn and_not(a: [bool; N], b: [bool; N]) -> [bool; N] {
+        core::array::from_fn(|l| !a[l] && b[l])
+    }
+    unsafe fn none() -> [bool; N] {
+        [false; N]
+    }
+    unsafe fn bits(m: [bool; N]) -> u32 {
+        (0..N).filter(|&l| m[l]).map(|l| 1u32 << l).sum()
+    }
+    unsafe fn select(m: [bool; N], a: Self, b: Self) -> Self {
+        Emu(core::array::from_fn(|l| if m[l] { a.0[l] } else { b.0[l] }))
+    }
+    unsafe fn keep(m: [bool; N], a: Self) -> Self {
+        Emu(core::array::from_fn(|l| if m[l] { a.0[l] } else { 0.0 }))
+    }
+}

@@ -12,7 +12,7 @@
 //! of both sides, and nothing is summed across lanes.
 //!
 //! This module holds only what no scheme owns: the levels ([`Simd`], [`SimdLevel`]), the
-//! lane types ([`lanes::Lanes`]: `__m256d`, four lanes, for AVX2; `__m512d`, eight, for
+//! lane types (`lanes::Lanes`: `__m256d`, four lanes, for AVX2; `__m512d`, eight, for
 //! AVX-512F), the lane operations, kernel shapes, limiters and vector algebra (`ops.rs`)
 //! and each Riemann solver once (`riemann.rs`). A scheme's loops in lanes live in the
 //! scheme's folder beside their portable twins, each entered through one function per level
@@ -44,12 +44,18 @@ pub(crate) mod ops;
 #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
 pub(crate) mod riemann;
 
-/// The vectorised levels this CPU has, for the tests that compare each with the portable
-/// loops (a level it lacks is named on stderr, not tested).
+/// The levels the core's unit tests compare with the portable loops: each vectorised
+/// level this CPU has, and always the two emulated ones ([`Simd::Emu4`], [`Simd::Emu8`]:
+/// the same generic rows on plain arrays, entered as AVX2's and AVX-512's are), so that a
+/// CPU without AVX-512 still runs the eight-lane code. Says once, on the test binary's
+/// standard error (uncaptured), which levels ran natively.
 #[cfg(all(test, target_arch = "x86_64", not(feature = "f32")))]
 pub(crate) fn tested_levels() -> std::vec::Vec<SimdLevel> {
     extern crate std;
+    use std::io::Write;
+    static SAID: std::sync::Once = std::sync::Once::new();
     let mut out = std::vec::Vec::new();
+    let mut said = std::vec::Vec::new();
     for (level, has) in [
         (Simd::Avx2, std::is_x86_feature_detected!("avx2")),
         (
@@ -60,10 +66,18 @@ pub(crate) fn tested_levels() -> std::vec::Vec<SimdLevel> {
         if has {
             // SAFETY: detected just above
             out.push(unsafe { SimdLevel::assume(level) });
+            said.push(std::format!("{level} native"));
         } else {
-            std::eprintln!("this CPU has no {level}: its loops are not tested here");
+            said.push(std::format!("{level} NOT native (this CPU lacks it)"));
         }
     }
+    // SAFETY: the emulated levels need no instructions
+    out.extend([Simd::Emu4, Simd::Emu8].map(|l| unsafe { SimdLevel::assume(l) }));
+    said.push("emu4, emu8 emulated".into());
+    SAID.call_once(|| {
+        // written past the test harness's capture, so that a passing run says it too
+        let _ = std::writeln!(std::io::stderr(), "simd levels tested: {}", said.join(", "));
+    });
     out
 }
 
@@ -79,6 +93,14 @@ pub enum Simd {
     /// AVX-512F (Intel Xeon since Skylake-SP, AMD since Zen 4): eight `f64` pairs per
     /// instruction.
     Avx512,
+    /// Four emulated lanes (the core's unit tests only; `lanes::Emu`): AVX2's rows on plain
+    /// arrays.
+    #[cfg(test)]
+    Emu4,
+    /// Eight emulated lanes (the core's unit tests only): AVX-512's rows, full groups of
+    /// eight and the rest in four, on plain arrays.
+    #[cfg(test)]
+    Emu8,
 }
 
 impl Simd {
@@ -91,6 +113,10 @@ impl Simd {
             Simd::Baseline => "baseline",
             Simd::Avx2 => "avx2",
             Simd::Avx512 => "avx512",
+            #[cfg(test)]
+            Simd::Emu4 => "emu4",
+            #[cfg(test)]
+            Simd::Emu8 => "emu8",
         }
     }
 

@@ -5,6 +5,7 @@ pub use super::validate_parts::resolve_poisson;
 use super::validate_parts::{material_known, validate_model, validate_shape};
 use super::SceneError;
 use gsph_core::material::params::{self, Num, Rule};
+use gsph_core::schemes::options::{OptionKey, Range};
 
 pub(super) type R = Result<(), SceneError>;
 
@@ -281,17 +282,15 @@ fn check_options(s: &Scene) -> R {
             "not read without strength (no material has a strength model; it stands in for artificial stress in solids)",
         );
     }
-    if let Some(v) = o.av_alpha {
-        non_negative("options.av_alpha", v)?;
-    }
-    if let Some(v) = o.av_beta {
-        non_negative("options.av_beta", v)?;
-    }
-    if let Some(v) = o.surface_lambda {
-        positive("options.surface_lambda", v)?;
-    }
-    if let Some(v) = o.det_epsilon {
-        non_negative("options.det_epsilon", v)?;
+    // the ranges of the options table
+    for key in OptionKey::ALL {
+        if let Some(v) = o.number(key) {
+            match key.range() {
+                Range::Positive => positive(key.path(), v)?,
+                Range::NonNegative => non_negative(key.path(), v)?,
+                Range::Any => finite(key.path(), v)?,
+            }
+        }
     }
     Ok(())
 }

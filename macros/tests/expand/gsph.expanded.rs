@@ -91,12 +91,12 @@ impl crate::effects::Effects for FxStrengthCorrectionMuscl {
 #[inline(never)]
 pub fn step_1d_av_hydro<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 1>,
-    ws: &mut crate::state::Workspace<'_, 1>,
-    params: &crate::state::StepParams<'_, 1>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 1>,
+    params: &crate::schemes::workspace::StepParams<'_, 1>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::av::Av as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::av::Av as crate::schemes::family::SchemeFamily>::checked_step::<
         1,
         FxHydro,
         X,
@@ -109,12 +109,12 @@ pub fn step_1d_av_hydro<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_1d_av_strength<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 1>,
-    ws: &mut crate::state::Workspace<'_, 1>,
-    params: &crate::state::StepParams<'_, 1>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 1>,
+    params: &crate::schemes::workspace::StepParams<'_, 1>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::av::Av as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::av::Av as crate::schemes::family::SchemeFamily>::checked_step::<
         1,
         FxStrength,
         X,
@@ -127,12 +127,12 @@ pub fn step_1d_av_strength<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_1d_pm_hydro<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 1>,
-    ws: &mut crate::state::Workspace<'_, 1>,
-    params: &crate::state::StepParams<'_, 1>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 1>,
+    params: &crate::schemes::workspace::StepParams<'_, 1>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::pm::Pm as crate::schemes::family::SchemeFamily>::checked_step::<
         1,
         FxHydro,
         X,
@@ -145,12 +145,12 @@ pub fn step_1d_pm_hydro<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_1d_pm_strength<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 1>,
-    ws: &mut crate::state::Workspace<'_, 1>,
-    params: &crate::state::StepParams<'_, 1>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 1>,
+    params: &crate::schemes::workspace::StepParams<'_, 1>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::pm::Pm as crate::schemes::family::SchemeFamily>::checked_step::<
         1,
         FxStrength,
         X,
@@ -163,12 +163,12 @@ pub fn step_1d_pm_strength<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_1d_pm_correction<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 1>,
-    ws: &mut crate::state::Workspace<'_, 1>,
-    params: &crate::state::StepParams<'_, 1>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 1>,
+    params: &crate::schemes::workspace::StepParams<'_, 1>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::pm::Pm as crate::schemes::family::SchemeFamily>::checked_step::<
         1,
         FxCorrection,
         X,
@@ -188,12 +188,12 @@ pub fn step_1d_pm_correction<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_1d_pm_strength_correction<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 1>,
-    ws: &mut crate::state::Workspace<'_, 1>,
-    params: &crate::state::StepParams<'_, 1>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 1>,
+    params: &crate::schemes::workspace::StepParams<'_, 1>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::pm::Pm as crate::schemes::family::SchemeFamily>::checked_step::<
         1,
         FxStrengthCorrection,
         X,
@@ -206,12 +206,12 @@ pub fn step_1d_pm_strength_correction<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_1d_pm_muscl<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 1>,
-    ws: &mut crate::state::Workspace<'_, 1>,
-    params: &crate::state::StepParams<'_, 1>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 1>,
+    params: &crate::schemes::workspace::StepParams<'_, 1>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::pm::Pm as crate::schemes::family::SchemeFamily>::checked_step::<
         1,
         FxMuscl,
         X,
@@ -231,12 +231,12 @@ pub fn step_1d_pm_muscl<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_1d_pm_strength_muscl<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 1>,
-    ws: &mut crate::state::Workspace<'_, 1>,
-    params: &crate::state::StepParams<'_, 1>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 1>,
+    params: &crate::schemes::workspace::StepParams<'_, 1>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::pm::Pm as crate::schemes::family::SchemeFamily>::checked_step::<
         1,
         FxStrengthMuscl,
         X,
@@ -256,12 +256,12 @@ pub fn step_1d_pm_strength_muscl<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_1d_pm_correction_muscl<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 1>,
-    ws: &mut crate::state::Workspace<'_, 1>,
-    params: &crate::state::StepParams<'_, 1>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 1>,
+    params: &crate::schemes::workspace::StepParams<'_, 1>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::pm::Pm as crate::schemes::family::SchemeFamily>::checked_step::<
         1,
         FxCorrectionMuscl,
         X,
@@ -282,12 +282,12 @@ pub fn step_1d_pm_correction_muscl<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_1d_pm_strength_correction_muscl<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 1>,
-    ws: &mut crate::state::Workspace<'_, 1>,
-    params: &crate::state::StepParams<'_, 1>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 1>,
+    params: &crate::schemes::workspace::StepParams<'_, 1>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::pm::Pm as crate::schemes::family::SchemeFamily>::checked_step::<
         1,
         FxStrengthCorrectionMuscl,
         X,
@@ -300,12 +300,12 @@ pub fn step_1d_pm_strength_correction_muscl<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_1d_ts_hydro<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 1>,
-    ws: &mut crate::state::Workspace<'_, 1>,
-    params: &crate::state::StepParams<'_, 1>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 1>,
+    params: &crate::schemes::workspace::StepParams<'_, 1>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::ts::Ts as crate::schemes::family::SchemeFamily>::checked_step::<
         1,
         FxHydro,
         X,
@@ -318,12 +318,12 @@ pub fn step_1d_ts_hydro<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_1d_ts_strength<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 1>,
-    ws: &mut crate::state::Workspace<'_, 1>,
-    params: &crate::state::StepParams<'_, 1>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 1>,
+    params: &crate::schemes::workspace::StepParams<'_, 1>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::ts::Ts as crate::schemes::family::SchemeFamily>::checked_step::<
         1,
         FxStrength,
         X,
@@ -336,12 +336,12 @@ pub fn step_1d_ts_strength<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_1d_ts_muscl<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 1>,
-    ws: &mut crate::state::Workspace<'_, 1>,
-    params: &crate::state::StepParams<'_, 1>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 1>,
+    params: &crate::schemes::workspace::StepParams<'_, 1>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::ts::Ts as crate::schemes::family::SchemeFamily>::checked_step::<
         1,
         FxMuscl,
         X,
@@ -361,12 +361,12 @@ pub fn step_1d_ts_muscl<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_1d_ts_strength_muscl<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 1>,
-    ws: &mut crate::state::Workspace<'_, 1>,
-    params: &crate::state::StepParams<'_, 1>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 1>,
+    params: &crate::schemes::workspace::StepParams<'_, 1>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<1>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::ts::Ts as crate::schemes::family::SchemeFamily>::checked_step::<
         1,
         FxStrengthMuscl,
         X,
@@ -378,47 +378,47 @@ pub fn step_1d_ts_strength_muscl<X: crate::exec::Executor>(
 /// this build (see [`CATALOGUE`]). Called once per run, never inside a step.
 #[allow(unused_variables)]
 pub fn select_1d<X: crate::exec::Executor>(
-    family: crate::state::Family,
+    family: crate::schemes::scheme::Family,
     effects: crate::effects::EffectSet,
-) -> ::core::option::Option<crate::schemes::StepFn<1, X>> {
+) -> ::core::option::Option<crate::schemes::family::StepFn<1, X>> {
     #[cfg(all(feature = "dim1", feature = "scheme-av"))]
-    if family == crate::state::Family::Av
+    if family == crate::schemes::scheme::Family::Av
         && effects == <FxHydro as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_1d_av_hydro::<X> as crate::schemes::StepFn<1, X>,
+            step_1d_av_hydro::<X> as crate::schemes::family::StepFn<1, X>,
         );
     }
     #[cfg(all(feature = "dim1", feature = "scheme-av", feature = "effects-strength"))]
-    if family == crate::state::Family::Av
+    if family == crate::schemes::scheme::Family::Av
         && effects == <FxStrength as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_1d_av_strength::<X> as crate::schemes::StepFn<1, X>,
+            step_1d_av_strength::<X> as crate::schemes::family::StepFn<1, X>,
         );
     }
     #[cfg(all(feature = "dim1", feature = "scheme-pm"))]
-    if family == crate::state::Family::Pm
+    if family == crate::schemes::scheme::Family::Pm
         && effects == <FxHydro as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_1d_pm_hydro::<X> as crate::schemes::StepFn<1, X>,
+            step_1d_pm_hydro::<X> as crate::schemes::family::StepFn<1, X>,
         );
     }
     #[cfg(all(feature = "dim1", feature = "scheme-pm", feature = "effects-strength"))]
-    if family == crate::state::Family::Pm
+    if family == crate::schemes::scheme::Family::Pm
         && effects == <FxStrength as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_1d_pm_strength::<X> as crate::schemes::StepFn<1, X>,
+            step_1d_pm_strength::<X> as crate::schemes::family::StepFn<1, X>,
         );
     }
     #[cfg(all(feature = "dim1", feature = "scheme-pm", feature = "effects-correction"))]
-    if family == crate::state::Family::Pm
+    if family == crate::schemes::scheme::Family::Pm
         && effects == <FxCorrection as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_1d_pm_correction::<X> as crate::schemes::StepFn<1, X>,
+            step_1d_pm_correction::<X> as crate::schemes::family::StepFn<1, X>,
         );
     }
     #[cfg(
@@ -429,19 +429,19 @@ pub fn select_1d<X: crate::exec::Executor>(
             feature = "effects-correction"
         )
     )]
-    if family == crate::state::Family::Pm
+    if family == crate::schemes::scheme::Family::Pm
         && effects == <FxStrengthCorrection as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_1d_pm_strength_correction::<X> as crate::schemes::StepFn<1, X>,
+            step_1d_pm_strength_correction::<X> as crate::schemes::family::StepFn<1, X>,
         );
     }
     #[cfg(all(feature = "dim1", feature = "scheme-pm", feature = "effects-muscl"))]
-    if family == crate::state::Family::Pm
+    if family == crate::schemes::scheme::Family::Pm
         && effects == <FxMuscl as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_1d_pm_muscl::<X> as crate::schemes::StepFn<1, X>,
+            step_1d_pm_muscl::<X> as crate::schemes::family::StepFn<1, X>,
         );
     }
     #[cfg(
@@ -452,11 +452,11 @@ pub fn select_1d<X: crate::exec::Executor>(
             feature = "effects-muscl"
         )
     )]
-    if family == crate::state::Family::Pm
+    if family == crate::schemes::scheme::Family::Pm
         && effects == <FxStrengthMuscl as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_1d_pm_strength_muscl::<X> as crate::schemes::StepFn<1, X>,
+            step_1d_pm_strength_muscl::<X> as crate::schemes::family::StepFn<1, X>,
         );
     }
     #[cfg(
@@ -467,11 +467,11 @@ pub fn select_1d<X: crate::exec::Executor>(
             feature = "effects-muscl"
         )
     )]
-    if family == crate::state::Family::Pm
+    if family == crate::schemes::scheme::Family::Pm
         && effects == <FxCorrectionMuscl as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_1d_pm_correction_muscl::<X> as crate::schemes::StepFn<1, X>,
+            step_1d_pm_correction_muscl::<X> as crate::schemes::family::StepFn<1, X>,
         );
     }
     #[cfg(
@@ -483,35 +483,36 @@ pub fn select_1d<X: crate::exec::Executor>(
             feature = "effects-muscl"
         )
     )]
-    if family == crate::state::Family::Pm
+    if family == crate::schemes::scheme::Family::Pm
         && effects == <FxStrengthCorrectionMuscl as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_1d_pm_strength_correction_muscl::<X> as crate::schemes::StepFn<1, X>,
+            step_1d_pm_strength_correction_muscl::<X>
+                as crate::schemes::family::StepFn<1, X>,
         );
     }
     #[cfg(all(feature = "dim1", feature = "scheme-ts"))]
-    if family == crate::state::Family::Ts
+    if family == crate::schemes::scheme::Family::Ts
         && effects == <FxHydro as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_1d_ts_hydro::<X> as crate::schemes::StepFn<1, X>,
+            step_1d_ts_hydro::<X> as crate::schemes::family::StepFn<1, X>,
         );
     }
     #[cfg(all(feature = "dim1", feature = "scheme-ts", feature = "effects-strength"))]
-    if family == crate::state::Family::Ts
+    if family == crate::schemes::scheme::Family::Ts
         && effects == <FxStrength as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_1d_ts_strength::<X> as crate::schemes::StepFn<1, X>,
+            step_1d_ts_strength::<X> as crate::schemes::family::StepFn<1, X>,
         );
     }
     #[cfg(all(feature = "dim1", feature = "scheme-ts", feature = "effects-muscl"))]
-    if family == crate::state::Family::Ts
+    if family == crate::schemes::scheme::Family::Ts
         && effects == <FxMuscl as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_1d_ts_muscl::<X> as crate::schemes::StepFn<1, X>,
+            step_1d_ts_muscl::<X> as crate::schemes::family::StepFn<1, X>,
         );
     }
     #[cfg(
@@ -522,11 +523,11 @@ pub fn select_1d<X: crate::exec::Executor>(
             feature = "effects-muscl"
         )
     )]
-    if family == crate::state::Family::Ts
+    if family == crate::schemes::scheme::Family::Ts
         && effects == <FxStrengthMuscl as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_1d_ts_strength_muscl::<X> as crate::schemes::StepFn<1, X>,
+            step_1d_ts_strength_muscl::<X> as crate::schemes::family::StepFn<1, X>,
         );
     }
     ::core::option::Option::None
@@ -538,12 +539,12 @@ pub fn select_1d<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_2d_av_hydro<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 2>,
-    ws: &mut crate::state::Workspace<'_, 2>,
-    params: &crate::state::StepParams<'_, 2>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 2>,
+    params: &crate::schemes::workspace::StepParams<'_, 2>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::av::Av as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::av::Av as crate::schemes::family::SchemeFamily>::checked_step::<
         2,
         FxHydro,
         X,
@@ -556,12 +557,12 @@ pub fn step_2d_av_hydro<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_2d_av_strength<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 2>,
-    ws: &mut crate::state::Workspace<'_, 2>,
-    params: &crate::state::StepParams<'_, 2>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 2>,
+    params: &crate::schemes::workspace::StepParams<'_, 2>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::av::Av as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::av::Av as crate::schemes::family::SchemeFamily>::checked_step::<
         2,
         FxStrength,
         X,
@@ -574,12 +575,12 @@ pub fn step_2d_av_strength<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_2d_pm_hydro<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 2>,
-    ws: &mut crate::state::Workspace<'_, 2>,
-    params: &crate::state::StepParams<'_, 2>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 2>,
+    params: &crate::schemes::workspace::StepParams<'_, 2>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::pm::Pm as crate::schemes::family::SchemeFamily>::checked_step::<
         2,
         FxHydro,
         X,
@@ -592,12 +593,12 @@ pub fn step_2d_pm_hydro<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_2d_pm_strength<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 2>,
-    ws: &mut crate::state::Workspace<'_, 2>,
-    params: &crate::state::StepParams<'_, 2>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 2>,
+    params: &crate::schemes::workspace::StepParams<'_, 2>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::pm::Pm as crate::schemes::family::SchemeFamily>::checked_step::<
         2,
         FxStrength,
         X,
@@ -610,12 +611,12 @@ pub fn step_2d_pm_strength<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_2d_pm_correction<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 2>,
-    ws: &mut crate::state::Workspace<'_, 2>,
-    params: &crate::state::StepParams<'_, 2>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 2>,
+    params: &crate::schemes::workspace::StepParams<'_, 2>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::pm::Pm as crate::schemes::family::SchemeFamily>::checked_step::<
         2,
         FxCorrection,
         X,
@@ -635,12 +636,12 @@ pub fn step_2d_pm_correction<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_2d_pm_strength_correction<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 2>,
-    ws: &mut crate::state::Workspace<'_, 2>,
-    params: &crate::state::StepParams<'_, 2>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 2>,
+    params: &crate::schemes::workspace::StepParams<'_, 2>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::pm::Pm as crate::schemes::family::SchemeFamily>::checked_step::<
         2,
         FxStrengthCorrection,
         X,
@@ -653,12 +654,12 @@ pub fn step_2d_pm_strength_correction<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_2d_pm_muscl<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 2>,
-    ws: &mut crate::state::Workspace<'_, 2>,
-    params: &crate::state::StepParams<'_, 2>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 2>,
+    params: &crate::schemes::workspace::StepParams<'_, 2>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::pm::Pm as crate::schemes::family::SchemeFamily>::checked_step::<
         2,
         FxMuscl,
         X,
@@ -678,12 +679,12 @@ pub fn step_2d_pm_muscl<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_2d_pm_strength_muscl<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 2>,
-    ws: &mut crate::state::Workspace<'_, 2>,
-    params: &crate::state::StepParams<'_, 2>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 2>,
+    params: &crate::schemes::workspace::StepParams<'_, 2>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::pm::Pm as crate::schemes::family::SchemeFamily>::checked_step::<
         2,
         FxStrengthMuscl,
         X,
@@ -703,12 +704,12 @@ pub fn step_2d_pm_strength_muscl<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_2d_pm_correction_muscl<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 2>,
-    ws: &mut crate::state::Workspace<'_, 2>,
-    params: &crate::state::StepParams<'_, 2>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 2>,
+    params: &crate::schemes::workspace::StepParams<'_, 2>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::pm::Pm as crate::schemes::family::SchemeFamily>::checked_step::<
         2,
         FxCorrectionMuscl,
         X,
@@ -729,12 +730,12 @@ pub fn step_2d_pm_correction_muscl<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_2d_pm_strength_correction_muscl<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 2>,
-    ws: &mut crate::state::Workspace<'_, 2>,
-    params: &crate::state::StepParams<'_, 2>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 2>,
+    params: &crate::schemes::workspace::StepParams<'_, 2>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::pm::Pm as crate::schemes::family::SchemeFamily>::checked_step::<
         2,
         FxStrengthCorrectionMuscl,
         X,
@@ -747,12 +748,12 @@ pub fn step_2d_pm_strength_correction_muscl<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_2d_ts_hydro<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 2>,
-    ws: &mut crate::state::Workspace<'_, 2>,
-    params: &crate::state::StepParams<'_, 2>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 2>,
+    params: &crate::schemes::workspace::StepParams<'_, 2>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::ts::Ts as crate::schemes::family::SchemeFamily>::checked_step::<
         2,
         FxHydro,
         X,
@@ -765,12 +766,12 @@ pub fn step_2d_ts_hydro<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_2d_ts_strength<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 2>,
-    ws: &mut crate::state::Workspace<'_, 2>,
-    params: &crate::state::StepParams<'_, 2>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 2>,
+    params: &crate::schemes::workspace::StepParams<'_, 2>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::ts::Ts as crate::schemes::family::SchemeFamily>::checked_step::<
         2,
         FxStrength,
         X,
@@ -783,12 +784,12 @@ pub fn step_2d_ts_strength<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_2d_ts_muscl<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 2>,
-    ws: &mut crate::state::Workspace<'_, 2>,
-    params: &crate::state::StepParams<'_, 2>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 2>,
+    params: &crate::schemes::workspace::StepParams<'_, 2>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::ts::Ts as crate::schemes::family::SchemeFamily>::checked_step::<
         2,
         FxMuscl,
         X,
@@ -808,12 +809,12 @@ pub fn step_2d_ts_muscl<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_2d_ts_strength_muscl<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 2>,
-    ws: &mut crate::state::Workspace<'_, 2>,
-    params: &crate::state::StepParams<'_, 2>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 2>,
+    params: &crate::schemes::workspace::StepParams<'_, 2>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::ts::Ts as crate::schemes::family::SchemeFamily>::checked_step::<
         2,
         FxStrengthMuscl,
         X,
@@ -825,47 +826,47 @@ pub fn step_2d_ts_strength_muscl<X: crate::exec::Executor>(
 /// this build (see [`CATALOGUE`]). Called once per run, never inside a step.
 #[allow(unused_variables)]
 pub fn select_2d<X: crate::exec::Executor>(
-    family: crate::state::Family,
+    family: crate::schemes::scheme::Family,
     effects: crate::effects::EffectSet,
-) -> ::core::option::Option<crate::schemes::StepFn<2, X>> {
+) -> ::core::option::Option<crate::schemes::family::StepFn<2, X>> {
     #[cfg(all(feature = "dim2", feature = "scheme-av"))]
-    if family == crate::state::Family::Av
+    if family == crate::schemes::scheme::Family::Av
         && effects == <FxHydro as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_2d_av_hydro::<X> as crate::schemes::StepFn<2, X>,
+            step_2d_av_hydro::<X> as crate::schemes::family::StepFn<2, X>,
         );
     }
     #[cfg(all(feature = "dim2", feature = "scheme-av", feature = "effects-strength"))]
-    if family == crate::state::Family::Av
+    if family == crate::schemes::scheme::Family::Av
         && effects == <FxStrength as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_2d_av_strength::<X> as crate::schemes::StepFn<2, X>,
+            step_2d_av_strength::<X> as crate::schemes::family::StepFn<2, X>,
         );
     }
     #[cfg(all(feature = "dim2", feature = "scheme-pm"))]
-    if family == crate::state::Family::Pm
+    if family == crate::schemes::scheme::Family::Pm
         && effects == <FxHydro as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_2d_pm_hydro::<X> as crate::schemes::StepFn<2, X>,
+            step_2d_pm_hydro::<X> as crate::schemes::family::StepFn<2, X>,
         );
     }
     #[cfg(all(feature = "dim2", feature = "scheme-pm", feature = "effects-strength"))]
-    if family == crate::state::Family::Pm
+    if family == crate::schemes::scheme::Family::Pm
         && effects == <FxStrength as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_2d_pm_strength::<X> as crate::schemes::StepFn<2, X>,
+            step_2d_pm_strength::<X> as crate::schemes::family::StepFn<2, X>,
         );
     }
     #[cfg(all(feature = "dim2", feature = "scheme-pm", feature = "effects-correction"))]
-    if family == crate::state::Family::Pm
+    if family == crate::schemes::scheme::Family::Pm
         && effects == <FxCorrection as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_2d_pm_correction::<X> as crate::schemes::StepFn<2, X>,
+            step_2d_pm_correction::<X> as crate::schemes::family::StepFn<2, X>,
         );
     }
     #[cfg(
@@ -876,19 +877,19 @@ pub fn select_2d<X: crate::exec::Executor>(
             feature = "effects-correction"
         )
     )]
-    if family == crate::state::Family::Pm
+    if family == crate::schemes::scheme::Family::Pm
         && effects == <FxStrengthCorrection as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_2d_pm_strength_correction::<X> as crate::schemes::StepFn<2, X>,
+            step_2d_pm_strength_correction::<X> as crate::schemes::family::StepFn<2, X>,
         );
     }
     #[cfg(all(feature = "dim2", feature = "scheme-pm", feature = "effects-muscl"))]
-    if family == crate::state::Family::Pm
+    if family == crate::schemes::scheme::Family::Pm
         && effects == <FxMuscl as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_2d_pm_muscl::<X> as crate::schemes::StepFn<2, X>,
+            step_2d_pm_muscl::<X> as crate::schemes::family::StepFn<2, X>,
         );
     }
     #[cfg(
@@ -899,11 +900,11 @@ pub fn select_2d<X: crate::exec::Executor>(
             feature = "effects-muscl"
         )
     )]
-    if family == crate::state::Family::Pm
+    if family == crate::schemes::scheme::Family::Pm
         && effects == <FxStrengthMuscl as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_2d_pm_strength_muscl::<X> as crate::schemes::StepFn<2, X>,
+            step_2d_pm_strength_muscl::<X> as crate::schemes::family::StepFn<2, X>,
         );
     }
     #[cfg(
@@ -914,11 +915,11 @@ pub fn select_2d<X: crate::exec::Executor>(
             feature = "effects-muscl"
         )
     )]
-    if family == crate::state::Family::Pm
+    if family == crate::schemes::scheme::Family::Pm
         && effects == <FxCorrectionMuscl as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_2d_pm_correction_muscl::<X> as crate::schemes::StepFn<2, X>,
+            step_2d_pm_correction_muscl::<X> as crate::schemes::family::StepFn<2, X>,
         );
     }
     #[cfg(
@@ -930,35 +931,36 @@ pub fn select_2d<X: crate::exec::Executor>(
             feature = "effects-muscl"
         )
     )]
-    if family == crate::state::Family::Pm
+    if family == crate::schemes::scheme::Family::Pm
         && effects == <FxStrengthCorrectionMuscl as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_2d_pm_strength_correction_muscl::<X> as crate::schemes::StepFn<2, X>,
+            step_2d_pm_strength_correction_muscl::<X>
+                as crate::schemes::family::StepFn<2, X>,
         );
     }
     #[cfg(all(feature = "dim2", feature = "scheme-ts"))]
-    if family == crate::state::Family::Ts
+    if family == crate::schemes::scheme::Family::Ts
         && effects == <FxHydro as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_2d_ts_hydro::<X> as crate::schemes::StepFn<2, X>,
+            step_2d_ts_hydro::<X> as crate::schemes::family::StepFn<2, X>,
         );
     }
     #[cfg(all(feature = "dim2", feature = "scheme-ts", feature = "effects-strength"))]
-    if family == crate::state::Family::Ts
+    if family == crate::schemes::scheme::Family::Ts
         && effects == <FxStrength as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_2d_ts_strength::<X> as crate::schemes::StepFn<2, X>,
+            step_2d_ts_strength::<X> as crate::schemes::family::StepFn<2, X>,
         );
     }
     #[cfg(all(feature = "dim2", feature = "scheme-ts", feature = "effects-muscl"))]
-    if family == crate::state::Family::Ts
+    if family == crate::schemes::scheme::Family::Ts
         && effects == <FxMuscl as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_2d_ts_muscl::<X> as crate::schemes::StepFn<2, X>,
+            step_2d_ts_muscl::<X> as crate::schemes::family::StepFn<2, X>,
         );
     }
     #[cfg(
@@ -969,11 +971,11 @@ pub fn select_2d<X: crate::exec::Executor>(
             feature = "effects-muscl"
         )
     )]
-    if family == crate::state::Family::Ts
+    if family == crate::schemes::scheme::Family::Ts
         && effects == <FxStrengthMuscl as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_2d_ts_strength_muscl::<X> as crate::schemes::StepFn<2, X>,
+            step_2d_ts_strength_muscl::<X> as crate::schemes::family::StepFn<2, X>,
         );
     }
     ::core::option::Option::None
@@ -985,12 +987,12 @@ pub fn select_2d<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_3d_av_hydro<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 3>,
-    ws: &mut crate::state::Workspace<'_, 3>,
-    params: &crate::state::StepParams<'_, 3>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 3>,
+    params: &crate::schemes::workspace::StepParams<'_, 3>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::av::Av as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::av::Av as crate::schemes::family::SchemeFamily>::checked_step::<
         3,
         FxHydro,
         X,
@@ -1003,12 +1005,12 @@ pub fn step_3d_av_hydro<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_3d_av_strength<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 3>,
-    ws: &mut crate::state::Workspace<'_, 3>,
-    params: &crate::state::StepParams<'_, 3>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 3>,
+    params: &crate::schemes::workspace::StepParams<'_, 3>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::av::Av as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::av::Av as crate::schemes::family::SchemeFamily>::checked_step::<
         3,
         FxStrength,
         X,
@@ -1021,12 +1023,12 @@ pub fn step_3d_av_strength<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_3d_pm_hydro<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 3>,
-    ws: &mut crate::state::Workspace<'_, 3>,
-    params: &crate::state::StepParams<'_, 3>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 3>,
+    params: &crate::schemes::workspace::StepParams<'_, 3>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::pm::Pm as crate::schemes::family::SchemeFamily>::checked_step::<
         3,
         FxHydro,
         X,
@@ -1039,12 +1041,12 @@ pub fn step_3d_pm_hydro<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_3d_pm_strength<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 3>,
-    ws: &mut crate::state::Workspace<'_, 3>,
-    params: &crate::state::StepParams<'_, 3>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 3>,
+    params: &crate::schemes::workspace::StepParams<'_, 3>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::pm::Pm as crate::schemes::family::SchemeFamily>::checked_step::<
         3,
         FxStrength,
         X,
@@ -1057,12 +1059,12 @@ pub fn step_3d_pm_strength<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_3d_pm_correction<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 3>,
-    ws: &mut crate::state::Workspace<'_, 3>,
-    params: &crate::state::StepParams<'_, 3>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 3>,
+    params: &crate::schemes::workspace::StepParams<'_, 3>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::pm::Pm as crate::schemes::family::SchemeFamily>::checked_step::<
         3,
         FxCorrection,
         X,
@@ -1082,12 +1084,12 @@ pub fn step_3d_pm_correction<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_3d_pm_strength_correction<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 3>,
-    ws: &mut crate::state::Workspace<'_, 3>,
-    params: &crate::state::StepParams<'_, 3>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 3>,
+    params: &crate::schemes::workspace::StepParams<'_, 3>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::pm::Pm as crate::schemes::family::SchemeFamily>::checked_step::<
         3,
         FxStrengthCorrection,
         X,
@@ -1100,12 +1102,12 @@ pub fn step_3d_pm_strength_correction<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_3d_pm_muscl<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 3>,
-    ws: &mut crate::state::Workspace<'_, 3>,
-    params: &crate::state::StepParams<'_, 3>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 3>,
+    params: &crate::schemes::workspace::StepParams<'_, 3>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::pm::Pm as crate::schemes::family::SchemeFamily>::checked_step::<
         3,
         FxMuscl,
         X,
@@ -1125,12 +1127,12 @@ pub fn step_3d_pm_muscl<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_3d_pm_strength_muscl<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 3>,
-    ws: &mut crate::state::Workspace<'_, 3>,
-    params: &crate::state::StepParams<'_, 3>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 3>,
+    params: &crate::schemes::workspace::StepParams<'_, 3>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::pm::Pm as crate::schemes::family::SchemeFamily>::checked_step::<
         3,
         FxStrengthMuscl,
         X,
@@ -1150,12 +1152,12 @@ pub fn step_3d_pm_strength_muscl<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_3d_pm_correction_muscl<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 3>,
-    ws: &mut crate::state::Workspace<'_, 3>,
-    params: &crate::state::StepParams<'_, 3>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 3>,
+    params: &crate::schemes::workspace::StepParams<'_, 3>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::pm::Pm as crate::schemes::family::SchemeFamily>::checked_step::<
         3,
         FxCorrectionMuscl,
         X,
@@ -1176,12 +1178,12 @@ pub fn step_3d_pm_correction_muscl<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_3d_pm_strength_correction_muscl<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 3>,
-    ws: &mut crate::state::Workspace<'_, 3>,
-    params: &crate::state::StepParams<'_, 3>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 3>,
+    params: &crate::schemes::workspace::StepParams<'_, 3>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::pm::Pm as crate::schemes::family::SchemeFamily>::checked_step::<
         3,
         FxStrengthCorrectionMuscl,
         X,
@@ -1194,12 +1196,12 @@ pub fn step_3d_pm_strength_correction_muscl<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_3d_ts_hydro<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 3>,
-    ws: &mut crate::state::Workspace<'_, 3>,
-    params: &crate::state::StepParams<'_, 3>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 3>,
+    params: &crate::schemes::workspace::StepParams<'_, 3>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::ts::Ts as crate::schemes::family::SchemeFamily>::checked_step::<
         3,
         FxHydro,
         X,
@@ -1212,12 +1214,12 @@ pub fn step_3d_ts_hydro<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_3d_ts_strength<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 3>,
-    ws: &mut crate::state::Workspace<'_, 3>,
-    params: &crate::state::StepParams<'_, 3>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 3>,
+    params: &crate::schemes::workspace::StepParams<'_, 3>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::ts::Ts as crate::schemes::family::SchemeFamily>::checked_step::<
         3,
         FxStrength,
         X,
@@ -1230,12 +1232,12 @@ pub fn step_3d_ts_strength<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_3d_ts_muscl<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 3>,
-    ws: &mut crate::state::Workspace<'_, 3>,
-    params: &crate::state::StepParams<'_, 3>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 3>,
+    params: &crate::schemes::workspace::StepParams<'_, 3>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::ts::Ts as crate::schemes::family::SchemeFamily>::checked_step::<
         3,
         FxMuscl,
         X,
@@ -1255,12 +1257,12 @@ pub fn step_3d_ts_muscl<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_3d_ts_strength_muscl<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 3>,
-    ws: &mut crate::state::Workspace<'_, 3>,
-    params: &crate::state::StepParams<'_, 3>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 3>,
+    params: &crate::schemes::workspace::StepParams<'_, 3>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<3>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::ts::Ts as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::ts::Ts as crate::schemes::family::SchemeFamily>::checked_step::<
         3,
         FxStrengthMuscl,
         X,
@@ -1272,47 +1274,47 @@ pub fn step_3d_ts_strength_muscl<X: crate::exec::Executor>(
 /// this build (see [`CATALOGUE`]). Called once per run, never inside a step.
 #[allow(unused_variables)]
 pub fn select_3d<X: crate::exec::Executor>(
-    family: crate::state::Family,
+    family: crate::schemes::scheme::Family,
     effects: crate::effects::EffectSet,
-) -> ::core::option::Option<crate::schemes::StepFn<3, X>> {
+) -> ::core::option::Option<crate::schemes::family::StepFn<3, X>> {
     #[cfg(all(feature = "dim3", feature = "scheme-av"))]
-    if family == crate::state::Family::Av
+    if family == crate::schemes::scheme::Family::Av
         && effects == <FxHydro as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_3d_av_hydro::<X> as crate::schemes::StepFn<3, X>,
+            step_3d_av_hydro::<X> as crate::schemes::family::StepFn<3, X>,
         );
     }
     #[cfg(all(feature = "dim3", feature = "scheme-av", feature = "effects-strength"))]
-    if family == crate::state::Family::Av
+    if family == crate::schemes::scheme::Family::Av
         && effects == <FxStrength as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_3d_av_strength::<X> as crate::schemes::StepFn<3, X>,
+            step_3d_av_strength::<X> as crate::schemes::family::StepFn<3, X>,
         );
     }
     #[cfg(all(feature = "dim3", feature = "scheme-pm"))]
-    if family == crate::state::Family::Pm
+    if family == crate::schemes::scheme::Family::Pm
         && effects == <FxHydro as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_3d_pm_hydro::<X> as crate::schemes::StepFn<3, X>,
+            step_3d_pm_hydro::<X> as crate::schemes::family::StepFn<3, X>,
         );
     }
     #[cfg(all(feature = "dim3", feature = "scheme-pm", feature = "effects-strength"))]
-    if family == crate::state::Family::Pm
+    if family == crate::schemes::scheme::Family::Pm
         && effects == <FxStrength as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_3d_pm_strength::<X> as crate::schemes::StepFn<3, X>,
+            step_3d_pm_strength::<X> as crate::schemes::family::StepFn<3, X>,
         );
     }
     #[cfg(all(feature = "dim3", feature = "scheme-pm", feature = "effects-correction"))]
-    if family == crate::state::Family::Pm
+    if family == crate::schemes::scheme::Family::Pm
         && effects == <FxCorrection as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_3d_pm_correction::<X> as crate::schemes::StepFn<3, X>,
+            step_3d_pm_correction::<X> as crate::schemes::family::StepFn<3, X>,
         );
     }
     #[cfg(
@@ -1323,19 +1325,19 @@ pub fn select_3d<X: crate::exec::Executor>(
             feature = "effects-correction"
         )
     )]
-    if family == crate::state::Family::Pm
+    if family == crate::schemes::scheme::Family::Pm
         && effects == <FxStrengthCorrection as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_3d_pm_strength_correction::<X> as crate::schemes::StepFn<3, X>,
+            step_3d_pm_strength_correction::<X> as crate::schemes::family::StepFn<3, X>,
         );
     }
     #[cfg(all(feature = "dim3", feature = "scheme-pm", feature = "effects-muscl"))]
-    if family == crate::state::Family::Pm
+    if family == crate::schemes::scheme::Family::Pm
         && effects == <FxMuscl as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_3d_pm_muscl::<X> as crate::schemes::StepFn<3, X>,
+            step_3d_pm_muscl::<X> as crate::schemes::family::StepFn<3, X>,
         );
     }
     #[cfg(
@@ -1346,11 +1348,11 @@ pub fn select_3d<X: crate::exec::Executor>(
             feature = "effects-muscl"
         )
     )]
-    if family == crate::state::Family::Pm
+    if family == crate::schemes::scheme::Family::Pm
         && effects == <FxStrengthMuscl as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_3d_pm_strength_muscl::<X> as crate::schemes::StepFn<3, X>,
+            step_3d_pm_strength_muscl::<X> as crate::schemes::family::StepFn<3, X>,
         );
     }
     #[cfg(
@@ -1361,11 +1363,11 @@ pub fn select_3d<X: crate::exec::Executor>(
             feature = "effects-muscl"
         )
     )]
-    if family == crate::state::Family::Pm
+    if family == crate::schemes::scheme::Family::Pm
         && effects == <FxCorrectionMuscl as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_3d_pm_correction_muscl::<X> as crate::schemes::StepFn<3, X>,
+            step_3d_pm_correction_muscl::<X> as crate::schemes::family::StepFn<3, X>,
         );
     }
     #[cfg(
@@ -1377,35 +1379,36 @@ pub fn select_3d<X: crate::exec::Executor>(
             feature = "effects-muscl"
         )
     )]
-    if family == crate::state::Family::Pm
+    if family == crate::schemes::scheme::Family::Pm
         && effects == <FxStrengthCorrectionMuscl as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_3d_pm_strength_correction_muscl::<X> as crate::schemes::StepFn<3, X>,
+            step_3d_pm_strength_correction_muscl::<X>
+                as crate::schemes::family::StepFn<3, X>,
         );
     }
     #[cfg(all(feature = "dim3", feature = "scheme-ts"))]
-    if family == crate::state::Family::Ts
+    if family == crate::schemes::scheme::Family::Ts
         && effects == <FxHydro as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_3d_ts_hydro::<X> as crate::schemes::StepFn<3, X>,
+            step_3d_ts_hydro::<X> as crate::schemes::family::StepFn<3, X>,
         );
     }
     #[cfg(all(feature = "dim3", feature = "scheme-ts", feature = "effects-strength"))]
-    if family == crate::state::Family::Ts
+    if family == crate::schemes::scheme::Family::Ts
         && effects == <FxStrength as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_3d_ts_strength::<X> as crate::schemes::StepFn<3, X>,
+            step_3d_ts_strength::<X> as crate::schemes::family::StepFn<3, X>,
         );
     }
     #[cfg(all(feature = "dim3", feature = "scheme-ts", feature = "effects-muscl"))]
-    if family == crate::state::Family::Ts
+    if family == crate::schemes::scheme::Family::Ts
         && effects == <FxMuscl as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_3d_ts_muscl::<X> as crate::schemes::StepFn<3, X>,
+            step_3d_ts_muscl::<X> as crate::schemes::family::StepFn<3, X>,
         );
     }
     #[cfg(
@@ -1416,11 +1419,11 @@ pub fn select_3d<X: crate::exec::Executor>(
             feature = "effects-muscl"
         )
     )]
-    if family == crate::state::Family::Ts
+    if family == crate::schemes::scheme::Family::Ts
         && effects == <FxStrengthMuscl as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_3d_ts_strength_muscl::<X> as crate::schemes::StepFn<3, X>,
+            step_3d_ts_strength_muscl::<X> as crate::schemes::family::StepFn<3, X>,
         );
     }
     ::core::option::Option::None
@@ -1432,7 +1435,7 @@ pub struct Specialisation {
     /// The dimension.
     pub dim: usize,
     /// The scheme family.
-    pub family: crate::state::Family,
+    pub family: crate::schemes::scheme::Family,
     /// The effect set.
     pub effects: crate::effects::EffectSet,
     /// The name of its step function.
@@ -1444,14 +1447,14 @@ pub struct Specialisation {
 pub const CATALOGUE: &[Specialisation] = &[
     Specialisation {
         dim: 1,
-        family: crate::state::Family::Av,
+        family: crate::schemes::scheme::Family::Av,
         effects: <FxHydro as crate::effects::Effects>::SET,
         name: "step_1d_av_hydro",
         compiled: cfg!(all(feature = "dim1", feature = "scheme-av")),
     },
     Specialisation {
         dim: 1,
-        family: crate::state::Family::Av,
+        family: crate::schemes::scheme::Family::Av,
         effects: <FxStrength as crate::effects::Effects>::SET,
         name: "step_1d_av_strength",
         compiled: cfg!(
@@ -1460,14 +1463,14 @@ pub const CATALOGUE: &[Specialisation] = &[
     },
     Specialisation {
         dim: 1,
-        family: crate::state::Family::Pm,
+        family: crate::schemes::scheme::Family::Pm,
         effects: <FxHydro as crate::effects::Effects>::SET,
         name: "step_1d_pm_hydro",
         compiled: cfg!(all(feature = "dim1", feature = "scheme-pm")),
     },
     Specialisation {
         dim: 1,
-        family: crate::state::Family::Pm,
+        family: crate::schemes::scheme::Family::Pm,
         effects: <FxStrength as crate::effects::Effects>::SET,
         name: "step_1d_pm_strength",
         compiled: cfg!(
@@ -1476,7 +1479,7 @@ pub const CATALOGUE: &[Specialisation] = &[
     },
     Specialisation {
         dim: 1,
-        family: crate::state::Family::Pm,
+        family: crate::schemes::scheme::Family::Pm,
         effects: <FxCorrection as crate::effects::Effects>::SET,
         name: "step_1d_pm_correction",
         compiled: cfg!(
@@ -1485,7 +1488,7 @@ pub const CATALOGUE: &[Specialisation] = &[
     },
     Specialisation {
         dim: 1,
-        family: crate::state::Family::Pm,
+        family: crate::schemes::scheme::Family::Pm,
         effects: <FxStrengthCorrection as crate::effects::Effects>::SET,
         name: "step_1d_pm_strength_correction",
         compiled: cfg!(
@@ -1495,7 +1498,7 @@ pub const CATALOGUE: &[Specialisation] = &[
     },
     Specialisation {
         dim: 1,
-        family: crate::state::Family::Pm,
+        family: crate::schemes::scheme::Family::Pm,
         effects: <FxMuscl as crate::effects::Effects>::SET,
         name: "step_1d_pm_muscl",
         compiled: cfg!(
@@ -1504,7 +1507,7 @@ pub const CATALOGUE: &[Specialisation] = &[
     },
     Specialisation {
         dim: 1,
-        family: crate::state::Family::Pm,
+        family: crate::schemes::scheme::Family::Pm,
         effects: <FxStrengthMuscl as crate::effects::Effects>::SET,
         name: "step_1d_pm_strength_muscl",
         compiled: cfg!(
@@ -1514,7 +1517,7 @@ pub const CATALOGUE: &[Specialisation] = &[
     },
     Specialisation {
         dim: 1,
-        family: crate::state::Family::Pm,
+        family: crate::schemes::scheme::Family::Pm,
         effects: <FxCorrectionMuscl as crate::effects::Effects>::SET,
         name: "step_1d_pm_correction_muscl",
         compiled: cfg!(
@@ -1524,7 +1527,7 @@ pub const CATALOGUE: &[Specialisation] = &[
     },
     Specialisation {
         dim: 1,
-        family: crate::state::Family::Pm,
+        family: crate::schemes::scheme::Family::Pm,
         effects: <FxStrengthCorrectionMuscl as crate::effects::Effects>::SET,
         name: "step_1d_pm_strength_correction_muscl",
         compiled: cfg!(
@@ -1534,14 +1537,14 @@ pub const CATALOGUE: &[Specialisation] = &[
     },
     Specialisation {
         dim: 1,
-        family: crate::state::Family::Ts,
+        family: crate::schemes::scheme::Family::Ts,
         effects: <FxHydro as crate::effects::Effects>::SET,
         name: "step_1d_ts_hydro",
         compiled: cfg!(all(feature = "dim1", feature = "scheme-ts")),
     },
     Specialisation {
         dim: 1,
-        family: crate::state::Family::Ts,
+        family: crate::schemes::scheme::Family::Ts,
         effects: <FxStrength as crate::effects::Effects>::SET,
         name: "step_1d_ts_strength",
         compiled: cfg!(
@@ -1550,7 +1553,7 @@ pub const CATALOGUE: &[Specialisation] = &[
     },
     Specialisation {
         dim: 1,
-        family: crate::state::Family::Ts,
+        family: crate::schemes::scheme::Family::Ts,
         effects: <FxMuscl as crate::effects::Effects>::SET,
         name: "step_1d_ts_muscl",
         compiled: cfg!(
@@ -1559,7 +1562,7 @@ pub const CATALOGUE: &[Specialisation] = &[
     },
     Specialisation {
         dim: 1,
-        family: crate::state::Family::Ts,
+        family: crate::schemes::scheme::Family::Ts,
         effects: <FxStrengthMuscl as crate::effects::Effects>::SET,
         name: "step_1d_ts_strength_muscl",
         compiled: cfg!(
@@ -1569,14 +1572,14 @@ pub const CATALOGUE: &[Specialisation] = &[
     },
     Specialisation {
         dim: 2,
-        family: crate::state::Family::Av,
+        family: crate::schemes::scheme::Family::Av,
         effects: <FxHydro as crate::effects::Effects>::SET,
         name: "step_2d_av_hydro",
         compiled: cfg!(all(feature = "dim2", feature = "scheme-av")),
     },
     Specialisation {
         dim: 2,
-        family: crate::state::Family::Av,
+        family: crate::schemes::scheme::Family::Av,
         effects: <FxStrength as crate::effects::Effects>::SET,
         name: "step_2d_av_strength",
         compiled: cfg!(
@@ -1585,14 +1588,14 @@ pub const CATALOGUE: &[Specialisation] = &[
     },
     Specialisation {
         dim: 2,
-        family: crate::state::Family::Pm,
+        family: crate::schemes::scheme::Family::Pm,
         effects: <FxHydro as crate::effects::Effects>::SET,
         name: "step_2d_pm_hydro",
         compiled: cfg!(all(feature = "dim2", feature = "scheme-pm")),
     },
     Specialisation {
         dim: 2,
-        family: crate::state::Family::Pm,
+        family: crate::schemes::scheme::Family::Pm,
         effects: <FxStrength as crate::effects::Effects>::SET,
         name: "step_2d_pm_strength",
         compiled: cfg!(
@@ -1601,7 +1604,7 @@ pub const CATALOGUE: &[Specialisation] = &[
     },
     Specialisation {
         dim: 2,
-        family: crate::state::Family::Pm,
+        family: crate::schemes::scheme::Family::Pm,
         effects: <FxCorrection as crate::effects::Effects>::SET,
         name: "step_2d_pm_correction",
         compiled: cfg!(
@@ -1610,7 +1613,7 @@ pub const CATALOGUE: &[Specialisation] = &[
     },
     Specialisation {
         dim: 2,
-        family: crate::state::Family::Pm,
+        family: crate::schemes::scheme::Family::Pm,
         effects: <FxStrengthCorrection as crate::effects::Effects>::SET,
         name: "step_2d_pm_strength_correction",
         compiled: cfg!(
@@ -1620,7 +1623,7 @@ pub const CATALOGUE: &[Specialisation] = &[
     },
     Specialisation {
         dim: 2,
-        family: crate::state::Family::Pm,
+        family: crate::schemes::scheme::Family::Pm,
         effects: <FxMuscl as crate::effects::Effects>::SET,
         name: "step_2d_pm_muscl",
         compiled: cfg!(
@@ -1629,7 +1632,7 @@ pub const CATALOGUE: &[Specialisation] = &[
     },
     Specialisation {
         dim: 2,
-        family: crate::state::Family::Pm,
+        family: crate::schemes::scheme::Family::Pm,
         effects: <FxStrengthMuscl as crate::effects::Effects>::SET,
         name: "step_2d_pm_strength_muscl",
         compiled: cfg!(
@@ -1639,7 +1642,7 @@ pub const CATALOGUE: &[Specialisation] = &[
     },
     Specialisation {
         dim: 2,
-        family: crate::state::Family::Pm,
+        family: crate::schemes::scheme::Family::Pm,
         effects: <FxCorrectionMuscl as crate::effects::Effects>::SET,
         name: "step_2d_pm_correction_muscl",
         compiled: cfg!(
@@ -1649,7 +1652,7 @@ pub const CATALOGUE: &[Specialisation] = &[
     },
     Specialisation {
         dim: 2,
-        family: crate::state::Family::Pm,
+        family: crate::schemes::scheme::Family::Pm,
         effects: <FxStrengthCorrectionMuscl as crate::effects::Effects>::SET,
         name: "step_2d_pm_strength_correction_muscl",
         compiled: cfg!(
@@ -1659,14 +1662,14 @@ pub const CATALOGUE: &[Specialisation] = &[
     },
     Specialisation {
         dim: 2,
-        family: crate::state::Family::Ts,
+        family: crate::schemes::scheme::Family::Ts,
         effects: <FxHydro as crate::effects::Effects>::SET,
         name: "step_2d_ts_hydro",
         compiled: cfg!(all(feature = "dim2", feature = "scheme-ts")),
     },
     Specialisation {
         dim: 2,
-        family: crate::state::Family::Ts,
+        family: crate::schemes::scheme::Family::Ts,
         effects: <FxStrength as crate::effects::Effects>::SET,
         name: "step_2d_ts_strength",
         compiled: cfg!(
@@ -1675,7 +1678,7 @@ pub const CATALOGUE: &[Specialisation] = &[
     },
     Specialisation {
         dim: 2,
-        family: crate::state::Family::Ts,
+        family: crate::schemes::scheme::Family::Ts,
         effects: <FxMuscl as crate::effects::Effects>::SET,
         name: "step_2d_ts_muscl",
         compiled: cfg!(
@@ -1684,7 +1687,7 @@ pub const CATALOGUE: &[Specialisation] = &[
     },
     Specialisation {
         dim: 2,
-        family: crate::state::Family::Ts,
+        family: crate::schemes::scheme::Family::Ts,
         effects: <FxStrengthMuscl as crate::effects::Effects>::SET,
         name: "step_2d_ts_strength_muscl",
         compiled: cfg!(
@@ -1694,14 +1697,14 @@ pub const CATALOGUE: &[Specialisation] = &[
     },
     Specialisation {
         dim: 3,
-        family: crate::state::Family::Av,
+        family: crate::schemes::scheme::Family::Av,
         effects: <FxHydro as crate::effects::Effects>::SET,
         name: "step_3d_av_hydro",
         compiled: cfg!(all(feature = "dim3", feature = "scheme-av")),
     },
     Specialisation {
         dim: 3,
-        family: crate::state::Family::Av,
+        family: crate::schemes::scheme::Family::Av,
         effects: <FxStrength as crate::effects::Effects>::SET,
         name: "step_3d_av_strength",
         compiled: cfg!(
@@ -1710,14 +1713,14 @@ pub const CATALOGUE: &[Specialisation] = &[
     },
     Specialisation {
         dim: 3,
-        family: crate::state::Family::Pm,
+        family: crate::schemes::scheme::Family::Pm,
         effects: <FxHydro as crate::effects::Effects>::SET,
         name: "step_3d_pm_hydro",
         compiled: cfg!(all(feature = "dim3", feature = "scheme-pm")),
     },
     Specialisation {
         dim: 3,
-        family: crate::state::Family::Pm,
+        family: crate::schemes::scheme::Family::Pm,
         effects: <FxStrength as crate::effects::Effects>::SET,
         name: "step_3d_pm_strength",
         compiled: cfg!(
@@ -1726,7 +1729,7 @@ pub const CATALOGUE: &[Specialisation] = &[
     },
     Specialisation {
         dim: 3,
-        family: crate::state::Family::Pm,
+        family: crate::schemes::scheme::Family::Pm,
         effects: <FxCorrection as crate::effects::Effects>::SET,
         name: "step_3d_pm_correction",
         compiled: cfg!(
@@ -1735,7 +1738,7 @@ pub const CATALOGUE: &[Specialisation] = &[
     },
     Specialisation {
         dim: 3,
-        family: crate::state::Family::Pm,
+        family: crate::schemes::scheme::Family::Pm,
         effects: <FxStrengthCorrection as crate::effects::Effects>::SET,
         name: "step_3d_pm_strength_correction",
         compiled: cfg!(
@@ -1745,7 +1748,7 @@ pub const CATALOGUE: &[Specialisation] = &[
     },
     Specialisation {
         dim: 3,
-        family: crate::state::Family::Pm,
+        family: crate::schemes::scheme::Family::Pm,
         effects: <FxMuscl as crate::effects::Effects>::SET,
         name: "step_3d_pm_muscl",
         compiled: cfg!(
@@ -1754,7 +1757,7 @@ pub const CATALOGUE: &[Specialisation] = &[
     },
     Specialisation {
         dim: 3,
-        family: crate::state::Family::Pm,
+        family: crate::schemes::scheme::Family::Pm,
         effects: <FxStrengthMuscl as crate::effects::Effects>::SET,
         name: "step_3d_pm_strength_muscl",
         compiled: cfg!(
@@ -1764,7 +1767,7 @@ pub const CATALOGUE: &[Specialisation] = &[
     },
     Specialisation {
         dim: 3,
-        family: crate::state::Family::Pm,
+        family: crate::schemes::scheme::Family::Pm,
         effects: <FxCorrectionMuscl as crate::effects::Effects>::SET,
         name: "step_3d_pm_correction_muscl",
         compiled: cfg!(
@@ -1774,7 +1777,7 @@ pub const CATALOGUE: &[Specialisation] = &[
     },
     Specialisation {
         dim: 3,
-        family: crate::state::Family::Pm,
+        family: crate::schemes::scheme::Family::Pm,
         effects: <FxStrengthCorrectionMuscl as crate::effects::Effects>::SET,
         name: "step_3d_pm_strength_correction_muscl",
         compiled: cfg!(
@@ -1784,14 +1787,14 @@ pub const CATALOGUE: &[Specialisation] = &[
     },
     Specialisation {
         dim: 3,
-        family: crate::state::Family::Ts,
+        family: crate::schemes::scheme::Family::Ts,
         effects: <FxHydro as crate::effects::Effects>::SET,
         name: "step_3d_ts_hydro",
         compiled: cfg!(all(feature = "dim3", feature = "scheme-ts")),
     },
     Specialisation {
         dim: 3,
-        family: crate::state::Family::Ts,
+        family: crate::schemes::scheme::Family::Ts,
         effects: <FxStrength as crate::effects::Effects>::SET,
         name: "step_3d_ts_strength",
         compiled: cfg!(
@@ -1800,7 +1803,7 @@ pub const CATALOGUE: &[Specialisation] = &[
     },
     Specialisation {
         dim: 3,
-        family: crate::state::Family::Ts,
+        family: crate::schemes::scheme::Family::Ts,
         effects: <FxMuscl as crate::effects::Effects>::SET,
         name: "step_3d_ts_muscl",
         compiled: cfg!(
@@ -1809,7 +1812,7 @@ pub const CATALOGUE: &[Specialisation] = &[
     },
     Specialisation {
         dim: 3,
-        family: crate::state::Family::Ts,
+        family: crate::schemes::scheme::Family::Ts,
         effects: <FxStrengthMuscl as crate::effects::Effects>::SET,
         name: "step_3d_ts_strength_muscl",
         compiled: cfg!(

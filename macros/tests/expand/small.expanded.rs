@@ -70,12 +70,12 @@ impl crate::effects::Effects for FxStrengthPlasticityPeriodic {
 #[inline(never)]
 pub fn step_2d_pm_hydro<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 2>,
-    ws: &mut crate::state::Workspace<'_, 2>,
-    params: &crate::state::StepParams<'_, 2>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 2>,
+    params: &crate::schemes::workspace::StepParams<'_, 2>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::pm::Pm as crate::schemes::family::SchemeFamily>::checked_step::<
         2,
         FxHydro,
         X,
@@ -88,12 +88,12 @@ pub fn step_2d_pm_hydro<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_2d_pm_strength<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 2>,
-    ws: &mut crate::state::Workspace<'_, 2>,
-    params: &crate::state::StepParams<'_, 2>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 2>,
+    params: &crate::schemes::workspace::StepParams<'_, 2>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::pm::Pm as crate::schemes::family::SchemeFamily>::checked_step::<
         2,
         FxStrength,
         X,
@@ -106,12 +106,12 @@ pub fn step_2d_pm_strength<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_2d_pm_strength_plasticity<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 2>,
-    ws: &mut crate::state::Workspace<'_, 2>,
-    params: &crate::state::StepParams<'_, 2>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 2>,
+    params: &crate::schemes::workspace::StepParams<'_, 2>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::pm::Pm as crate::schemes::family::SchemeFamily>::checked_step::<
         2,
         FxStrengthPlasticity,
         X,
@@ -124,12 +124,12 @@ pub fn step_2d_pm_strength_plasticity<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_2d_pm_periodic<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 2>,
-    ws: &mut crate::state::Workspace<'_, 2>,
-    params: &crate::state::StepParams<'_, 2>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 2>,
+    params: &crate::schemes::workspace::StepParams<'_, 2>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::pm::Pm as crate::schemes::family::SchemeFamily>::checked_step::<
         2,
         FxPeriodic,
         X,
@@ -149,12 +149,12 @@ pub fn step_2d_pm_periodic<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_2d_pm_strength_periodic<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 2>,
-    ws: &mut crate::state::Workspace<'_, 2>,
-    params: &crate::state::StepParams<'_, 2>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 2>,
+    params: &crate::schemes::workspace::StepParams<'_, 2>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::pm::Pm as crate::schemes::family::SchemeFamily>::checked_step::<
         2,
         FxStrengthPeriodic,
         X,
@@ -174,12 +174,12 @@ pub fn step_2d_pm_strength_periodic<X: crate::exec::Executor>(
 #[inline(never)]
 pub fn step_2d_pm_strength_plasticity_periodic<X: crate::exec::Executor>(
     sys: &mut crate::state::System<'_, 2>,
-    ws: &mut crate::state::Workspace<'_, 2>,
-    params: &crate::state::StepParams<'_, 2>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 2>,
+    params: &crate::schemes::workspace::StepParams<'_, 2>,
     exec: &X,
     halo: &mut dyn crate::halo::Halo<2>,
 ) -> ::core::result::Result<(), crate::state::StepError> {
-    <crate::schemes::pm::Pm as crate::schemes::SchemeFamily>::checked_step::<
+    <crate::schemes::pm::Pm as crate::schemes::family::SchemeFamily>::checked_step::<
         2,
         FxStrengthPlasticityPeriodic,
         X,
@@ -191,39 +191,39 @@ pub fn step_2d_pm_strength_plasticity_periodic<X: crate::exec::Executor>(
 /// this build (see [`CATALOGUE`]). Called once per run, never inside a step.
 #[allow(unused_variables)]
 pub fn select_2d<X: crate::exec::Executor>(
-    family: crate::state::Family,
+    family: crate::schemes::scheme::Family,
     effects: crate::effects::EffectSet,
-) -> ::core::option::Option<crate::schemes::StepFn<2, X>> {
+) -> ::core::option::Option<crate::schemes::family::StepFn<2, X>> {
     #[cfg(all(feature = "dim2", feature = "scheme-pm"))]
-    if family == crate::state::Family::Pm
+    if family == crate::schemes::scheme::Family::Pm
         && effects == <FxHydro as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_2d_pm_hydro::<X> as crate::schemes::StepFn<2, X>,
+            step_2d_pm_hydro::<X> as crate::schemes::family::StepFn<2, X>,
         );
     }
     #[cfg(all(feature = "dim2", feature = "scheme-pm", feature = "effects-strength"))]
-    if family == crate::state::Family::Pm
+    if family == crate::schemes::scheme::Family::Pm
         && effects == <FxStrength as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_2d_pm_strength::<X> as crate::schemes::StepFn<2, X>,
+            step_2d_pm_strength::<X> as crate::schemes::family::StepFn<2, X>,
         );
     }
     #[cfg(all(feature = "dim2", feature = "scheme-pm", feature = "effects-strength"))]
-    if family == crate::state::Family::Pm
+    if family == crate::schemes::scheme::Family::Pm
         && effects == <FxStrengthPlasticity as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_2d_pm_strength_plasticity::<X> as crate::schemes::StepFn<2, X>,
+            step_2d_pm_strength_plasticity::<X> as crate::schemes::family::StepFn<2, X>,
         );
     }
     #[cfg(all(feature = "dim2", feature = "scheme-pm", feature = "effects-periodic"))]
-    if family == crate::state::Family::Pm
+    if family == crate::schemes::scheme::Family::Pm
         && effects == <FxPeriodic as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_2d_pm_periodic::<X> as crate::schemes::StepFn<2, X>,
+            step_2d_pm_periodic::<X> as crate::schemes::family::StepFn<2, X>,
         );
     }
     #[cfg(
@@ -234,11 +234,11 @@ pub fn select_2d<X: crate::exec::Executor>(
             feature = "effects-periodic"
         )
     )]
-    if family == crate::state::Family::Pm
+    if family == crate::schemes::scheme::Family::Pm
         && effects == <FxStrengthPeriodic as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_2d_pm_strength_periodic::<X> as crate::schemes::StepFn<2, X>,
+            step_2d_pm_strength_periodic::<X> as crate::schemes::family::StepFn<2, X>,
         );
     }
     #[cfg(
@@ -249,11 +249,12 @@ pub fn select_2d<X: crate::exec::Executor>(
             feature = "effects-periodic"
         )
     )]
-    if family == crate::state::Family::Pm
+    if family == crate::schemes::scheme::Family::Pm
         && effects == <FxStrengthPlasticityPeriodic as crate::effects::Effects>::SET
     {
         return ::core::option::Option::Some(
-            step_2d_pm_strength_plasticity_periodic::<X> as crate::schemes::StepFn<2, X>,
+            step_2d_pm_strength_plasticity_periodic::<X>
+                as crate::schemes::family::StepFn<2, X>,
         );
     }
     ::core::option::Option::None
@@ -265,7 +266,7 @@ pub struct Specialisation {
     /// The dimension.
     pub dim: usize,
     /// The scheme family.
-    pub family: crate::state::Family,
+    pub family: crate::schemes::scheme::Family,
     /// The effect set.
     pub effects: crate::effects::EffectSet,
     /// The name of its step function.
@@ -277,14 +278,14 @@ pub struct Specialisation {
 pub const CATALOGUE: &[Specialisation] = &[
     Specialisation {
         dim: 2,
-        family: crate::state::Family::Pm,
+        family: crate::schemes::scheme::Family::Pm,
         effects: <FxHydro as crate::effects::Effects>::SET,
         name: "step_2d_pm_hydro",
         compiled: cfg!(all(feature = "dim2", feature = "scheme-pm")),
     },
     Specialisation {
         dim: 2,
-        family: crate::state::Family::Pm,
+        family: crate::schemes::scheme::Family::Pm,
         effects: <FxStrength as crate::effects::Effects>::SET,
         name: "step_2d_pm_strength",
         compiled: cfg!(
@@ -293,7 +294,7 @@ pub const CATALOGUE: &[Specialisation] = &[
     },
     Specialisation {
         dim: 2,
-        family: crate::state::Family::Pm,
+        family: crate::schemes::scheme::Family::Pm,
         effects: <FxStrengthPlasticity as crate::effects::Effects>::SET,
         name: "step_2d_pm_strength_plasticity",
         compiled: cfg!(
@@ -302,7 +303,7 @@ pub const CATALOGUE: &[Specialisation] = &[
     },
     Specialisation {
         dim: 2,
-        family: crate::state::Family::Pm,
+        family: crate::schemes::scheme::Family::Pm,
         effects: <FxPeriodic as crate::effects::Effects>::SET,
         name: "step_2d_pm_periodic",
         compiled: cfg!(
@@ -311,7 +312,7 @@ pub const CATALOGUE: &[Specialisation] = &[
     },
     Specialisation {
         dim: 2,
-        family: crate::state::Family::Pm,
+        family: crate::schemes::scheme::Family::Pm,
         effects: <FxStrengthPeriodic as crate::effects::Effects>::SET,
         name: "step_2d_pm_strength_periodic",
         compiled: cfg!(
@@ -321,7 +322,7 @@ pub const CATALOGUE: &[Specialisation] = &[
     },
     Specialisation {
         dim: 2,
-        family: crate::state::Family::Pm,
+        family: crate::schemes::scheme::Family::Pm,
         effects: <FxStrengthPlasticityPeriodic as crate::effects::Effects>::SET,
         name: "step_2d_pm_strength_plasticity_periodic",
         compiled: cfg!(

@@ -13,10 +13,45 @@ use crate::effects::Effects;
 use crate::math::Real;
 use crate::schemes::av::pairs::{Owner, Sums};
 use crate::schemes::av::records::{record_len, sym_at, RecordAt};
+use crate::schemes::options::SchemeOptions;
 use crate::schemes::pairs::lanes::pair_lanes;
 use crate::schemes::pairs::PairGeometry;
+#[cfg(test)]
+use crate::simd::lanes::Emu;
 use crate::simd::lanes::Lanes;
 use crate::simd::ops::*;
+
+/// Whether [`rates_row`] covers these options. Every option is named (no `..`): an option
+/// added to the scheme is a compile error here until the lanes implement it or decline it.
+#[inline(always)]
+pub(crate) fn covers(o: &SchemeOptions) -> bool {
+    let SchemeOptions {
+        // read by av's pair loop, implemented (the viscosity; the artificial stress
+        // through the pair geometry's factor and the tensors' records)
+        av_alpha: _,
+        av_beta: _,
+        artificial_stress: _,
+        artificial_stress_exponent: _,
+        // read by av's other passes (the smoothing length update), not by the pairs
+        constant_h: _,
+        // the Godunov families'
+        limiter: _,
+        riemann: _,
+        dissipation: _,
+        transverse_dissipation: _,
+        objective: _,
+        corrected_slopes: _,
+        integrator: _,
+        muscl_time: _,
+        surface_lambda: _,
+        surface_scan: _,
+        det_epsilon: _,
+        specific_volume: _,
+        correction: _,
+        muscl: _,
+    } = *o;
+    true
+}
 
 /// The pair sums of particle `own` over its list `row` (entries from `lower` on are the
 /// pairs it owns), from the neighbours' records `rec`, into `s`: bitwise the portable
@@ -24,7 +59,7 @@ use crate::simd::ops::*;
 ///
 /// # Safety
 /// The CPU must have the level of `V` and `pg.kernel` must pass
-/// [`super::ops::has_geometry`]. (The neighbour indices are checked against `rec`.)
+/// [`crate::schemes::pairs::lanes::has_geometry`]. (The neighbour indices are checked against `rec`.)
 #[inline(always)]
 // the sums index each lane across the terms' arrays
 #[allow(clippy::too_many_arguments, clippy::needless_range_loop)]
@@ -146,13 +181,63 @@ unsafe fn rates_row<V: Lanes, const D: usize, E: Effects, const WRAP: bool>(
     }
 }
 
+/// [`rates_row`] in `V`'s lanes, with or without a periodic box as `pg` has one.
+///
+/// # Safety
+/// As [`rates_row`].
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+unsafe fn rates_row_in<V: Lanes, const D: usize, E: Effects>(
+    pg: &PairGeometry<D>,
+    alpha: Real,
+    beta: Real,
+    rec: &[Real],
+    row: &[u32],
+    lower: usize,
+    own: &Owner<D>,
+    s: &mut Sums<D>,
+) {
+    if pg.periodic.is_some() {
+        rates_row::<V, D, E, true>(pg, alpha, beta, rec, row, lower, own, s)
+    } else {
+        rates_row::<V, D, E, false>(pg, alpha, beta, rec, row, lower, own, s)
+    }
+}
+
+/// [`rates_row`] in `W`'s lanes over the row's full groups of `W::N` neighbours and in
+/// `N`'s over the rest (a last, partial group of the wide register costs as much as a full
+/// one), the sums in the list's order: AVX-512's entry with `zmm` and `ymm` registers, and
+/// the tests' eight emulated lanes with the same code.
+///
+/// # Safety
+/// As [`rates_row`], with both levels.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+unsafe fn rates_row_wide<W: Lanes, N: Lanes, const D: usize, E: Effects>(
+    pg: &PairGeometry<D>,
+    alpha: Real,
+    beta: Real,
+    rec: &[Real],
+    row: &[u32],
+    lower: usize,
+    own: &Owner<D>,
+    s: &mut Sums<D>,
+) {
+    let m = row.len() / W::N * W::N;
+    let (wide, rest) = (&row[..m], &row[m..]);
+    if m > 0 {
+        rates_row_in::<W, D, E>(pg, alpha, beta, rec, wide, lower, own, s);
+    }
+    rates_row_in::<N, D, E>(pg, alpha, beta, rec, rest, lower.saturating_sub(m), own, s)
+}
+
 /// [`rates_row`] with four neighbours per AVX2 instruction.
 ///
 /// # Safety
 /// As [`rates_row`], with AVX2.
 #[target_feature(enable = "avx2")]
 #[allow(clippy::too_many_arguments)]
-pub(crate) unsafe fn rates_row_avx2<const D: usize, E: Effects>(
+unsafe fn rates_row_avx2<const D: usize, E: Effects>(
     pg: &PairGeometry<D>,
     alpha: Real,
     beta: Real,
@@ -162,20 +247,17 @@ pub(crate) unsafe fn rates_row_avx2<const D: usize, E: Effects>(
     own: &Owner<D>,
     s: &mut Sums<D>,
 ) {
-    if pg.periodic.is_some() {
-        rates_row::<__m256d, D, E, true>(pg, alpha, beta, rec, row, lower, own, s)
-    } else {
-        rates_row::<__m256d, D, E, false>(pg, alpha, beta, rec, row, lower, own, s)
-    }
+    rates_row_in::<__m256d, D, E>(pg, alpha, beta, rec, row, lower, own, s)
 }
 
-/// [`rates_row`] with eight neighbours per AVX-512 instruction.
+/// [`rates_row_wide`] with eight neighbours per AVX-512 instruction, the rest four per
+/// AVX2 one.
 ///
 /// # Safety
 /// As [`rates_row`], with AVX-512F.
 #[target_feature(enable = "avx512f")]
 #[allow(clippy::too_many_arguments)]
-pub(crate) unsafe fn rates_row_avx512<const D: usize, E: Effects>(
+unsafe fn rates_row_avx512<const D: usize, E: Effects>(
     pg: &PairGeometry<D>,
     alpha: Real,
     beta: Real,
@@ -185,20 +267,36 @@ pub(crate) unsafe fn rates_row_avx512<const D: usize, E: Effects>(
     own: &Owner<D>,
     s: &mut Sums<D>,
 ) {
-    // the full groups of eight in zmm registers, the rest in ymm ones (a last, partial
-    // group of eight would cost as much as a full one); the sums in the list's order
-    let m = row.len() / 8 * 8;
-    let (wide, rest) = (&row[..m], &row[m..]);
-    let lower_rest = lower.saturating_sub(m);
-    if pg.periodic.is_some() {
-        if m > 0 {
-            rates_row::<__m512d, D, E, true>(pg, alpha, beta, rec, wide, lower, own, s);
+    rates_row_wide::<__m512d, __m256d, D, E>(pg, alpha, beta, rec, row, lower, own, s)
+}
+
+/// [`rates_row`] at `level` (nothing at the baseline level).
+///
+/// # Safety
+/// `level` must be one the CPU has (`SimdLevel::assume`) and `pg.kernel` must pass
+/// [`crate::schemes::pairs::lanes::has_geometry`].
+#[allow(clippy::too_many_arguments)]
+pub(crate) unsafe fn rates_row_at<const D: usize, E: Effects>(
+    level: crate::simd::SimdLevel,
+    pg: &PairGeometry<D>,
+    alpha: Real,
+    beta: Real,
+    rec: &[Real],
+    row: &[u32],
+    lower: usize,
+    own: &Owner<D>,
+    s: &mut Sums<D>,
+) {
+    use crate::simd::Simd;
+    match level.get() {
+        Simd::Avx512 => rates_row_avx512::<D, E>(pg, alpha, beta, rec, row, lower, own, s),
+        Simd::Avx2 => rates_row_avx2::<D, E>(pg, alpha, beta, rec, row, lower, own, s),
+        Simd::Baseline => {}
+        #[cfg(test)]
+        Simd::Emu4 => rates_row_in::<Emu<4>, D, E>(pg, alpha, beta, rec, row, lower, own, s),
+        #[cfg(test)]
+        Simd::Emu8 => {
+            rates_row_wide::<Emu<8>, Emu<4>, D, E>(pg, alpha, beta, rec, row, lower, own, s)
         }
-        rates_row::<__m256d, D, E, true>(pg, alpha, beta, rec, rest, lower_rest, own, s)
-    } else {
-        if m > 0 {
-            rates_row::<__m512d, D, E, false>(pg, alpha, beta, rec, wide, lower, own, s);
-        }
-        rates_row::<__m256d, D, E, false>(pg, alpha, beta, rec, rest, lower_rest, own, s)
     }
 }

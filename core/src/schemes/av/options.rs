@@ -1,22 +1,17 @@
-//! The `[options]` keys `av` reads ([`crate::schemes::options`]).
+//! The `[options]` keys `av` answers for itself ([`crate::schemes::options`]; the table
+//! answers the rest).
 
 use crate::schemes::options::{read_if, why, NotRead, OptionKey};
 use crate::schemes::scheme::Scheme;
 
-/// Whether scheme `av` reads `key`, or why not ([`crate::schemes::options`]).
-pub(crate) fn reads(scheme: Scheme, key: OptionKey) -> Result<(), NotRead> {
+/// Scheme `av`'s own answer for `key` where the table's is not its (`None`: the table's).
+pub(crate) fn reads(scheme: Scheme, key: OptionKey) -> Option<Result<(), NotRead>> {
     use OptionKey::*;
     match key {
-        AvAlpha | AvBeta | ArtificialStress | ArtificialStressExponent => Ok(()),
-        Limiter => read_if(false, scheme, why::NO_MUSCL),
-        Riemann | Dissipation | TransverseDissipation | Objective => {
-            read_if(false, scheme, why::NO_RIEMANN)
-        }
-        MusclTime => read_if(false, scheme, why::NO_MUSCL_TIME),
-        CorrectedSlopes => read_if(false, scheme, why::NO_CORRECTED_SLOPES),
-        Integrator => read_if(false, scheme, why::OWN_INTEGRATOR),
-        SpecificVolume => read_if(false, scheme, why::NO_SPECIFIC_VOLUME),
-        SurfaceLambda | SurfaceScan | DetEpsilon => read_if(false, scheme, why::NO_SURFACE),
-        Correction | Muscl => Err(NotRead::OnlyPm { scheme }),
+        // it solves no Riemann problem at all, transverse or not
+        TransverseDissipation | Objective => Some(read_if(false, scheme, why::NO_RIEMANN)),
+        // no free-surface rule at all, scanned or not
+        SurfaceScan => Some(read_if(false, scheme, why::NO_SURFACE)),
+        _ => None,
     }
 }

@@ -78,7 +78,7 @@ pub(crate) fn rates<const D: usize, E: Effects, X: Executor>(
     let pg = PairGeometry::<D>::new::<E>(params);
     // the vectorised loop reads each neighbour's compact record: written here where it
     // runs (and the caller gave the room)
-    let records = av_rows(params.simd, &pg) && ws.rec.len() == aux.len() * record_len(D);
+    let records = av_rows(params, &pg) && ws.rec.len() == aux.len() * record_len(D);
     if records {
         write_records::<D, E, X>(sys, aux, art, art_on, ws.rec, exec);
     }
@@ -183,16 +183,20 @@ fn write_records<const D: usize, E: Effects, X: Executor>(
     });
 }
 
-/// Whether [`av_row`] runs at this level with this geometry: AVX2 or AVX-512, the cubic
-/// spline or Wendland C2 kernel (the caller then writes the neighbour records it reads).
+/// Whether [`av_row`] runs at this level with this geometry and these options: AVX2 or
+/// AVX-512, the cubic spline or Wendland C2 kernel, every option covered
+/// (`lanes::covers`; the caller then writes the neighbour records it reads).
 #[inline(always)]
 #[allow(unused_variables)]
 pub(crate) fn av_rows<const D: usize>(
-    level: crate::simd::SimdLevel,
+    params: &crate::schemes::workspace::StepParams<'_, D>,
     pg: &crate::schemes::pairs::PairGeometry<D>,
 ) -> bool {
     #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
-    if level.vectorised() && crate::schemes::pairs::lanes::has_geometry(pg.kernel) {
+    if params.simd.vectorised()
+        && crate::schemes::pairs::lanes::has_geometry(pg.kernel)
+        && super::lanes::covers(&params.options)
+    {
         return true;
     }
     false
@@ -215,17 +219,23 @@ pub(crate) fn av_row<const D: usize, E: crate::effects::Effects>(
     s: &mut Sums<D>,
 ) -> bool {
     #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
-    if av_rows(params.simd, pg) {
+    if av_rows(params, pg) {
         let (row, owned) = (params.nbrs.of(i), params.nbrs.owned(i));
         let lower = row.len() - owned.len();
         // SAFETY: `params.simd` vouches for the instructions (`SimdLevel::assume`) and
         // `av_rows` holds; the row checks its neighbours against `rec`
         unsafe {
-            if params.simd.get() == crate::simd::Simd::Avx512 {
-                super::lanes::rates_row_avx512::<D, E>(pg, alpha, beta, rec, row, lower, own, s)
-            } else {
-                super::lanes::rates_row_avx2::<D, E>(pg, alpha, beta, rec, row, lower, own, s)
-            }
+            super::lanes::rates_row_at::<D, E>(
+                params.simd,
+                pg,
+                alpha,
+                beta,
+                rec,
+                row,
+                lower,
+                own,
+                s,
+            )
         };
         return true;
     }

@@ -8,6 +8,8 @@ use core::arch::x86_64::{__m256d, __m512d};
 use super::PairGeometry;
 use crate::kernel::Kernel;
 use crate::math::{Real, Vector};
+#[cfg(test)]
+use crate::simd::lanes::Emu;
 use crate::simd::lanes::Lanes;
 use crate::simd::ops::*;
 use crate::state::PairGeom;
@@ -153,13 +155,13 @@ unsafe fn geometry_row<V: Lanes, const D: usize, const WRAP: bool>(
     n
 }
 
-/// [`geometry_row`] with four pairs per AVX2 instruction.
+/// [`geometry_row`] in `V`'s lanes, with or without a periodic box as `pg` has one.
 ///
 /// # Safety
-/// The CPU must have AVX2 and `pg.kernel` must pass [`has_geometry`].
-#[target_feature(enable = "avx2")]
+/// As [`geometry_row`].
+#[inline(always)]
 #[allow(clippy::too_many_arguments)]
-pub(crate) unsafe fn geometry_row_avx2<const D: usize>(
+unsafe fn geometry_row_in<V: Lanes, const D: usize>(
     pg: &PairGeometry<D>,
     xi: &Vector<D>,
     hi: Real,
@@ -170,19 +172,22 @@ pub(crate) unsafe fn geometry_row_avx2<const D: usize>(
     fac: &mut [Real],
 ) -> usize {
     if pg.periodic.is_some() {
-        geometry_row::<__m256d, D, true>(pg, xi, hi, x, h, owned, out, fac)
+        geometry_row::<V, D, true>(pg, xi, hi, x, h, owned, out, fac)
     } else {
-        geometry_row::<__m256d, D, false>(pg, xi, hi, x, h, owned, out, fac)
+        geometry_row::<V, D, false>(pg, xi, hi, x, h, owned, out, fac)
     }
 }
 
-/// [`geometry_row`] with eight pairs per AVX-512 instruction.
+/// [`geometry_row`] in `W`'s lanes over the row's full groups of `W::N` pairs and in `N`'s
+/// over the rest (a last, partial group of the wide register costs as much as a full one):
+/// AVX-512's entry with `zmm` and `ymm` registers, and the tests' eight emulated lanes with
+/// the same code.
 ///
 /// # Safety
-/// The CPU must have AVX-512F and `pg.kernel` must pass [`has_geometry`].
-#[target_feature(enable = "avx512f")]
+/// As [`geometry_row`], with both levels.
+#[inline(always)]
 #[allow(clippy::too_many_arguments)]
-pub(crate) unsafe fn geometry_row_avx512<const D: usize>(
+unsafe fn geometry_row_wide<W: Lanes, N: Lanes, const D: usize>(
     pg: &PairGeometry<D>,
     xi: &Vector<D>,
     hi: Real,
@@ -192,20 +197,81 @@ pub(crate) unsafe fn geometry_row_avx512<const D: usize>(
     out: &mut [PairGeom<D>],
     fac: &mut [Real],
 ) -> usize {
-    // the full groups of eight in zmm registers, the rest in ymm ones (a last, partial
-    // group of eight would cost as much as a full one)
-    let m = owned.len() / 8 * 8;
-    let (o8, o4) = out.split_at_mut(m.min(out.len()));
-    let (f8, f4) = fac.split_at_mut(m.min(fac.len()));
-    let wrap = pg.periodic.is_some();
-    let wide = match (m > 0, wrap) {
-        (false, _) => 0,
-        (true, true) => geometry_row::<__m512d, D, true>(pg, xi, hi, x, h, &owned[..m], o8, f8),
-        (true, false) => geometry_row::<__m512d, D, false>(pg, xi, hi, x, h, &owned[..m], o8, f8),
-    };
-    wide + if wrap {
-        geometry_row::<__m256d, D, true>(pg, xi, hi, x, h, &owned[m..], o4, f4)
+    let m = owned.len() / W::N * W::N;
+    let (o_w, o_n) = out.split_at_mut(m.min(out.len()));
+    let (f_w, f_n) = fac.split_at_mut(m.min(fac.len()));
+    let wide = if m > 0 {
+        geometry_row_in::<W, D>(pg, xi, hi, x, h, &owned[..m], o_w, f_w)
     } else {
-        geometry_row::<__m256d, D, false>(pg, xi, hi, x, h, &owned[m..], o4, f4)
+        0
+    };
+    wide + geometry_row_in::<N, D>(pg, xi, hi, x, h, &owned[m..], o_n, f_n)
+}
+
+/// [`geometry_row`] with four pairs per AVX2 instruction.
+///
+/// # Safety
+/// The CPU must have AVX2 and `pg.kernel` must pass [`has_geometry`].
+#[target_feature(enable = "avx2")]
+#[allow(clippy::too_many_arguments)]
+unsafe fn geometry_row_avx2<const D: usize>(
+    pg: &PairGeometry<D>,
+    xi: &Vector<D>,
+    hi: Real,
+    x: &[Vector<D>],
+    h: &[Real],
+    owned: &[u32],
+    out: &mut [PairGeom<D>],
+    fac: &mut [Real],
+) -> usize {
+    geometry_row_in::<__m256d, D>(pg, xi, hi, x, h, owned, out, fac)
+}
+
+/// [`geometry_row_wide`] with eight pairs per AVX-512 instruction, the rest four per AVX2
+/// one.
+///
+/// # Safety
+/// The CPU must have AVX-512F and `pg.kernel` must pass [`has_geometry`].
+#[target_feature(enable = "avx512f")]
+#[allow(clippy::too_many_arguments)]
+unsafe fn geometry_row_avx512<const D: usize>(
+    pg: &PairGeometry<D>,
+    xi: &Vector<D>,
+    hi: Real,
+    x: &[Vector<D>],
+    h: &[Real],
+    owned: &[u32],
+    out: &mut [PairGeom<D>],
+    fac: &mut [Real],
+) -> usize {
+    geometry_row_wide::<__m512d, __m256d, D>(pg, xi, hi, x, h, owned, out, fac)
+}
+
+/// [`geometry_row`] at `level` (0 pairs at the baseline level).
+///
+/// # Safety
+/// `level` must be one the CPU has (`SimdLevel::assume`) and `pg.kernel` must pass
+/// [`has_geometry`].
+#[allow(clippy::too_many_arguments)]
+pub(crate) unsafe fn geometry_row_at<const D: usize>(
+    level: crate::simd::SimdLevel,
+    pg: &PairGeometry<D>,
+    xi: &Vector<D>,
+    hi: Real,
+    x: &[Vector<D>],
+    h: &[Real],
+    owned: &[u32],
+    out: &mut [PairGeom<D>],
+    fac: &mut [Real],
+) -> usize {
+    use crate::simd::Simd;
+    match level.get() {
+        Simd::Avx512 => geometry_row_avx512::<D>(pg, xi, hi, x, h, owned, out, fac),
+        Simd::Avx2 => geometry_row_avx2::<D>(pg, xi, hi, x, h, owned, out, fac),
+        Simd::Baseline => 0,
+        #[cfg(test)]
+        Simd::Emu4 => geometry_row_in::<Emu<4>, D>(pg, xi, hi, x, h, owned, out, fac),
+        #[cfg(test)]
+        Simd::Emu8 => geometry_row_wide::<Emu<8>, Emu<4>, D>(pg, xi, hi, x, h, owned, out, fac),
     }
 }

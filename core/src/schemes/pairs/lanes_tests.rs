@@ -7,7 +7,6 @@ use crate::exec::Serial;
 use crate::kernel::Kernel;
 use crate::math::{Lcg, Real, Vector};
 use crate::neighbors::{build_naive, NeighborList, Periodic};
-use crate::schemes::artificial_stress::ArtificialStress;
 use crate::schemes::options::SchemeOptions;
 use crate::schemes::pairs::geometry_pass;
 use crate::schemes::workspace::StepParams;
@@ -80,10 +79,8 @@ fn geometry<const D: usize>(
         assert!(across, "{D}D: no pair across the periodic faces");
     }
     if let Some(e) = exponent {
-        options.artificial_stress = ArtificialStress {
-            epsilon: 0.3,
-            exponent: e,
-        };
+        options.artificial_stress = 0.3;
+        options.artificial_stress_exponent = e;
         effects = effects.union(EffectSet::ARTIFICIAL_STRESS);
     }
     let params = StepParams {

@@ -99,7 +99,7 @@ impl<const D: usize> PairGeometry<D> {
         let art = params.has::<E>(EffectSet::ARTIFICIAL_STRESS).then(|| {
             (
                 crate::schemes::artificial_stress::inverse_reference::<D>(kernel, params.h_factor),
-                params.options.artificial_stress.exponent,
+                params.options.artificial_stress_exponent,
             )
         });
         PairGeometry {
@@ -302,15 +302,7 @@ pub(crate) fn geometry_row<const D: usize>(
         // SAFETY: `level` vouches for the instructions (`SimdLevel::assume`) and the kernel
         // is one the loop computes; it checks the neighbour indices and indexes `out`,
         // `fac` checked
-        match level.get() {
-            crate::simd::Simd::Avx512 => unsafe {
-                return lanes::geometry_row_avx512::<D>(pg, xi, hi, x, h, owned, out, fac);
-            },
-            crate::simd::Simd::Avx2 => unsafe {
-                return lanes::geometry_row_avx2::<D>(pg, xi, hi, x, h, owned, out, fac);
-            },
-            crate::simd::Simd::Baseline => {}
-        }
+        return unsafe { lanes::geometry_row_at::<D>(level, pg, xi, hi, x, h, owned, out, fac) };
     }
     0
 }

@@ -22,13 +22,15 @@ use crate::math::{Real, Sym3};
 use crate::riemann::Dissipation;
 use crate::schemes::av::records::sym_at;
 use crate::schemes::common::failed;
-use crate::schemes::options::RiemannSolver;
+use crate::schemes::options::{RiemannSolver, SchemeOptions};
 use crate::schemes::pairs::Pair;
 use crate::schemes::pm::gradients::objective;
-use crate::schemes::pm::pairs::pair_star;
+use crate::schemes::pm::pairs::{pair_star, StarRows};
 use crate::schemes::pm::records::PmStar;
 use crate::schemes::pm::records::{record_len, RecordAt};
 use crate::schemes::workspace::StepParams;
+#[cfg(test)]
+use crate::simd::lanes::Emu;
 use crate::simd::ops::*;
 use crate::simd::riemann::*;
 use crate::simd::{Simd, SimdLevel};
@@ -110,13 +112,52 @@ fn stress<const D: usize, E: Effects>(sys: &System<'_, D>, k: usize, a: usize, b
     }
 }
 
-/// Whether [`star_row`] covers the options of this step.
+/// Whether [`star_row`] covers the options of this step. Every option is named (no `..`)
+/// and every choice of the ones the star reads is matched: an option or a choice added
+/// to the scheme is a compile error here until the lanes implement it or decline it.
 #[inline(always)]
 pub(crate) fn covers<const D: usize>(params: &StepParams<'_, D>) -> bool {
-    let o = &params.options;
-    o.dissipation == Dissipation::Full
-        && o.transverse_dissipation == Dissipation::Full
-        && matches!(o.limiter, Limiter::Superbee | Limiter::Minmod)
+    let SchemeOptions {
+        // read by the star, implemented below
+        limiter,
+        riemann,
+        dissipation,
+        transverse_dissipation,
+        // read by the star through the spin of the gradient pass (`gradients::objective`),
+        // which the rows rotate by as the portable star does
+        objective: _,
+        // read by the passes that fill the records (the corrected slopes, the surface
+        // flags, L^-1), not by the star
+        corrected_slopes: _,
+        surface_lambda: _,
+        surface_scan: _,
+        det_epsilon: _,
+        // read by the pair force and the integrator, not by the star
+        specific_volume: _,
+        integrator: _,
+        artificial_stress: _,
+        artificial_stress_exponent: _,
+        constant_h: _,
+        // the effects the step is compiled with (`E`), not read from here
+        correction: _,
+        muscl: _,
+        // other families'
+        av_alpha: _,
+        av_beta: _,
+        muscl_time: _,
+    } = params.options;
+    let limiter = match limiter {
+        Limiter::Superbee | Limiter::Minmod => true,
+        Limiter::MonotonizedCentral | Limiter::VanLeer | Limiter::Sweby(_) => false,
+    };
+    let riemann = match riemann {
+        RiemannSolver::Acoustic | RiemannSolver::TwoShock => true,
+    };
+    let full = |d| match d {
+        Dissipation::Full => true,
+        Dissipation::Compression => false,
+    };
+    limiter && riemann && full(dissipation) && full(transverse_dissipation)
 }
 
 /// The star states of the pairs particle `i` owns (its neighbours `owned`, their stored
@@ -129,18 +170,21 @@ pub(crate) fn covers<const D: usize>(params: &StepParams<'_, D>) -> bool {
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 unsafe fn star_row<V: Calls, const D: usize, E: Effects>(
-    sys: &System<'_, D>,
-    aux: &[Aux],
-    corr: &[Correction<D>],
-    grad: &[Gradients<D>],
-    grad_s: &[[crate::math::Vector<D>; 6]],
-    rec: &[Real],
-    params: &StepParams<'_, D>,
+    rows: &StarRows<'_, D>,
     i: usize,
     geom: &[PairGeom<D>],
     owned: &[u32],
     out: &mut [PmStar<D>],
 ) -> usize {
+    let StarRows {
+        sys,
+        aux,
+        corr,
+        grad,
+        grad_s,
+        rec,
+        params,
+    } = *rows;
     let n_pairs = owned.len().min(geom.len()).min(out.len());
     let zero = V::zero();
     let superbee = params.options.limiter == Limiter::Superbee;
@@ -425,63 +469,62 @@ unsafe fn star_row<V: Calls, const D: usize, E: Effects>(
     n_pairs
 }
 
-/// [`star_row`] with four pairs per AVX2 instruction.
+/// [`star_row`] in `W`'s lanes over the row's full groups of `W::N` pairs and in `N`'s
+/// over the rest (a last, partial group of the wide register costs as much as a full
+/// one): AVX-512's entry with `zmm` and `ymm` registers, and the tests' eight emulated
+/// lanes with the same code.
 ///
 /// # Safety
-/// As [`star_row`], with AVX2.
-#[target_feature(enable = "avx2")]
-#[allow(clippy::too_many_arguments)]
-unsafe fn star_row_avx2<const D: usize, E: Effects>(
-    sys: &System<'_, D>,
-    aux: &[Aux],
-    corr: &[Correction<D>],
-    grad: &[Gradients<D>],
-    grad_s: &[[crate::math::Vector<D>; 6]],
-    rec: &[Real],
-    params: &StepParams<'_, D>,
-    i: usize,
-    geom: &[PairGeom<D>],
-    owned: &[u32],
-    out: &mut [PmStar<D>],
-) -> usize {
-    star_row::<__m256d, D, E>(
-        sys, aux, corr, grad, grad_s, rec, params, i, geom, owned, out,
-    )
-}
-
-/// [`star_row`] with eight pairs per AVX-512 instruction.
-///
-/// # Safety
-/// As [`star_row`], with AVX-512F.
-#[target_feature(enable = "avx512f")]
-#[allow(clippy::too_many_arguments)]
-unsafe fn star_row_avx512<const D: usize, E: Effects>(
-    sys: &System<'_, D>,
-    aux: &[Aux],
-    corr: &[Correction<D>],
-    grad: &[Gradients<D>],
-    grad_s: &[[crate::math::Vector<D>; 6]],
-    rec: &[Real],
-    params: &StepParams<'_, D>,
+/// As [`star_row`], with both levels.
+#[inline(always)]
+unsafe fn star_row_wide<W: Calls, N: Calls, const D: usize, E: Effects>(
+    rows: &StarRows<'_, D>,
     i: usize,
     geom: &[PairGeom<D>],
     owned: &[u32],
     out: &mut [PmStar<D>],
 ) -> usize {
     let n = owned.len().min(geom.len()).min(out.len());
-    let (geom, owned, out) = (&geom[..n], &owned[..n], &mut out[..n]);
-    // the full groups of eight in zmm registers, the rest in ymm ones (a last, partial
-    // group of eight would cost as much as a full one)
-    let m = n / 8 * 8;
-    let (o8, o4) = out.split_at_mut(m);
-    let (g8, g4) = geom.split_at(m);
-    let (w8, w4) = owned.split_at(m);
+    let m = n / W::N * W::N;
+    let (o_w, o_n) = out[..n].split_at_mut(m);
+    let (g_w, g_n) = geom[..n].split_at(m);
+    let (w_w, w_n) = owned[..n].split_at(m);
     let wide = if m > 0 {
-        star_row::<__m512d, D, E>(sys, aux, corr, grad, grad_s, rec, params, i, g8, w8, o8)
+        star_row::<W, D, E>(rows, i, g_w, w_w, o_w)
     } else {
         0
     };
-    wide + star_row::<__m256d, D, E>(sys, aux, corr, grad, grad_s, rec, params, i, g4, w4, o4)
+    wide + star_row::<N, D, E>(rows, i, g_n, w_n, o_n)
+}
+
+/// [`star_row`] with four pairs per AVX2 instruction.
+///
+/// # Safety
+/// As [`star_row`], with AVX2.
+#[target_feature(enable = "avx2")]
+unsafe fn star_row_avx2<const D: usize, E: Effects>(
+    rows: &StarRows<'_, D>,
+    i: usize,
+    geom: &[PairGeom<D>],
+    owned: &[u32],
+    out: &mut [PmStar<D>],
+) -> usize {
+    star_row::<__m256d, D, E>(rows, i, geom, owned, out)
+}
+
+/// [`star_row_wide`] with eight pairs per AVX-512 instruction, the rest four per AVX2 one.
+///
+/// # Safety
+/// As [`star_row`], with AVX-512F.
+#[target_feature(enable = "avx512f")]
+unsafe fn star_row_avx512<const D: usize, E: Effects>(
+    rows: &StarRows<'_, D>,
+    i: usize,
+    geom: &[PairGeom<D>],
+    owned: &[u32],
+    out: &mut [PmStar<D>],
+) -> usize {
+    star_row_wide::<__m512d, __m256d, D, E>(rows, i, geom, owned, out)
 }
 
 /// [`star_row`] at `level`: its AVX2 or AVX-512 entry (0 pairs at the baseline level).
@@ -492,25 +535,19 @@ unsafe fn star_row_avx512<const D: usize, E: Effects>(
 #[allow(clippy::too_many_arguments)]
 pub(crate) unsafe fn star_row_at<const D: usize, E: Effects>(
     level: SimdLevel,
-    sys: &System<'_, D>,
-    aux: &[Aux],
-    corr: &[Correction<D>],
-    grad: &[Gradients<D>],
-    grad_s: &[[crate::math::Vector<D>; 6]],
-    rec: &[Real],
-    params: &StepParams<'_, D>,
+    rows: &StarRows<'_, D>,
     i: usize,
     geom: &[PairGeom<D>],
     owned: &[u32],
     out: &mut [PmStar<D>],
 ) -> usize {
     match level.get() {
-        Simd::Avx512 => star_row_avx512::<D, E>(
-            sys, aux, corr, grad, grad_s, rec, params, i, geom, owned, out,
-        ),
-        Simd::Avx2 => star_row_avx2::<D, E>(
-            sys, aux, corr, grad, grad_s, rec, params, i, geom, owned, out,
-        ),
+        Simd::Avx512 => star_row_avx512::<D, E>(rows, i, geom, owned, out),
+        Simd::Avx2 => star_row_avx2::<D, E>(rows, i, geom, owned, out),
         Simd::Baseline => 0,
+        #[cfg(test)]
+        Simd::Emu4 => star_row::<Emu<4>, D, E>(rows, i, geom, owned, out),
+        #[cfg(test)]
+        Simd::Emu8 => star_row_wide::<Emu<8>, Emu<4>, D, E>(rows, i, geom, owned, out),
     }
 }

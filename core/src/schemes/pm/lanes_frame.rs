@@ -122,3 +122,30 @@ macro_rules! calls {
 }
 calls!(__m256d, "avx2");
 calls!(__m512d, "avx512f");
+
+/// The emulated lanes of the tests call the same code, compiled for no level.
+#[cfg(test)]
+impl<const N: usize> Calls for crate::simd::lanes::Emu<N> {
+    unsafe fn frame<const D: usize>(
+        superbee: bool,
+        basis: &[Vl<Self>; 3],
+        wi: &Vl<Self>,
+        wj: &Vl<Self>,
+        di: &Vl<Self>,
+        dj: &Vl<Self>,
+    ) -> (Vl<Self>, Vl<Self>) {
+        muscl_frame::<Self, D>(superbee, basis, wi, wj, di, dj)
+    }
+    unsafe fn vector<const D: usize>(
+        n: &Vl<Self>,
+        v_l: &Vl<Self>,
+        t_l: &Vl<Self>,
+        zl: (Self, Self),
+        v_r: &Vl<Self>,
+        t_r: &Vl<Self>,
+        zr: (Self, Self),
+        shock: Option<(&Side<Self>, &Side<Self>)>,
+    ) -> (Vl<Self>, Vl<Self>, Self::Mask) {
+        star_vector::<Self, D>(n, v_l, t_l, zl.0, zl.1, v_r, t_r, zr.0, zr.1, shock)
+    }
+}

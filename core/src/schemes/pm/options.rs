@@ -1,5 +1,5 @@
-//! The `[options]` keys `pm` and `tkc` read and the options they start from
-//! ([`crate::schemes::options`]).
+//! The `[options]` keys `pm` and `tkc` answer for themselves and the options they start
+//! from ([`crate::schemes::options`]; the table answers the rest).
 
 use crate::effects::EffectSet;
 use crate::limiter::Limiter;
@@ -7,41 +7,28 @@ use crate::schemes::options::SchemeOptions;
 use crate::schemes::options::{read_if, why, NotRead, OptionKey};
 use crate::schemes::scheme::Scheme;
 
-/// Whether a scheme of the contact family (`pm`, `tkc`) reads `key` with `effects` (its
-/// own and those the scene's `correction` and `muscl` ask for), or why not
-/// ([`crate::schemes::options`]).
-pub(crate) fn reads(scheme: Scheme, key: OptionKey, effects: EffectSet) -> Result<(), NotRead> {
+/// The contact family's own answer for `key` with `effects` (its own and those the
+/// scene's `correction` and `muscl` ask for) where the table's is not its (`None`: the
+/// table's).
+pub(crate) fn reads(
+    scheme: Scheme,
+    key: OptionKey,
+    effects: EffectSet,
+) -> Option<Result<(), NotRead>> {
     use OptionKey::*;
-    match key {
-        AvAlpha | AvBeta => read_if(false, scheme, why::AV_ONLY),
-        Limiter => read_if(effects.contains(EffectSet::MUSCL), scheme, why::NO_MUSCL),
-        Riemann
-        | Dissipation
-        | TransverseDissipation
-        | Objective
-        | SpecificVolume
-        | ArtificialStress
-        | ArtificialStressExponent => Ok(()),
-        MusclTime => read_if(false, scheme, why::NO_MUSCL_TIME),
-        Integrator => read_if(
-            effects.contains(EffectSet::MUSCL),
-            scheme,
-            why::FIRST_ORDER_EULER,
-        ),
-        CorrectedSlopes => read_if(
-            effects.contains(EffectSet::CORRECTION) && effects.contains(EffectSet::MUSCL),
-            scheme,
-            why::NO_CORRECTED_SLOPES,
-        ),
-        SurfaceLambda | SurfaceScan | DetEpsilon => read_if(
-            effects.contains(EffectSet::CORRECTION),
-            scheme,
-            why::NO_SURFACE,
-        ),
+    let (muscl, correction) = (
+        effects.contains(EffectSet::MUSCL),
+        effects.contains(EffectSet::CORRECTION),
+    );
+    Some(match key {
+        Limiter => read_if(muscl, scheme, why::NO_MUSCL),
+        Integrator => read_if(muscl, scheme, why::FIRST_ORDER_EULER),
+        CorrectedSlopes => read_if(correction && muscl, scheme, why::NO_CORRECTED_SLOPES),
+        SurfaceLambda | SurfaceScan | DetEpsilon => read_if(correction, scheme, why::NO_SURFACE),
         Correction if scheme == Scheme::Tkc => Err(NotRead::Always { what: "correction" }),
         Muscl if scheme == Scheme::Tkc => Err(NotRead::Always { what: "MUSCL" }),
-        Correction | Muscl => Ok(()),
-    }
+        _ => return None,
+    })
 }
 
 /// The options a scheme of the contact family starts from: `tkc` limits with minmod

@@ -128,7 +128,15 @@ pub(super) fn pair_pass<
     let (fac, aux): (&[Real], &[Aux]) = (ws.fac, ws.aux);
     // the neighbour records of the vectorised rows (written where they run)
     let records = pm_records::<D, E, X>(sys, aux, corr, grad, grad_s, params, ws.rec, exec);
-    let rec: &[Real] = ws.rec;
+    let rows = StarRows {
+        sys,
+        aux,
+        corr,
+        grad,
+        grad_s,
+        rec: ws.rec,
+        params,
+    };
     solve_pair_rows::<D, X, PmStar<D>>(
         params,
         geom,
@@ -136,9 +144,7 @@ pub(super) fn pair_pass<
         exec,
         |i, geom, owned, out| {
             if records {
-                pm_star_row::<D, E>(
-                    sys, aux, corr, grad, grad_s, rec, params, i, geom, owned, out,
-                )
+                pm_star_row::<D, E>(&rows, i, geom, owned, out)
             } else {
                 0
             }
@@ -460,45 +466,40 @@ pub(crate) fn pm_records<const D: usize, E: crate::effects::Effects, X: crate::e
 /// did (0: none; the portable loop does the rest), each bitwise as
 /// [`crate::schemes::pm::pairs::pair_star`] gives it.
 #[inline(always)]
-#[allow(clippy::too_many_arguments, unused_variables)]
+#[allow(unused_variables)]
 pub(crate) fn pm_star_row<const D: usize, E: crate::effects::Effects>(
-    sys: &crate::state::System<'_, D>,
-    aux: &[crate::state::Aux],
-    corr: &[crate::state::Correction<D>],
-    grad: &[crate::state::Gradients<D>],
-    grad_s: &[[crate::math::Vector<D>; 6]],
-    rec: &[crate::math::Real],
-    params: &crate::schemes::workspace::StepParams<'_, D>,
+    rows: &StarRows<'_, D>,
     i: usize,
-    geom: &[crate::state::PairGeom<D>],
+    geom: &[PairGeom<D>],
     owned: &[u32],
-    out: &mut [crate::schemes::pm::records::PmStar<D>],
+    out: &mut [PmStar<D>],
 ) -> usize {
     #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
-    if params.simd.vectorised()
-        && super::lanes::covers(params)
-        && crate::schemes::pairs::stars_pay::<D, E>(params)
+    if rows.params.simd.vectorised()
+        && super::lanes::covers(rows.params)
+        && crate::schemes::pairs::stars_pay::<D, E>(rows.params)
     {
         // SAFETY: `params.simd` vouches for the instructions (`SimdLevel::assume`) and
         // `covers` holds
         return unsafe {
-            super::lanes::star_row_at::<D, E>(
-                params.simd,
-                sys,
-                aux,
-                corr,
-                grad,
-                grad_s,
-                rec,
-                params,
-                i,
-                geom,
-                owned,
-                out,
-            )
+            super::lanes::star_row_at::<D, E>(rows.params.simd, rows, i, geom, owned, out)
         };
     }
     0
+}
+
+/// What every star row of a pass reads besides its own pairs: the portable
+/// [`pair_star`]'s inputs and the neighbour records of its lane twin.
+#[derive(Clone, Copy)]
+pub(crate) struct StarRows<'a, const D: usize> {
+    pub sys: &'a System<'a, D>,
+    pub aux: &'a [Aux],
+    pub corr: &'a [Correction<D>],
+    pub grad: &'a [Gradients<D>],
+    pub grad_s: &'a [[Vector<D>; 6]],
+    /// The neighbour records [`pm_records`] wrote.
+    pub rec: &'a [Real],
+    pub params: &'a StepParams<'a, D>,
 }
 
 #[cfg(test)]

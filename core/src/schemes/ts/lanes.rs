@@ -18,24 +18,64 @@ use crate::limiter::Limiter;
 use crate::math::Real;
 use crate::riemann::Dissipation;
 use crate::schemes::common::failed;
-use crate::schemes::options::{MusclTime, RiemannSolver};
-use crate::schemes::ts::pairs::star;
+use crate::schemes::options::{MusclTime, RiemannSolver, SchemeOptions};
+use crate::schemes::ts::pairs::{star, StarRows};
 use crate::schemes::ts::records::TsStar;
 use crate::schemes::ts::records::{record_len, RecordAt};
 use crate::schemes::workspace::StepParams;
+#[cfg(test)]
+use crate::simd::lanes::Emu;
 use crate::simd::lanes::Lanes;
 use crate::simd::ops::*;
 use crate::simd::riemann::*;
 use crate::simd::{Simd, SimdLevel};
 use crate::state::{Gradients, PairGeom, System};
 
-/// Whether [`star_row`] covers the options of this step.
+/// Whether [`star_row`] covers the options of this step. Every option is named (no `..`)
+/// and every choice of the ones the star reads is matched: an option or a choice added
+/// to the scheme is a compile error here until the lanes implement it or decline it.
 #[inline(always)]
 pub(crate) fn covers<const D: usize>(params: &StepParams<'_, D>) -> bool {
-    let o = &params.options;
-    o.muscl_time == MusclTime::None
-        && o.dissipation == Dissipation::Full
-        && matches!(o.limiter, Limiter::Superbee | Limiter::Minmod)
+    let SchemeOptions {
+        // read by the star, implemented below
+        limiter,
+        riemann,
+        dissipation,
+        muscl_time,
+        // not read by ts's star (other passes, or other families)
+        av_alpha: _,
+        av_beta: _,
+        transverse_dissipation: _,
+        objective: _,
+        corrected_slopes: _,
+        integrator: _,
+        surface_lambda: _,
+        surface_scan: _,
+        det_epsilon: _,
+        specific_volume: _,
+        artificial_stress: _,
+        artificial_stress_exponent: _,
+        constant_h: _,
+        // the effects the step is compiled with (`E`), not read from here
+        correction: _,
+        muscl: _,
+    } = params.options;
+    let limiter = match limiter {
+        Limiter::Superbee | Limiter::Minmod => true,
+        Limiter::MonotonizedCentral | Limiter::VanLeer | Limiter::Sweby(_) => false,
+    };
+    let riemann = match riemann {
+        RiemannSolver::Acoustic | RiemannSolver::TwoShock => true,
+    };
+    let dissipation = match dissipation {
+        Dissipation::Full => true,
+        Dissipation::Compression => false,
+    };
+    let time = match muscl_time {
+        MusclTime::None => true,
+        MusclTime::Predictor | MusclTime::CourantFactor => false,
+    };
+    limiter && riemann && dissipation && time
 }
 
 /// Writes every particle's neighbour record ([`RecordAt`]) for [`star_row`]: its velocity,
@@ -113,16 +153,19 @@ unsafe fn slopes<V: Lanes, const D: usize>(
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 unsafe fn star_row<V: Lanes, const D: usize, E: Effects>(
-    sys: &System<'_, D>,
-    grad: &[Gradients<D>],
-    rec: &[Real],
-    params: &StepParams<'_, D>,
+    rows: &StarRows<'_, D>,
     i: usize,
     geom: &[PairGeom<D>],
     owned: &[u32],
     out: &mut [TsStar],
-    with_p: bool,
 ) -> usize {
+    let StarRows {
+        sys,
+        grad,
+        rec,
+        params,
+        with_p,
+    } = *rows;
     let n = owned.len().min(geom.len()).min(out.len());
     let zero = V::zero();
     let superbee = params.options.limiter == Limiter::Superbee;
@@ -262,75 +305,62 @@ unsafe fn star_row<V: Lanes, const D: usize, E: Effects>(
     n
 }
 
+/// [`star_row`] in `W`'s lanes over the row's full groups of `W::N` pairs and in `N`'s
+/// over the rest (a last, partial group of the wide register costs as much as a full
+/// one): AVX-512's entry with `zmm` and `ymm` registers, and the tests' eight emulated
+/// lanes with the same code.
+///
+/// # Safety
+/// As [`star_row`], with both levels.
+#[inline(always)]
+unsafe fn star_row_wide<W: Lanes, N: Lanes, const D: usize, E: Effects>(
+    rows: &StarRows<'_, D>,
+    i: usize,
+    geom: &[PairGeom<D>],
+    owned: &[u32],
+    out: &mut [TsStar],
+) -> usize {
+    let n = owned.len().min(geom.len()).min(out.len());
+    let m = n / W::N * W::N;
+    let (o_w, o_n) = out[..n].split_at_mut(m);
+    let (g_w, g_n) = geom[..n].split_at(m);
+    let (w_w, w_n) = owned[..n].split_at(m);
+    let wide = if m > 0 {
+        star_row::<W, D, E>(rows, i, g_w, w_w, o_w)
+    } else {
+        0
+    };
+    wide + star_row::<N, D, E>(rows, i, g_n, w_n, o_n)
+}
+
 /// [`star_row`] with four pairs per AVX2 instruction.
 ///
 /// # Safety
 /// As [`star_row`], with AVX2.
 #[target_feature(enable = "avx2")]
-#[allow(clippy::too_many_arguments)]
 unsafe fn star_row_avx2<const D: usize, E: Effects>(
-    sys: &System<'_, D>,
-    grad: &[Gradients<D>],
-    rec: &[Real],
-    params: &StepParams<'_, D>,
+    rows: &StarRows<'_, D>,
     i: usize,
     geom: &[PairGeom<D>],
     owned: &[u32],
     out: &mut [TsStar],
-    with_p: bool,
 ) -> usize {
-    star_row::<__m256d, D, E>(sys, grad, rec, params, i, geom, owned, out, with_p)
+    star_row::<__m256d, D, E>(rows, i, geom, owned, out)
 }
 
-/// [`star_row`] with eight pairs per AVX-512 instruction.
+/// [`star_row_wide`] with eight pairs per AVX-512 instruction, the rest four per AVX2 one.
 ///
 /// # Safety
 /// As [`star_row`], with AVX-512F.
 #[target_feature(enable = "avx512f")]
-#[allow(clippy::too_many_arguments)]
 unsafe fn star_row_avx512<const D: usize, E: Effects>(
-    sys: &System<'_, D>,
-    grad: &[Gradients<D>],
-    rec: &[Real],
-    params: &StepParams<'_, D>,
+    rows: &StarRows<'_, D>,
     i: usize,
     geom: &[PairGeom<D>],
     owned: &[u32],
     out: &mut [TsStar],
-    with_p: bool,
 ) -> usize {
-    let n = owned.len().min(geom.len()).min(out.len());
-    let (geom, owned, out) = (&geom[..n], &owned[..n], &mut out[..n]);
-    // the full groups of eight in zmm registers, the rest in ymm ones (a last, partial
-    // group of eight would cost as much as a full one)
-    let m = n / 8 * 8;
-    let (o8, o4) = out.split_at_mut(m);
-    let wide = if m > 0 {
-        star_row::<__m512d, D, E>(
-            sys,
-            grad,
-            rec,
-            params,
-            i,
-            &geom[..m],
-            &owned[..m],
-            o8,
-            with_p,
-        )
-    } else {
-        0
-    };
-    wide + star_row::<__m256d, D, E>(
-        sys,
-        grad,
-        rec,
-        params,
-        i,
-        &geom[m..],
-        &owned[m..],
-        o4,
-        with_p,
-    )
+    star_row_wide::<__m512d, __m256d, D, E>(rows, i, geom, owned, out)
 }
 
 /// [`star_row`] at `level`: its AVX2 or AVX-512 entry (0 pairs at the baseline level).
@@ -341,21 +371,19 @@ unsafe fn star_row_avx512<const D: usize, E: Effects>(
 #[allow(clippy::too_many_arguments)]
 pub(crate) unsafe fn star_row_at<const D: usize, E: Effects>(
     level: SimdLevel,
-    sys: &System<'_, D>,
-    grad: &[Gradients<D>],
-    rec: &[Real],
-    params: &StepParams<'_, D>,
+    rows: &StarRows<'_, D>,
     i: usize,
     geom: &[PairGeom<D>],
     owned: &[u32],
     out: &mut [TsStar],
-    with_p: bool,
 ) -> usize {
     match level.get() {
-        Simd::Avx512 => {
-            star_row_avx512::<D, E>(sys, grad, rec, params, i, geom, owned, out, with_p)
-        }
-        Simd::Avx2 => star_row_avx2::<D, E>(sys, grad, rec, params, i, geom, owned, out, with_p),
+        Simd::Avx512 => star_row_avx512::<D, E>(rows, i, geom, owned, out),
+        Simd::Avx2 => star_row_avx2::<D, E>(rows, i, geom, owned, out),
         Simd::Baseline => 0,
+        #[cfg(test)]
+        Simd::Emu4 => star_row::<Emu<4>, D, E>(rows, i, geom, owned, out),
+        #[cfg(test)]
+        Simd::Emu8 => star_row_wide::<Emu<8>, Emu<4>, D, E>(rows, i, geom, owned, out),
     }
 }

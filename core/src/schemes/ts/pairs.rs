@@ -102,7 +102,13 @@ fn solve_stars<const D: usize, E: Effects, X: Executor>(
     with_p: bool,
 ) {
     let records = ts_records::<D, E, X>(sys, grad, params, rec, exec);
-    let rec: &[Real] = rec;
+    let rows = StarRows {
+        sys,
+        grad,
+        rec,
+        params,
+        with_p,
+    };
     solve_pair_rows::<D, X, TsStar>(
         params,
         geom,
@@ -110,7 +116,7 @@ fn solve_stars<const D: usize, E: Effects, X: Executor>(
         exec,
         |i, geom, owned, out| {
             if records {
-                ts_star_row::<D, E>(sys, grad, rec, params, i, geom, owned, out, with_p)
+                ts_star_row::<D, E>(&rows, i, geom, owned, out)
             } else {
                 0
             }
@@ -412,43 +418,41 @@ pub(crate) fn ts_records<const D: usize, E: crate::effects::Effects, X: crate::e
 
 /// The star states of the pairs particle `i` owns (`ts1`, `ts2`: its neighbours `owned`,
 /// their geometry `geom`) into `out` by the vectorised loop, from the neighbour records
-/// `rec` [`ts_records`] wrote (call only where it returned true). Returns how many pairs it
+/// `rows.rec` [`ts_records`] wrote (call only where it returned true). Returns how many pairs it
 /// did (0: none; the portable loop does the rest), each bitwise as
 /// [`crate::schemes::ts::pairs::star`] gives it (`p* = 0` unless `with_p`).
 #[inline(always)]
-#[allow(clippy::too_many_arguments, unused_variables)]
+#[allow(unused_variables)]
 pub(crate) fn ts_star_row<const D: usize, E: crate::effects::Effects>(
-    sys: &crate::state::System<'_, D>,
-    grad: &[crate::state::Gradients<D>],
-    rec: &[crate::math::Real],
-    params: &crate::schemes::workspace::StepParams<'_, D>,
+    rows: &StarRows<'_, D>,
     i: usize,
-    geom: &[crate::state::PairGeom<D>],
+    geom: &[PairGeom<D>],
     owned: &[u32],
-    out: &mut [crate::schemes::ts::records::TsStar],
-    with_p: bool,
+    out: &mut [TsStar],
 ) -> usize {
     #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
-    if params.simd.vectorised()
-        && super::lanes::covers(params)
-        && crate::schemes::pairs::stars_pay::<D, E>(params)
+    if rows.params.simd.vectorised()
+        && super::lanes::covers(rows.params)
+        && crate::schemes::pairs::stars_pay::<D, E>(rows.params)
     {
         // SAFETY: `params.simd` vouches for the instructions (`SimdLevel::assume`) and
         // `covers` holds
         return unsafe {
-            super::lanes::star_row_at::<D, E>(
-                params.simd,
-                sys,
-                grad,
-                rec,
-                params,
-                i,
-                geom,
-                owned,
-                out,
-                with_p,
-            )
+            super::lanes::star_row_at::<D, E>(rows.params.simd, rows, i, geom, owned, out)
         };
     }
     0
+}
+
+/// What every star row of a pass reads besides its own pairs: the portable [`star`]'s
+/// inputs and the neighbour records of its lane twin.
+#[derive(Clone, Copy)]
+pub(crate) struct StarRows<'a, const D: usize> {
+    pub sys: &'a System<'a, D>,
+    pub grad: &'a [Gradients<D>],
+    /// The neighbour records [`ts_records`] wrote.
+    pub rec: &'a [Real],
+    pub params: &'a StepParams<'a, D>,
+    /// Whether the stars keep `p*` (`p* = 0` otherwise).
+    pub with_p: bool,
 }
