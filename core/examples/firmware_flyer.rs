@@ -236,22 +236,20 @@ mod runner {
                 &mut list,
             )
             .map_err(|_| StepError::Storage { field: "neighbors" })?;
-            let mut sys = System {
-                x,
-                v,
-                m,
-                mat,
-                rho,
-                e,
-                p,
-                c,
-                cl,
-                h,
-                s,
-                eps_p,
-                damage: &mut [],
-                temp: &mut [],
-            };
+            let mut sys = System::builder()
+                .x(x)
+                .v(v)
+                .m(m)
+                .mat(mat)
+                .rho(rho)
+                .e(e)
+                .p(p)
+                .c(c)
+                .cl(cl)
+                .h(h)
+                .s(s)
+                .eps_p(eps_p)
+                .build()?;
             let energy = total_energy(&sys);
             let e0 = *e0.get_or_insert(energy);
             let _ = e0;
@@ -312,22 +310,21 @@ mod runner {
             eps_p,
             ..
         } = st;
-        let sys = System {
-            x,
-            v,
-            m,
-            mat,
-            rho,
-            e,
-            p,
-            c,
-            cl,
-            h,
-            s,
-            eps_p,
-            damage: &mut [],
-            temp: &mut [],
-        };
+        let sys = System::builder()
+            .x(x)
+            .v(v)
+            .m(m)
+            .mat(mat)
+            .rho(rho)
+            .e(e)
+            .p(p)
+            .c(c)
+            .cl(cl)
+            .h(h)
+            .s(s)
+            .eps_p(eps_p)
+            .build()
+            .expect("every field a run stores");
         let e1 = total_energy(&sys);
         let e0 = e0.unwrap_or(e1);
         let mut min_sigma: Real = 0.0;

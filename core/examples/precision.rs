@@ -85,8 +85,8 @@ fn run(n: usize, sol: &FlyerPlate) -> Result<Row, String> {
     let mut v: Vec<Vector<1>> = (0..n)
         .map(|i| Vector::<1>::new(if i < n / 2 { v0 } else { 0.0 }))
         .collect();
-    let mut m = vec![mat.rho0 * dx; n];
-    let mut mt = vec![0u16; n];
+    let m = vec![mat.rho0 * dx; n];
+    let mt = vec![0u16; n];
     let mut rho = vec![mat.rho0; n];
     let mut e = vec![0.0; n];
     let eos = mat.eos(mat.rho0, 0.0);
@@ -126,22 +126,21 @@ fn run(n: usize, sol: &FlyerPlate) -> Result<Row, String> {
             &mut list,
         )
         .map_err(|e| format!("neighbours: {e:?}"))?;
-        let mut sys = System {
-            x: &mut x,
-            v: &mut v,
-            m: &mut m,
-            mat: &mut mt,
-            rho: &mut rho,
-            e: &mut e,
-            p: &mut p,
-            c: &mut c,
-            cl: &mut cl,
-            h: &mut h,
-            s: &mut s,
-            eps_p: &mut eps_p,
-            damage: &mut [],
-            temp: &mut [],
-        };
+        let mut sys = System::builder()
+            .x(&mut x)
+            .v(&mut v)
+            .m(&m)
+            .mat(&mt)
+            .rho(&mut rho)
+            .e(&mut e)
+            .p(&mut p)
+            .c(&mut c)
+            .cl(&mut cl)
+            .h(&mut h)
+            .s(&mut s)
+            .eps_p(&mut eps_p)
+            .build()
+            .expect("every field a run stores");
         let energy = total_energy(&sys);
         e0.get_or_insert(energy);
         let dt = stable_dt(&sys, 0.5).min(t_end - t);
@@ -186,22 +185,21 @@ fn run(n: usize, sol: &FlyerPlate) -> Result<Row, String> {
         t += dt;
         steps += 1;
     }
-    let sys = System {
-        x: &mut x,
-        v: &mut v,
-        m: &mut m,
-        mat: &mut mt,
-        rho: &mut rho,
-        e: &mut e,
-        p: &mut p,
-        c: &mut c,
-        cl: &mut cl,
-        h: &mut h,
-        s: &mut s,
-        eps_p: &mut eps_p,
-        damage: &mut [],
-        temp: &mut [],
-    };
+    let sys = System::builder()
+        .x(&mut x)
+        .v(&mut v)
+        .m(&m)
+        .mat(&mt)
+        .rho(&mut rho)
+        .e(&mut e)
+        .p(&mut p)
+        .c(&mut c)
+        .cl(&mut cl)
+        .h(&mut h)
+        .s(&mut s)
+        .eps_p(&mut eps_p)
+        .build()
+        .expect("every field a run stores");
     let e1 = total_energy(&sys) as f64;
     let e0 = e0.map_or(e1, |e| e as f64);
     // the error as `gsph study` measures the flyer plate, summed in f64 in both builds

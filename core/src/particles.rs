@@ -22,6 +22,7 @@
 /// name: Type, kind, storage, access, "unit", "description", {
 ///     api("api name" [more aliases], write|read, range)
 ///     out[column "description", ...]
+///     init(required | optional "default")   (only on the fields initial particles carry)
 /// };
 /// ```
 ///
@@ -62,22 +63,27 @@ macro_rules! particle_fields {
             x: Vector<D>, point, HYDRO, mut, "m", "Position", {
                 api("position" [], write, any)
                 out[x "position x", y "position y (0 in 1D)", z "position z (0 in 1D and 2D)"]
+                init(required)
             };
             v: Vector<D>, vector, HYDRO, mut, "m/s", "Velocity", {
                 api("velocity" [], write, any)
                 out[vx "velocity x", vy "velocity y (0 in 1D)", vz "velocity z (0 in 1D and 2D)"]
+                init(required)
             };
             m: Real, scalar, HYDRO, ref, "kg", "Mass (in 2D per unit length out of the plane, kg/m; in 1D per unit cross-section area, kg/m^2)", {
                 api("mass" [], write, positive)
                 out[m "particle mass (kg/m^2 in 1D: per unit area; kg/m in 2D: per unit length)"]
+                init(required)
             };
             mat: u16, scalar, HYDRO, ref, "", "Material index into `StepParams::materials`", {
                 api("material" [], read, any)
                 out[]
+                init(required)
             };
             rho: Real, scalar, HYDRO, mut, "kg/m^3", "Density", {
                 api("density" [], write, positive)
                 out[rho "density"]
+                init(required)
             };
             p: Real, scalar, HYDRO, mut, "Pa", "Pressure, positive in compression (kept consistent with rho, e by the EOS)", {
                 api("pressure" [], read, any)
@@ -86,6 +92,7 @@ macro_rules! particle_fields {
             e: Real, scalar, HYDRO, mut, "J/kg", "Specific internal energy", {
                 api("energy" [], write, any)
                 out[e "specific internal energy"]
+                init(required)
             };
             c: Real, scalar, HYDRO, mut, "m/s", "Bulk sound speed (from the EOS)", {
                 api("sound_speed" [], read, any)
@@ -105,18 +112,22 @@ macro_rules! particle_fields {
                     sxz "stress deviator S_xz (= sigma_xz)",
                     syz "stress deviator S_yz (= sigma_yz)"
                 ]
+                init(required)
             };
             eps_p: Real, scalar, PLASTICITY, mut, "1", "Equivalent plastic strain", {
                 api("plastic_strain" [], write, nonnegative)
                 out[eps_p "equivalent plastic strain"]
+                init(optional "0")
             };
             damage: Real, scalar, DAMAGE, mut, "1", "Damage in [0, 1]", {
                 api("damage" [], write, fraction)
                 out[damage "damage in [0, 1]"]
+                init(optional "0")
             };
             temp: Real, scalar, HEAT, mut, "K", "Temperature", {
                 api("temperature" [], write, positive)
                 out[temperature "temperature"]
+                init(optional "the material's initial temperature")
             };
             h: Real, scalar, HYDRO, mut, "m", "Smoothing length `h = h_factor (m/rho)^(1/D)`", {
                 api("h" [smoothing_length], write, positive)
@@ -129,6 +140,7 @@ macro_rules! particle_fields {
                     y0 "reference (initial) position y (0 in 1D)",
                     z0 "reference (initial) position z (0 in 1D and 2D)"
                 ]
+                init(optional "its position")
             };
         }
     };

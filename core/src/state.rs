@@ -55,6 +55,20 @@ macro_rules! split_field {
     };
 }
 
+/// A field given to a [`SystemBuilder`]: required where every run stores it, else empty
+/// unless given.
+macro_rules! given_field {
+    ($acc:ident, HYDRO, $v:expr, $name:expr) => {
+        $v.ok_or(StepError::Storage { field: $name })
+    };
+    (mut, $when:ident, $v:expr, $name:expr) => {
+        Ok::<_, StepError>($v.unwrap_or(&mut []))
+    };
+    (ref, $when:ident, $v:expr, $name:expr) => {
+        Ok::<_, StepError>($v.unwrap_or(&[]))
+    };
+}
+
 /// [`System`], its reborrow, storage check and split, from the table of
 /// [`crate::particle_fields!`].
 macro_rules! system_from_fields {
@@ -85,6 +99,40 @@ macro_rules! system_from_fields {
                     }
                 )*
                 Ok(())
+            }
+        }
+
+        /// A [`System`] built field by field ([`System::builder`]): the fields every run
+        /// stores must be given, the others are empty unless given. Code that builds a
+        /// system by hand (the firmware example, tests) names only what it has, so a field
+        /// added to the table reaches it as an empty slice or, if every run stores it, as
+        /// the error of [`SystemBuilder::build`] naming it.
+        #[derive(Debug)]
+        pub struct SystemBuilder<'a, const D: usize> {
+            $($name: Option<slice_of!($acc, 'a, $ty)>,)*
+        }
+
+        impl<'a, const D: usize> System<'a, D> {
+            /// A builder with no field given.
+            pub fn builder() -> SystemBuilder<'a, D> {
+                SystemBuilder { $($name: None,)* }
+            }
+        }
+
+        impl<'a, const D: usize> SystemBuilder<'a, D> {
+            $(
+                #[doc = concat!("Gives `", stringify!($name), "`: ", $doc, unit_doc!($unit))]
+                pub fn $name(mut self, v: slice_of!($acc, 'a, $ty)) -> Self {
+                    self.$name = Some(v);
+                    self
+                }
+            )*
+            /// The system: [`StepError::Storage`] names the first field every run stores
+            /// that was not given (check the lengths with [`System::check_storage`]).
+            pub fn build(self) -> Result<System<'a, D>, StepError> {
+                Ok(System {
+                    $($name: given_field!($acc, $when, self.$name, stringify!($name))?,)*
+                })
             }
         }
 
@@ -134,22 +182,72 @@ impl<'a, const D: usize> System<'a, D> {
     }
 }
 
-/// What one pass over the pairs accumulates for particle i (per unit mass where it is a
-/// rate of a specific quantity).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct PairSums<const D: usize> {
-    /// Acceleration, m/s².
-    pub acc: Vector<D>,
-    /// Power per unit mass at the pair contacts (scheme-specific, see each scheme), W/kg.
-    pub power: Real,
-    /// Velocity divergence, 1/s. Before the pass that sums it, it holds the surface flag
-    /// ([`PairSums::set_surface`]).
-    pub div: Real,
-    /// Velocity gradient `L_ab = dv_a/dx_b`, 1/s (only with `strength`).
-    pub grad_v: Matrix<D>,
-    /// Velocity at the start of the step (time-centred position update), m/s.
-    pub v0: Vector<D>,
+/// Calls `$cb! { ($($args)*) RECORDS }` with the table of the per-particle scratch
+/// records the pair passes share (computed by a step, read by later passes of the same
+/// step or, through a halo or a wall's mirror, by neighbours), a record each:
+///
+/// ```text
+/// Name "doc" { field: Type = default, kind, "doc"; ... }
+/// ```
+///
+/// `kind` says how a field maps under a reflection (a wall's mirror): `vector` (a
+/// vector), `matrix` (a `D x D` tensor, `R M R`), `scalar` or `flag` (unchanged).
+/// Generated from it: the structs and their defaults (here), and in the host the
+/// checkpoint codec, the MPI words and the wall mirrors' reflection. The order of the
+/// fields is the order of the codec and the words.
+#[macro_export]
+macro_rules! scratch_records {
+    ($cb:ident { $($args:tt)* }) => {
+        $cb! {
+            ($($args)*)
+            PairSums "What one pass over the pairs accumulates for particle i (per unit mass where it is a rate of a specific quantity)" {
+                acc: Vector<D> = Vector::<D>::zeros(), vector, "Acceleration, m/s²";
+                power: Real = 0.0, scalar, "Power per unit mass at the pair contacts (scheme-specific, see each scheme), W/kg";
+                div: Real = 0.0, scalar, "Velocity divergence, 1/s. Before the pass that sums it, it holds the surface flag ([`PairSums::set_surface`])";
+                grad_v: Matrix<D> = Matrix::<D>::zeros(), matrix, "Velocity gradient `L_ab = dv_a/dx_b`, 1/s (only with `strength`)";
+                v0: Vector<D> = Vector::<D>::zeros(), vector, "Velocity at the start of the step (time-centred position update), m/s";
+            }
+            Gradients "Gradients used by MUSCL reconstruction (`ts2`, `tkc`)" {
+                rho: Vector<D> = Vector::<D>::zeros(), vector, "grad rho";
+                p: Vector<D> = Vector::<D>::zeros(), vector, "grad P (the contact family computes it only without strength, where the pressure's slope reconstructs the traction; with strength it stays zero)";
+                v: Matrix<D> = Matrix::<D>::zeros(), matrix, "Velocity gradient `dv_a/dx_b`";
+                cl: Vector<D> = Vector::<D>::zeros(), vector, "grad c_l (tkc)";
+                ct: Vector<D> = Vector::<D>::zeros(), vector, "grad c_t (tkc)";
+                w: Matrix<D> = Matrix::<D>::zeros(), matrix, "The spin `W = (G - G^T)/2` of the velocity gradient `G` corrected with the full `L^-1` (no free-surface switch; exact for an affine velocity field wherever `L` is invertible): the rigid rotation the contact family's transverse Riemann problems leave out with `options.objective` (`pm`, `tkc`)";
+                sv: Vector<D> = Vector::<D>::zeros(), vector, "The gradient of the specific volume `1/rho` from the plain kernel sum, `-(1/rho^2) sum_j m_j grad W_ij`, with `options.specific_volume = \"interpolated\"` (`pm`, `tkc`; `schemes::pm::volume`)";
+            }
+            Correction "Kernel gradient correction of one particle (`tkc`)" {
+                l_inv: Matrix<D> = Matrix::<D>::identity(), matrix, "The matrix `L^-1` applied to kernel gradients (identity near free surfaces)";
+                lambda_min: Real = 1.0, scalar, "Smallest eigenvalue of L (free-surface indicator)";
+                boundary: u8 = 0, flag, "0 interior, 1 near a boundary particle, 2 boundary particle";
+            }
+        }
+    };
 }
+
+/// The structs of [`scratch_records!`](crate::scratch_records) and their defaults.
+macro_rules! records_from_table {
+    (() $($rec:ident $rdoc:literal { $($f:ident: $ty:ty = $default:expr, $kind:ident, $doc:literal;)* })*) => {
+        $(
+            #[doc = concat!($rdoc, ".")]
+            #[derive(Clone, Copy, Debug, PartialEq)]
+            pub struct $rec<const D: usize> {
+                $(
+                    #[doc = concat!($doc, ".")]
+                    pub $f: $ty,
+                )*
+            }
+
+            impl<const D: usize> Default for $rec<D> {
+                fn default() -> Self {
+                    $rec { $($f: $default,)* }
+                }
+            }
+        )*
+    };
+}
+
+crate::scratch_records!(records_from_table {});
 
 impl<const D: usize> PairSums<D> {
     /// Marks a particle at or near a free surface, in the step's first passes, for a later
@@ -165,78 +263,6 @@ impl<const D: usize> PairSums<D> {
     #[inline(always)]
     pub fn surface(&self) -> bool {
         self.div != 0.0
-    }
-}
-
-impl<const D: usize> Default for PairSums<D> {
-    fn default() -> Self {
-        PairSums {
-            acc: Vector::<D>::zeros(),
-            power: 0.0,
-            div: 0.0,
-            grad_v: Matrix::<D>::zeros(),
-            v0: Vector::<D>::zeros(),
-        }
-    }
-}
-
-/// Gradients used by MUSCL reconstruction (`ts2`, `tkc`).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Gradients<const D: usize> {
-    /// grad rho.
-    pub rho: Vector<D>,
-    /// grad P (the contact family computes it only without strength, where the pressure's
-    /// slope reconstructs the traction; with strength it stays zero).
-    pub p: Vector<D>,
-    /// Velocity gradient `dv_a/dx_b`.
-    pub v: Matrix<D>,
-    /// grad c_l (tkc).
-    pub cl: Vector<D>,
-    /// grad c_t (tkc).
-    pub ct: Vector<D>,
-    /// The spin `W = (G - G^T)/2` of the velocity gradient `G` corrected with the full
-    /// `L^-1` (no free-surface switch; exact for an affine velocity field wherever `L` is
-    /// invertible): the rigid rotation the contact family's transverse Riemann problems
-    /// leave out with `options.objective` (`pm`, `tkc`).
-    pub w: Matrix<D>,
-    /// The gradient of the specific volume `1/rho` from the plain kernel sum,
-    /// `-(1/rho^2) sum_j m_j grad W_ij`, with `options.specific_volume = "interpolated"`
-    /// (`pm`, `tkc`; `schemes::pm::volume`).
-    pub sv: Vector<D>,
-}
-
-impl<const D: usize> Default for Gradients<D> {
-    fn default() -> Self {
-        Gradients {
-            rho: Vector::<D>::zeros(),
-            p: Vector::<D>::zeros(),
-            v: Matrix::<D>::zeros(),
-            cl: Vector::<D>::zeros(),
-            ct: Vector::<D>::zeros(),
-            w: Matrix::<D>::zeros(),
-            sv: Vector::<D>::zeros(),
-        }
-    }
-}
-
-/// Kernel gradient correction of one particle (`tkc`).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Correction<const D: usize> {
-    /// The matrix `L^-1` applied to kernel gradients (identity near free surfaces).
-    pub l_inv: Matrix<D>,
-    /// Smallest eigenvalue of L (free-surface indicator).
-    pub lambda_min: Real,
-    /// 0 interior, 1 near a boundary particle, 2 boundary particle.
-    pub boundary: u8,
-}
-
-impl<const D: usize> Default for Correction<D> {
-    fn default() -> Self {
-        Correction {
-            l_inv: Matrix::<D>::identity(),
-            lambda_min: 1.0,
-            boundary: 0,
-        }
     }
 }
 

@@ -151,22 +151,21 @@ fn run<const D: usize, E: Effects>(c: &Case) -> Result<Totals, StepError> {
         let mut list = NeighborList::new(n, n, &mut storage).expect("storage");
         let hh = h.clone();
         build_naive(&x, &Periodic::none(), |i, j| hh[i] + hh[j], &mut list).expect("list");
-        let mut sys = System {
-            x: &mut x,
-            v: &mut v,
-            m: &m,
-            mat: &matv,
-            rho: &mut rho,
-            e: &mut e,
-            p: &mut p,
-            c: &mut cs,
-            cl: &mut cl,
-            h: &mut h,
-            s: &mut s,
-            eps_p: &mut eps,
-            damage: &mut [],
-            temp: &mut [],
-        };
+        let mut sys = System::builder()
+            .x(&mut x)
+            .v(&mut v)
+            .m(&m)
+            .mat(&matv)
+            .rho(&mut rho)
+            .e(&mut e)
+            .p(&mut p)
+            .c(&mut cs)
+            .cl(&mut cl)
+            .h(&mut h)
+            .s(&mut s)
+            .eps_p(&mut eps)
+            .build()
+            .expect("every field a run stores");
         let energy = total_energy(&sys);
         let mut mom = [0.0; 2];
         mom[..D].copy_from_slice(total_momentum(&sys).as_slice());

@@ -2,7 +2,7 @@
 //! their IEEE bit patterns, so every value, NaN payloads included, round-trips exactly),
 //! length-prefixed strings and arrays, and the FNV-1a checksum of the payload.
 
-use gsph_core::math::Sym3;
+use gsph_core::math::{Matrix, Real, Sym3, Vector};
 use gsph_core::schemes::AvRates;
 use gsph_core::state::{Correction, Gradients, PairSums};
 use nalgebra::SMatrix;
@@ -207,14 +207,14 @@ macro_rules! struct_codec {
 }
 
 struct_codec!(Sym3, xx: f64, yy: f64, zz: f64, xy: f64, xz: f64, yz: f64);
-struct_codec!(PairSums<D>,
-    acc: SMatrix<f64, D, 1>, power: f64, div: f64, grad_v: SMatrix<f64, D, D>,
-    v0: SMatrix<f64, D, 1>);
-struct_codec!(Gradients<D>,
-    rho: SMatrix<f64, D, 1>, p: SMatrix<f64, D, 1>, v: SMatrix<f64, D, D>,
-    cl: SMatrix<f64, D, 1>, ct: SMatrix<f64, D, 1>, w: SMatrix<f64, D, D>,
-    sv: SMatrix<f64, D, 1>);
-struct_codec!(Correction<D>, l_inv: SMatrix<f64, D, D>, lambda_min: f64, boundary: u8);
+/// The codec of each scratch record, field by field in the core's table
+/// ([`gsph_core::scratch_records!`]).
+macro_rules! scratch_codec {
+    (() $($rec:ident $rdoc:literal { $($f:ident: $ty:ty = $default:expr, $kind:ident, $doc:literal;)* })*) => {
+        $( struct_codec!($rec<D>, $($f: $ty),*); )*
+    };
+}
+gsph_core::scratch_records!(scratch_codec {});
 struct_codec!(AvRates<D>,
     acc: SMatrix<f64, D, 1>, de: f64, drho: f64, ds: Sym3, rate: f64,
     v_half: SMatrix<f64, D, 1>, e_half: f64, rho_half: f64, s_half: Sym3);

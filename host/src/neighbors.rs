@@ -48,9 +48,16 @@ impl Lists {
             lower_pair: Vec::new(),
         }
     }
-    /// Bytes held.
-    pub fn bytes(&self) -> usize {
-        4 * (self.start.len() + self.index.len() + self.pair_start.len() + self.lower_pair.len())
+    /// Bytes held, by array: the row starts, the neighbour indices, the first pair of each
+    /// row and the pair numbers of the lower entries.
+    pub fn memory(&self) -> [(&'static str, usize); 4] {
+        use std::mem::size_of_val;
+        [
+            ("lists.start", size_of_val(&self.start[..])),
+            ("lists.index", size_of_val(&self.index[..])),
+            ("lists.pair_start", size_of_val(&self.pair_start[..])),
+            ("lists.lower_pair", size_of_val(&self.lower_pair[..])),
+        ]
     }
     /// Number of unordered pairs.
     pub fn unordered_pairs(&self) -> usize {

@@ -278,22 +278,22 @@ pub(super) fn with_pairs<const D: usize, E: Effects>(
         }
     ];
     geometry_pass::<D, First, Serial>(&sc.x, &sc.h, &params, &mut geom, &mut fac, &Serial);
-    let sys = System {
-        x: &mut sc.x,
-        v: &mut sc.v,
-        m: &mut sc.m,
-        mat: &mut sc.mat,
-        rho: &mut sc.rho,
-        e: &mut sc.e,
-        p: &mut sc.p,
-        c: &mut sc.c,
-        cl: &mut sc.cl,
-        h: &mut sc.h,
-        s: &mut sc.s,
-        eps_p: &mut sc.eps,
-        damage: &mut sc.damage,
-        temp: &mut [],
-    };
+    let sys = System::builder()
+        .x(&mut sc.x)
+        .v(&mut sc.v)
+        .m(&sc.m)
+        .mat(&sc.mat)
+        .rho(&mut sc.rho)
+        .e(&mut sc.e)
+        .p(&mut sc.p)
+        .c(&mut sc.c)
+        .cl(&mut sc.cl)
+        .h(&mut sc.h)
+        .s(&mut sc.s)
+        .eps_p(&mut sc.eps)
+        .damage(&mut sc.damage)
+        .build()
+        .expect("every field a run stores");
     f(&sys, &params, &geom);
 }
 

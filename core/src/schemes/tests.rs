@@ -165,22 +165,21 @@ fn run<F: SchemeFamily, E: Effects + Plasticity>(t_end: Real) -> (Real, Real, Re
             &mut list,
         )
         .unwrap();
-        let mut sys = System {
-            x,
-            v,
-            m,
-            mat,
-            rho,
-            e,
-            p,
-            c,
-            cl,
-            h,
-            s: if E::STRENGTH { &mut s[..] } else { &mut [] },
-            eps_p: if E::PLASTIC { &mut eps[..] } else { &mut [] },
-            damage: &mut [],
-            temp: &mut [],
-        };
+        let mut sys = System::builder()
+            .x(x)
+            .v(v)
+            .m(m)
+            .mat(mat)
+            .rho(rho)
+            .e(e)
+            .p(p)
+            .c(c)
+            .cl(cl)
+            .h(h)
+            .s(if E::STRENGTH { &mut s[..] } else { &mut [] })
+            .eps_p(if E::PLASTIC { &mut eps[..] } else { &mut [] })
+            .build()
+            .expect("every field a run stores");
         if first {
             energy0 = total_energy(&sys);
             mom0 = total_momentum(&sys)[0];
@@ -241,22 +240,21 @@ fn run<F: SchemeFamily, E: Effects + Plasticity>(t_end: Real) -> (Real, Real, Re
         eps,
         ..
     } = &mut f;
-    let sys = System {
-        x,
-        v,
-        m,
-        mat,
-        rho,
-        e,
-        p,
-        c,
-        cl,
-        h,
-        s,
-        eps_p: eps,
-        damage: &mut [],
-        temp: &mut [],
-    };
+    let sys = System::builder()
+        .x(x)
+        .v(v)
+        .m(m)
+        .mat(mat)
+        .rho(rho)
+        .e(e)
+        .p(p)
+        .c(c)
+        .cl(cl)
+        .h(h)
+        .s(s)
+        .eps_p(eps)
+        .build()
+        .expect("every field a run stores");
     let energy1 = total_energy(&sys);
     let mom1 = total_momentum(&sys)[0];
     (energy0, energy1, mom0, mom1, f)
@@ -345,22 +343,20 @@ fn neighbourhood<E: Effects>(
     let mut storage = [0u32; NeighborList::storage_len(M, 64)];
     let mut list = NeighborList::new(64, M, &mut storage).unwrap();
     build_naive(&x[..], &Periodic::none(), |_, _| 2.4, &mut list).unwrap();
-    let sys = System {
-        x,
-        v: &mut v,
-        m: &m,
-        mat: &mat,
-        rho: &mut rho,
-        e: &mut e,
-        p: &mut p,
-        c: &mut c,
-        cl: &mut cl,
-        h: &mut h,
-        s: &mut s,
-        eps_p: &mut [],
-        damage: &mut [],
-        temp: &mut [],
-    };
+    let sys = System::builder()
+        .x(x)
+        .v(&mut v)
+        .m(&m)
+        .mat(&mat)
+        .rho(&mut rho)
+        .e(&mut e)
+        .p(&mut p)
+        .c(&mut c)
+        .cl(&mut cl)
+        .h(&mut h)
+        .s(&mut s)
+        .build()
+        .expect("every field a run stores");
     let mats = [material()];
     let params = StepParams {
         dt: 0.0,

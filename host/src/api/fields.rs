@@ -47,6 +47,7 @@ macro_rules! field_infos {
     (() $($name:ident: $ty:ty, $kind:ident, $when:ident, $acc:ident, $unit:literal, $doc:literal, {
         api($api:literal [$($alias:ident),*], $w:ident, $range:ident)
         out[$($col:ident $cdoc:literal),*]
+        $(init $init:tt)?
     };)*) => {
         gsph_core::derived_fields!(derived_infos { $(Info {
             name: $api,
@@ -66,6 +67,7 @@ macro_rules! derived_infos {
     (($($state:tt)*) $($name:ident: $unit:literal, $doc:literal, {
         api($api:literal [$($alias:ident),*], $w:ident, $range:ident)
         out[$($col:ident $cdoc:literal),*]
+        $(init $init:tt)?
     };)*) => {
         /// Every field: the state fields in the order of the core's table, then the
         /// derived quantities.

@@ -1,9 +1,9 @@
 //! Per-particle values as `f64` words for MPI messages (bit-exact: every value is stored
 //! as an `f64` and read back unchanged; small integers are exact in an `f64`).
 
-use gsph_core::math::{Sym3, Vector};
+use gsph_core::math::{Matrix, Real, Sym3, Vector};
 use gsph_core::schemes::AvRates;
-use gsph_core::state::{Correction, Gradients};
+use gsph_core::state::{Correction, Gradients, PairSums};
 use nalgebra::SMatrix;
 
 /// A value that travels as a fixed number of `f64` words.
@@ -85,55 +85,44 @@ impl<const D: usize> Words for [Vector<D>; 6] {
     }
 }
 
-impl<const D: usize> Words for Gradients<D> {
+impl Words for u8 {
     fn words() -> usize {
-        5 * D + 2 * D * D
+        1
     }
     fn put_words(&self, out: &mut Vec<f64>) {
-        self.rho.put_words(out);
-        self.p.put_words(out);
-        self.v.put_words(out);
-        self.cl.put_words(out);
-        self.ct.put_words(out);
-        self.w.put_words(out);
-        self.sv.put_words(out);
+        out.push(*self as f64);
     }
     fn from_words(s: &[f64]) -> Self {
-        let mut at = 0;
-        let mut next = |w: usize| {
-            let r = &s[at..at + w];
-            at += w;
-            r
-        };
-        Gradients {
-            rho: Vector::<D>::from_words(next(D)),
-            p: Vector::<D>::from_words(next(D)),
-            v: SMatrix::<f64, D, D>::from_words(next(D * D)),
-            cl: Vector::<D>::from_words(next(D)),
-            ct: Vector::<D>::from_words(next(D)),
-            w: SMatrix::<f64, D, D>::from_words(next(D * D)),
-            sv: Vector::<D>::from_words(next(D)),
-        }
+        s[0] as u8
     }
 }
 
-impl<const D: usize> Words for Correction<D> {
-    fn words() -> usize {
-        D * D + 2
-    }
-    fn put_words(&self, out: &mut Vec<f64>) {
-        self.l_inv.put_words(out);
-        out.push(self.lambda_min);
-        out.push(self.boundary as f64);
-    }
-    fn from_words(s: &[f64]) -> Self {
-        Correction {
-            l_inv: SMatrix::<f64, D, D>::from_words(s),
-            lambda_min: s[D * D],
-            boundary: s[D * D + 1] as u8,
-        }
-    }
+/// The words of each scratch record the halo carries, field by field in the core's
+/// table ([`gsph_core::scratch_records!`]).
+macro_rules! scratch_words {
+    (() $($rec:ident $rdoc:literal { $($f:ident: $ty:ty = $default:expr, $kind:ident, $doc:literal;)* })*) => {
+        $(
+            impl<const D: usize> Words for $rec<D> {
+                fn words() -> usize {
+                    0 $(+ <$ty as Words>::words())*
+                }
+                fn put_words(&self, out: &mut Vec<f64>) {
+                    $( self.$f.put_words(out); )*
+                }
+                fn from_words(s: &[f64]) -> Self {
+                    let mut at = 0;
+                    $(
+                        let $f = <$ty as Words>::from_words(&s[at..]);
+                        at += <$ty as Words>::words();
+                    )*
+                    let _ = at;
+                    $rec { $($f,)* }
+                }
+            }
+        )*
+    };
 }
+gsph_core::scratch_records!(scratch_words {});
 
 impl<const D: usize> Words for AvRates<D> {
     fn words() -> usize {

@@ -79,6 +79,9 @@ pub struct Summary {
     pub neighbor_rebuilds: u64,
     /// Memory of the particle state and workspace per particle, bytes.
     pub bytes_per_particle: usize,
+    /// The same by array (`Sim::memory`), bytes per particle; arrays the run does not
+    /// use are left out.
+    pub bytes_per_particle_by_array: std::collections::BTreeMap<String, f64>,
     /// Total energy at the start, J.
     pub energy_initial: f64,
     /// Total energy at the end, J.
@@ -192,6 +195,12 @@ pub(super) fn summary<const D: usize>(x: Summed<'_, D>) -> Summary {
         wall_friction_work: walls.map(|w| w.1),
         neighbor_rebuilds: sim.rebuilds,
         bytes_per_particle: sim.bytes_per_particle(),
+        bytes_per_particle_by_array: sim
+            .memory()
+            .into_iter()
+            .filter(|m| m.1 > 0)
+            .map(|(name, bytes)| (name.to_string(), bytes as f64 / sim.len().max(1) as f64))
+            .collect(),
         energy_initial: x.energy0,
         energy_final: energy1,
         energy_rel_error: (energy1 - x.energy0) / scale,

@@ -7,6 +7,7 @@
 //! `sigma = -p I + S` (tension positive) and `sigma_xx = sxx - p`; the von Mises stress is
 //! `sqrt(3/2 S:S)`. All units are SI; docs/output.md has the same table for readers.
 
+pub use super::quantity::Quantity;
 use super::table::{ParticleTable, FLOAT_QUANTITIES};
 
 /// The gsph version written into every snapshot file (`gsph_version`).
@@ -27,17 +28,6 @@ pub struct RunInfo {
     pub effects: Vec<String>,
     /// Material names; the `material` column is an index into this list.
     pub materials: Vec<String>,
-}
-
-/// A column of `final.csv` or a dataset of `snapshots.h5`: name, SI unit, meaning.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Quantity {
-    /// Column or dataset name.
-    pub name: &'static str,
-    /// SI unit (`1`: dimensionless; empty: a label, not a quantity); see [`unit()`] for `m`.
-    pub unit: &'static str,
-    /// What it is.
-    pub description: &'static str,
 }
 
 const fn q(name: &'static str, unit: &'static str, description: &'static str) -> Quantity {

@@ -42,6 +42,7 @@ pub mod hdf5_read;
 pub mod meta;
 #[cfg(not(feature = "hdf5"))]
 mod no_hdf5;
+pub mod quantity;
 pub mod safe;
 pub mod table;
 pub mod xdmf;

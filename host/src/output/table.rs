@@ -14,6 +14,7 @@ macro_rules! state_columns {
     (() $($name:ident: $ty:ty, $kind:ident, $when:ident, $acc:ident, $unit:literal, $doc:literal, {
         api($api:literal [$($alias:ident),*], $w:ident, $range:ident)
         out[$($col:ident $cdoc:literal),*]
+        $(init $init:tt)?
     };)*) => {
         gsph_core::derived_fields!(derived_columns { $($( $col $unit $cdoc, )*)* });
     };
@@ -24,6 +25,7 @@ macro_rules! derived_columns {
     (($($col:ident $unit:literal $cdoc:literal,)*) $($name:ident: $dunit:literal, $doc:literal, {
         api($api:literal [$($alias:ident),*], $w:ident, $range:ident)
         out[$($dcol:ident $dcdoc:literal),*]
+        $(init $init:tt)?
     };)*) => {
         particle_types! { $($col $unit $cdoc,)* $($($dcol $dunit $dcdoc,)*)* }
 
@@ -100,7 +102,7 @@ macro_rules! particle_types {
     };
 }
 
-use super::meta::Quantity;
+use super::quantity::Quantity;
 
 /// Columns every `final.csv` and snapshot has held (`id` .. `h`): later ones were appended,
 /// and a file written before them reads them as NaN.

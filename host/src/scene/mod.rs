@@ -6,6 +6,7 @@
 //! Every error is one line naming the file, the key and the cause.
 
 pub mod applies;
+mod checks;
 mod de;
 pub mod library;
 mod material_spec;

@@ -1,57 +1,11 @@
 //! Semantic checks of a deserialised scene. Each failure is one line naming the key.
 
+pub(crate) use super::checks::num;
+use super::checks::{dims, fail, finite, non_negative, positive, R};
 use super::spec::*;
 pub use super::validate_parts::resolve_poisson;
 use super::validate_parts::{material_known, validate_model, validate_shape};
-use super::SceneError;
-use gsph_core::material::params::{self, Num, Rule};
 use gsph_core::schemes::options::{OptionKey, Range};
-
-pub(super) type R = Result<(), SceneError>;
-
-pub(super) fn fail(key: &str, msg: impl std::fmt::Display) -> R {
-    Err(SceneError(format!("{key}: {msg}")))
-}
-
-/// A number for a message: plain where short (`0.5`, `-1`), else in `e` notation (`1e-300`)
-/// (the core's [`Num`], as the models' own checks print it).
-pub(crate) fn num(v: f64) -> String {
-    Num(v).to_string()
-}
-
-/// `v` of `key` checked against `rule` by the core's rule (the message the models give).
-fn rule(key: &str, v: f64, rule: Rule) -> R {
-    params::check("", v, rule).or_else(|e| fail(key, e))
-}
-
-pub(super) fn positive(key: &str, v: f64) -> R {
-    rule(key, v, Rule::Positive)
-}
-
-pub(super) fn non_negative(key: &str, v: f64) -> R {
-    rule(key, v, Rule::NonNegative)
-}
-
-pub(super) fn finite(key: &str, v: f64) -> R {
-    rule(key, v, Rule::Finite)
-}
-
-pub(super) fn dims(key: &str, v: &[f64], dim: usize) -> R {
-    if v.len() != dim {
-        return fail(
-            key,
-            format!(
-                "must have {dim} component{} for a {dim}D scene (got {})",
-                if dim == 1 { "" } else { "s" },
-                v.len()
-            ),
-        );
-    }
-    for (k, x) in v.iter().enumerate() {
-        finite(&format!("{key}[{k}]"), *x)?;
-    }
-    Ok(())
-}
 
 /// Most materials, and most bodies, in a scene (particles store both indices as `u16`).
 pub const MAX_COUNT: usize = u16::MAX as usize + 1;

@@ -1,8 +1,8 @@
 //! Semantic checks of the parts of a scene: materials (EOS, strength), shapes, and the
 //! Poisson-ratio resolution ([`super::validate`] checks the scene as a whole with them).
 
+use super::checks::{dims, fail, finite, non_negative, num, positive, R};
 use super::spec::*;
-use super::validate::{dims, fail, finite, non_negative, num, positive, R};
 use gsph_core::material::params::ParamError;
 
 pub(super) fn material_known(s: &Scene, key: &str, name: &str) -> R {

@@ -86,7 +86,7 @@ impl<const D: usize> Sim<D> {
                 eps_p: parts.eps_p.get(i).copied().unwrap_or(0.0),
                 damage: parts.damage.get(i).copied().unwrap_or(0.0),
                 temp: parts
-                    .temperature
+                    .temp
                     .get(i)
                     .copied()
                     .unwrap_or_else(|| mat.initial_temperature()),

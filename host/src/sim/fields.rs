@@ -180,6 +180,7 @@ macro_rules! define_row {
     (() $($name:ident: $ty:ty, $kind:ident, $when:ident, $acc:ident, $unit:literal, $doc:literal, {
         api($api:literal [$($alias:ident),*], $w:ident, $range:ident)
         out[$($col:ident $cdoc:literal),*]
+        $(init $init:tt)?
     };)*) => {
         impl<const D: usize> super::Sim<D> {
             /// Writes the output columns of the state of particle `i` to `out[*k..]` (zero

@@ -324,29 +324,40 @@ impl<const D: usize> Sim<D> {
 
     /// Bytes of per-particle storage (state, workspace and neighbour lists) per particle,
     /// the scratch records counted at the size a step gives them (so the figure does not
-    /// depend on whether a step ran since a restart).
+    /// depend on whether a step ran since a restart): the sum of [`Sim::memory`].
     pub fn bytes_per_particle(&self) -> usize {
-        use std::mem::size_of;
-        let n = self.len().max(1);
-        fn add<T>(v: &[T], bytes: &mut usize) {
-            *bytes += std::mem::size_of_val(v);
+        self.memory().iter().map(|m| m.1).sum::<usize>() / self.len().max(1)
+    }
+
+    /// Every array the run holds, by name, with its bytes: the state fields of the
+    /// particle table (each a row of `gsph_core::particle_fields!`), the ids, each
+    /// workspace array (`gsph_core::schemes::Workspace`; per particle or, `geom`, `fac`
+    /// and the stars, per pair) and the neighbour lists. Arrays a run does not use hold 0.
+    pub fn memory(&self) -> Vec<(&'static str, usize)> {
+        use std::mem::size_of_val;
+        let mut out: Vec<(&'static str, usize)> = vec![("ids", size_of_val(&self.ids[..]))];
+        macro_rules! state_bytes {
+            (($s:expr, $out:expr) $($name:ident: $ty:ty, $kind:ident, $when:ident, $acc:ident, $unit:literal, $doc:literal, $io:tt;)*) => {
+                $( $out.push((stringify!($name), size_of_val(&$s.$name[..]))); )*
+            };
         }
-        let mut state = self.ids.len() * size_of::<u32>();
-        gsph_core::particle_fields!(each_state_field { ref self, add, &mut state });
-        let ws = self.sums.len() * size_of::<PairSums<D>>()
-            + self.grad.len() * size_of::<Gradients<D>>()
-            + self.grad_stress.len() * size_of::<[Vector<D>; 6]>()
-            + self.corr.len() * size_of::<Correction<D>>()
-            + self.av.len() * size_of::<AvRates<D>>()
-            + self.art.len() * size_of::<Matrix<D>>()
-            + self.records_len() * size_of::<Real>()
-            + self.aux.len() * size_of::<Aux>()
-            + self.fac.len() * size_of::<Real>()
-            + self.geom.len() * size_of::<PairGeom<D>>()
-            + self.ts_star.len() * size_of::<TsStar>()
-            + self.pm_star.len() * size_of::<PmStar<D>>();
-        let lists = self.lists.bytes();
-        (state + ws + lists) / n
+        gsph_core::particle_fields!(state_bytes { self, out });
+        out.extend([
+            ("ws.sums", size_of_val(&self.sums[..])),
+            ("ws.grad", size_of_val(&self.grad[..])),
+            ("ws.grad_stress", size_of_val(&self.grad_stress[..])),
+            ("ws.corr", size_of_val(&self.corr[..])),
+            ("ws.av", size_of_val(&self.av[..])),
+            ("ws.art", size_of_val(&self.art[..])),
+            ("ws.rec", self.records_len() * std::mem::size_of::<Real>()),
+            ("ws.aux", size_of_val(&self.aux[..])),
+            ("ws.fac", size_of_val(&self.fac[..])),
+            ("ws.geom", size_of_val(&self.geom[..])),
+            ("ws.ts_star", size_of_val(&self.ts_star[..])),
+            ("ws.pm_star", size_of_val(&self.pm_star[..])),
+        ]);
+        out.extend(self.lists.memory());
+        out
     }
 
     /// Largest stable time step for the CFL number.

@@ -70,7 +70,7 @@ macro_rules! scheme_options {
             integrator: Integrator = Integrator::Euler, Integrator, "", Any, [Pm, Ts], OWN_INTEGRATOR,
                 "Time integration: the seeds' (first order), or av's predictor-corrector leap-frog (second order)";
             muscl_time: MusclTime = MusclTime::None, MusclTime, "", Any, [Ts], NO_MUSCL_TIME,
-                "How ts2's reconstruction accounts for the time step (seed 000 eq 23): none, a MUSCL-Hancock predictor, or a Courant factor";
+                "How ts2's reconstruction accounts for the time step (Connolly et al. 2013, eq 23): none, a MUSCL-Hancock predictor, or a Courant factor";
             surface_lambda: Real = 0.75, SurfaceLambda, "1", Positive, [Pm, Ts], NO_SURFACE,
                 "Smallest eigenvalue of the correction matrix L below which a particle is a free-surface particle";
             surface_scan: bool = false, SurfaceScan, "", Any, [Pm], NO_SCAN,

@@ -75,22 +75,23 @@ fn with_failed_particle(
     let mut storage = [0u32; NeighborList::storage_len(N, CAP)];
     let mut list = NeighborList::new(CAP, N, &mut storage).unwrap();
     build_naive(&x[..], &Periodic::none(), |_, _| 2.0 * 1.2 * DX, &mut list).unwrap();
-    let sys = System {
-        x: &mut x,
-        v: &mut v,
-        m: &m,
-        mat: &mat,
-        rho: &mut rho,
-        e: &mut e,
-        p: &mut p,
-        c: &mut c,
-        cl: &mut cl,
-        h: &mut h,
-        s: &mut s,
-        eps_p: &mut eps,
-        damage: &mut damage,
-        temp: &mut temp,
-    };
+    let sys = System::builder()
+        .x(&mut x)
+        .v(&mut v)
+        .m(&m)
+        .mat(&mat)
+        .rho(&mut rho)
+        .e(&mut e)
+        .p(&mut p)
+        .c(&mut c)
+        .cl(&mut cl)
+        .h(&mut h)
+        .s(&mut s)
+        .eps_p(&mut eps)
+        .damage(&mut damage)
+        .temp(&mut temp)
+        .build()
+        .expect("every field a run stores");
     let params = StepParams {
         dt: 1e-8,
         materials: &mats,

@@ -1,95 +1,12 @@
 //! Turns bodies into particles: lattices clipped to shapes, initial velocity and state.
 
 use super::import;
+pub use super::initial::InitialParticles;
 use crate::scene::materials::material_of;
 use crate::scene::spec::*;
 use crate::scene::SceneError;
 use gsph_core::material::{Material, Strength};
 use gsph_core::math::Sym3;
-
-/// Particles of a scene before the run (positions padded to 3 components).
-#[derive(Debug, Clone, Default)]
-pub struct InitialParticles {
-    /// Dimension.
-    pub dim: usize,
-    /// Positions, m (unused components 0).
-    pub x: Vec<[f64; 3]>,
-    /// Velocities, m/s.
-    pub v: Vec<[f64; 3]>,
-    /// Masses.
-    pub m: Vec<f64>,
-    /// Densities, kg/m³.
-    pub rho: Vec<f64>,
-    /// Specific internal energies, J/kg.
-    pub e: Vec<f64>,
-    /// Deviators, Pa.
-    pub s: Vec<Sym3>,
-    /// Material index.
-    pub mat: Vec<u16>,
-    /// Body index.
-    pub body: Vec<u16>,
-    /// Lattice spacing of the particle's body, m.
-    pub spacing: Vec<f64>,
-    /// Porosity of each body as built, m = V_lattice / V_particles (1 without pores): the
-    /// volume of the whole lattice over that of the particles kept outside the pores.
-    pub porosity: Vec<f64>,
-    /// Equivalent plastic strain of each particle, or empty: 0 for every particle. Scenes
-    /// fill it (from a particle file, else 0).
-    pub eps_p: Vec<f64>,
-    /// Damage of each particle, or empty: 0 for every particle.
-    pub damage: Vec<f64>,
-    /// Temperature of each particle, K, or empty: each material's initial temperature.
-    pub temperature: Vec<f64>,
-    /// Reference position of each particle (where it was created: its position as built,
-    /// or a particle file's `x0` columns), m, or empty: its position.
-    pub x0: Vec<[f64; 3]>,
-}
-
-impl InitialParticles {
-    /// Number of particles.
-    pub fn len(&self) -> usize {
-        self.x.len()
-    }
-    /// True if empty.
-    pub fn is_empty(&self) -> bool {
-        self.x.is_empty()
-    }
-
-    /// An empty set with the dimension and body porosities of `self`.
-    pub fn empty_like(&self) -> Self {
-        InitialParticles {
-            dim: self.dim,
-            porosity: self.porosity.clone(),
-            ..Default::default()
-        }
-    }
-
-    /// Appends particle `i` of `src`.
-    pub fn push_from(&mut self, src: &InitialParticles, i: usize) {
-        self.x.push(src.x[i]);
-        self.v.push(src.v[i]);
-        self.m.push(src.m[i]);
-        self.rho.push(src.rho[i]);
-        self.e.push(src.e[i]);
-        self.s.push(src.s[i]);
-        self.mat.push(src.mat[i]);
-        self.body.push(src.body[i]);
-        self.spacing.push(src.spacing[i]);
-        // one per particle in `src`, or none
-        for (to, from) in [
-            (&mut self.eps_p, &src.eps_p),
-            (&mut self.damage, &src.damage),
-            (&mut self.temperature, &src.temperature),
-        ] {
-            if let Some(&v) = from.get(i) {
-                to.push(v);
-            }
-        }
-        if let Some(&x0) = src.x0.get(i) {
-            self.x0.push(x0);
-        }
-    }
-}
 
 pub use crate::memory::MAX_PARTICLES;
 /// Most lattice cells the bounding box of the particles may span (at the finest spacing):
@@ -251,7 +168,7 @@ fn push_sites(
         out.spacing.push(dx);
         out.eps_p.push(0.0);
         out.damage.push(0.0);
-        out.temperature.push(mat.initial_temperature());
+        out.temp.push(mat.initial_temperature());
     }
     Ok(())
 }
@@ -349,7 +266,7 @@ fn file_body(
         out.spacing.push(p.spacing);
         out.eps_p.push(p.eps_p);
         out.damage.push(p.damage);
-        out.temperature.push(p.temperature);
+        out.temp.push(p.temperature);
     }
     Ok(())
 }

@@ -12,7 +12,7 @@
 //! `x` and as many of `y`, `z` as the dimension needs (required); `vx`, `vy`, `vz` (missing
 //! ones are 0); `m`; `rho`; `e`; the deviator `sxx, syy, szz, sxy, sxz, syz` (all six or
 //! none); `eps_p`, `damage`, `temperature`. `material` selects rows
-//! (the shape's `file_material`); [`IGNORED_COLUMNS`] (the id, the pressure and
+//! (the shape's `file_material`); [`ignored_columns`] (the id, the pressure and
 //! smoothing length, which the run recomputes, and the derived stress columns of
 //! `final.csv`) are skipped unread. Any other column is refused, so that a misspelt one
 //! (`Vx`) cannot silently leave a field at its default. Columns beyond the scene's
@@ -92,59 +92,35 @@ pub(in crate::scene) fn resolve_files(scene: &mut Scene, base: Option<&Path>) {
     }
 }
 
-/// The state columns of a particle file, in `final.csv` order.
-pub const STATE_COLUMNS: [&str; 21] = [
-    "x",
-    "y",
-    "z",
-    "vx",
-    "vy",
-    "vz",
-    "m",
-    "rho",
-    "e",
-    "sxx",
-    "syy",
-    "szz",
-    "sxy",
-    "sxz",
-    "syz",
-    "eps_p",
-    "damage",
-    "temperature",
-    "x0",
-    "y0",
-    "z0",
-];
+use super::initial::state_column;
+pub use super::initial::STATE_COLUMNS;
 
-/// Columns of a particle file that are skipped unread: the id (particles get new ids in
-/// file order), the pressure and smoothing length (recomputed from the state) and the
-/// derived columns of `final.csv`.
-pub const IGNORED_COLUMNS: [&str; 11] = [
-    "id",
-    "p",
-    "h",
-    "det_f",
-    "sigma_xx",
-    "sigma_yy",
-    "sigma_zz",
-    "sigma_xy",
-    "sigma_xz",
-    "sigma_yz",
-    "von_mises",
-];
+/// Columns of a particle file that are skipped unread: every column of `final.csv` a
+/// file cannot set: the id (particles get new ids in file order), the state columns of
+/// the fields initial particles do not carry (the pressure and smoothing length, which
+/// the run recomputes) and the derived columns. From the output table, so a column added
+/// there is known here.
+pub fn ignored_columns() -> Vec<&'static str> {
+    use crate::output::{meta::DERIVED_COLUMNS, table::COLUMNS};
+    COLUMNS
+        .iter()
+        .chain(&DERIVED_COLUMNS)
+        .copied()
+        .filter(|c| !STATE_COLUMNS.contains(c) && *c != "material")
+        .collect()
+}
 
 /// Indices into [`STATE_COLUMNS`].
-const X: usize = 0;
-const V: usize = 3;
-const M: usize = 6;
-const RHO: usize = 7;
-const E: usize = 8;
-const S: usize = 9;
-const EPS_P: usize = 15;
-const DAMAGE: usize = 16;
-const TEMPERATURE: usize = 17;
-const X0: usize = 18;
+const X: usize = state_column("x");
+const V: usize = state_column("vx");
+const M: usize = state_column("m");
+const RHO: usize = state_column("rho");
+const E: usize = state_column("e");
+const S: usize = state_column("sxx");
+const EPS_P: usize = state_column("eps_p");
+const DAMAGE: usize = state_column("damage");
+const TEMPERATURE: usize = state_column("temperature");
+const X0: usize = state_column("x0");
 
 /// Where the rows of a particle file are, for messages.
 #[derive(Debug, Clone)]
@@ -398,7 +374,7 @@ fn check_values(f: &FileParticles, dim: usize) -> Result<(), String> {
                 return Err(format!(
                     "{}, column `{name}`: {} {why}",
                     f.label(i),
-                    crate::scene::validate::num(v)
+                    crate::scene::checks::num(v)
                 ));
             }
         }
@@ -522,8 +498,8 @@ pub(super) fn file_body(
                 "{key}.file: {}: {}: the EOS of material `{mat_name}` has no state at density {} kg/m³, energy {} J/kg",
                 f.shown,
                 f.label(i),
-                crate::scene::validate::num(rho),
-                crate::scene::validate::num(e)
+                crate::scene::checks::num(rho),
+                crate::scene::checks::num(e)
             ));
         }
         out.push(FileParticle {

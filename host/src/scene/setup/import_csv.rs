@@ -45,7 +45,7 @@ pub(super) fn count_rows(path: &Path, limit: usize) -> Result<usize, String> {
                 if len > MAX_LINE {
                     return Err(format!(
                         "line {lineno}: longer than {MAX_LINE} bytes (a particle file's row is at most {} numbers; is this a CSV file?)",
-                        STATE_COLUMNS.len() + 1 + IGNORED_COLUMNS.len()
+                        STATE_COLUMNS.len() + 1 + ignored_columns().len()
                     ));
                 }
                 if first.is_none() && !b.is_ascii_whitespace() {
@@ -91,14 +91,14 @@ fn parse_header(line: &str, lineno: usize, dim: usize) -> Result<Vec<Slot>, Stri
             Slot::State(c)
         } else if name == "material" {
             Slot::Material
-        } else if IGNORED_COLUMNS.contains(&name) {
+        } else if ignored_columns().contains(&name) {
             Slot::Ignored
         } else {
             return Err(format!(
                 "{at}: unknown column `{}` (known: {}, material; skipped: {})",
                 excerpt(name),
                 STATE_COLUMNS.join(", "),
-                IGNORED_COLUMNS.join(", ")
+                ignored_columns().join(", ")
             ));
         };
         slots.push(slot);

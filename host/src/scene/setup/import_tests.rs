@@ -432,7 +432,7 @@ fn a_csv_body_equals_the_box_it_copies() {
     assert_eq!(csv.e, boxed.e);
     assert_eq!(csv.s, boxed.s);
     assert_eq!(csv.eps_p, boxed.eps_p);
-    assert_eq!(csv.temperature, boxed.temperature);
+    assert_eq!(csv.temp, boxed.temp);
     for (a, b) in csv.spacing.iter().zip(&boxed.spacing) {
         assert!((a - b).abs() < 1e-15, "{a} {b}");
     }

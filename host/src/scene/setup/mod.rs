@@ -11,6 +11,7 @@
 
 pub mod build;
 pub mod import;
+pub mod initial;
 pub mod periodic;
 pub mod pores;
 pub mod stl;

@@ -6,7 +6,7 @@
 //! `spacing = bodies[k].spacing / resolution_scale` as built. A length short of the minimum
 //! by round-off only (1e-9 relative) passes, so `L = 2R` written in the scene is accepted.
 
-use super::build::InitialParticles;
+use super::initial::InitialParticles;
 use crate::scene::spec::Scene;
 use crate::scene::SceneError;
 

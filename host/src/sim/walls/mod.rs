@@ -91,6 +91,43 @@ impl<const D: usize> Mirrors<D> {
     }
 }
 
+/// A scratch record's image through a wall: each field by its kind in the core's table
+/// ([`gsph_core::scratch_records!`]: a vector reflected, a matrix `R M R`, a scalar or a
+/// flag unchanged).
+trait Mirror<const D: usize> {
+    /// The image through `pl`.
+    fn mirror(&self, pl: &plane::Plane<D>) -> Self;
+}
+
+/// A field's image by its kind.
+macro_rules! mirror_field {
+    (vector, $pl:expr, $v:expr) => {
+        $pl.reflect(&$v)
+    };
+    (matrix, $pl:expr, $v:expr) => {
+        $pl.reflect_matrix(&$v)
+    };
+    (scalar, $pl:expr, $v:expr) => {
+        $v
+    };
+    (flag, $pl:expr, $v:expr) => {
+        $v
+    };
+}
+
+macro_rules! scratch_mirrors {
+    (() $($rec:ident $rdoc:literal { $($f:ident: $ty:ty = $default:expr, $kind:ident, $doc:literal;)* })*) => {
+        $(
+            impl<const D: usize> Mirror<D> for gsph_core::state::$rec<D> {
+                fn mirror(&self, pl: &plane::Plane<D>) -> Self {
+                    gsph_core::state::$rec { $($f: mirror_field!($kind, pl, self.$f),)* }
+                }
+            }
+        )*
+    };
+}
+gsph_core::scratch_records!(scratch_mirrors {});
+
 impl<const D: usize> Halo<D> for Mirrors<D> {
     fn refresh(&mut self, exchange: &Exchange, sys: &mut System<'_, D>, ws: GhostWorkspace<'_, D>) {
         let f = exchange.fields;
@@ -129,24 +166,13 @@ impl<const D: usize> Halo<D> for Mirrors<D> {
                 sys.damage[g] = sys.damage[o];
             }
             if f.contains(Fields::GRAD) && !ws.grad.is_empty() {
-                let s = ws.grad[o];
-                let mut t = s;
-                t.rho = pl.reflect(&s.rho);
-                t.p = pl.reflect(&s.p);
-                t.v = pl.reflect_matrix(&s.v);
-                t.cl = pl.reflect(&s.cl);
-                t.ct = pl.reflect(&s.ct);
-                t.w = pl.reflect_matrix(&s.w);
-                t.sv = pl.reflect(&s.sv);
-                ws.grad[g] = t;
+                ws.grad[g] = ws.grad[o].mirror(pl);
             }
             if f.contains(Fields::GRAD_STRESS) && !ws.grad_stress.is_empty() {
                 ws.grad_stress[g] = pl.reflect_tensor_gradient(&ws.grad_stress[o]);
             }
             if f.contains(Fields::CORR) && !ws.corr.is_empty() {
-                let mut c = ws.corr[o];
-                c.l_inv = pl.reflect_matrix(&c.l_inv);
-                ws.corr[g] = c;
+                ws.corr[g] = ws.corr[o].mirror(pl);
             }
         }
     }
