@@ -6,6 +6,9 @@ cd "$(dirname "$0")/.."
 scripts/setup.sh
 cargo build --release -p gsph
 g=target/release/gsph
+
+echo "== the full-size tests CI leaves out (#[ignore = \"full size: make validate\"])"
+cargo test -p gsph-tests --release -- --ignored
 o=out/validation
 mkdir -p "$o"
 

@@ -33,6 +33,7 @@
 //! transverse waves (`rho dv_t/dt = d sigma_tn/dx`, `d sigma_tn/dt = G dv_t/dx`), which
 //! [`acoustic_star_vector`] uses for the tangential part.
 use crate::math::{Real, Vector};
+use crate::simd::arith::Arith;
 
 /// One side of the linearised (acoustic) Riemann problem along the pair axis.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -55,19 +56,41 @@ pub struct AcousticSide {
 /// the answer is the arithmetic mean of the two sides, which is finite and keeps the i/j
 /// swap symmetry.
 ///
-/// Lane twin: `acoustic` in `core/src/simd/riemann.rs` (held bitwise equal through the star tests,
-/// `schemes/star_tests.rs`).
+/// One function for the portable path and the lanes (`acoustic_in`, which the vectorised
+/// star rows run on their registers: issue 44, docs/performance.md "SIMD levels").
 #[inline(always)]
 pub fn acoustic_star(l: AcousticSide, r: AcousticSide) -> (Real, Real) {
-    let zs = l.z + r.z;
-    if zs > 0.0 && zs.is_finite() {
-        let inv = 1.0 / zs;
-        let u = (l.z * l.u + r.z * r.u + r.s - l.s) * inv;
-        let s = (r.z * l.s + l.z * r.s + l.z * r.z * (r.u - l.u)) * inv;
-        (u, s)
-    } else {
-        (0.5 * (l.u + r.u), 0.5 * (l.s + r.s))
-    }
+    // SAFETY: one lane of `Real` needs no instructions beyond the target's
+    unsafe { acoustic_in::<Real>(l.u, l.s, l.z, r.u, r.s, r.z) }
+}
+
+/// [`acoustic_star`] written once for one lane and for the vectorised loops' registers
+/// ([`Arith`]): the same IEEE operations in the same order, both sides of the branch
+/// computed and the valid one selected.
+///
+/// # Safety
+/// `A`'s level must be one the CPU has (nothing for `Real`).
+#[inline(always)]
+pub(crate) unsafe fn acoustic_in<A: Arith>(ul: A, sl: A, zl: A, ur: A, sr: A, zr: A) -> (A, A) {
+    let zs = A::add(zl, zr);
+    let ok = A::and(A::gt(zs, A::zero()), A::finite(zs));
+    let inv = A::div(A::splat(1.0), zs);
+    let u = A::mul(
+        A::sub(A::add(A::add(A::mul(zl, ul), A::mul(zr, ur)), sr), sl),
+        inv,
+    );
+    let s = A::mul(
+        A::add(
+            A::add(A::mul(zr, sl), A::mul(zl, sr)),
+            A::mul(A::mul(zl, zr), A::sub(ur, ul)),
+        ),
+        inv,
+    );
+    let half = A::splat(0.5);
+    (
+        A::select(ok, u, A::mul(half, A::add(ul, ur))),
+        A::select(ok, s, A::mul(half, A::add(sl, sr))),
+    )
 }
 
 /// One side of the acoustic Riemann problem written with the pressure (hydrodynamic step of

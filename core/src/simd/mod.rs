@@ -37,6 +37,7 @@
 //! portable code; options a row does not implement are declined by its `covers`, which
 //! matches every option exhaustively. `tests/tests/determinism.rs` compares whole runs.
 
+pub(crate) mod arith;
 #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]
 pub(crate) mod lanes;
 #[cfg(all(target_arch = "x86_64", not(feature = "f32")))]

@@ -88,22 +88,11 @@ pub(crate) fn shock_slope(m: &crate::material::Material) -> Real {
 }
 
 /// `acoustic_star` along the axis: `(u*, s*)`, the mean of the sides where `z_l + z_r` is
-/// not positive and finite.
+/// not positive and finite: the portable solver itself, run on the lanes
+/// ([`crate::riemann::acoustic::acoustic_in`]).
 #[inline(always)]
 pub(crate) unsafe fn acoustic<V: Lanes>(ul: V, sl: V, zl: V, ur: V, sr: V, zr: V) -> (V, V) {
-    let zs = add(zl, zr);
-    let ok = V::and(gt(zs, V::zero()), finite(zs));
-    let inv = div(splat(1.0), zs);
-    let u = mul(sub(add(add(mul(zl, ul), mul(zr, ur)), sr), sl), inv);
-    let s = mul(
-        add(add(mul(zr, sl), mul(zl, sr)), mul(mul(zl, zr), sub(ur, ul))),
-        inv,
-    );
-    let half = splat(0.5);
-    (
-        select(ok, u, mul(half, add(ul, ur))),
-        select(ok, s, mul(half, add(sl, sr))),
-    )
+    crate::riemann::acoustic::acoustic_in::<V>(ul, sl, zl, ur, sr, zr)
 }
 
 /// [`crate::riemann::pressure_star`]: [`acoustic`] with `s = -p` (the same operations:
