@@ -1,6 +1,6 @@
 //! What 512-bit registers buy on this CPU, and what they cost the code around them: the
-//! evidence behind `gsph run --simd auto` not picking `avx512` (docs/performance.md, "Issue
-//! 28, continued (5)").
+//! evidence behind `gsph run --simd auto` not picking `avx512` (docs/performance.md "SIMD
+//! levels"; docs/notes/performance_history_28_continued.md).
 //!
 //!     cargo run --release -p gsph --example avx512_clock
 //!

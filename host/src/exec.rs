@@ -35,8 +35,9 @@ pub fn highest() -> Simd {
 
 /// The level `auto` picks: the highest this CPU has, except that AVX-512 is run only when
 /// asked for by name (`--simd avx512`): on the one AVX-512 machine measured (an Intel Xeon,
-/// docs/performance.md, "Issue 28, continued (5)") its loops were no faster than the AVX2
-/// ones and up to 8 % slower (bitwise the same results either way).
+/// docs/performance.md "SIMD levels"; docs/notes/performance_history_28_continued.md) its
+/// loops were no faster than the AVX2 ones and up to 8 % slower (bitwise the same results
+/// either way).
 pub fn detect() -> Simd {
     match highest() {
         Simd::Avx512 => Simd::Avx2,
