@@ -29,10 +29,6 @@ fn graph() -> BTreeMap<String, BTreeSet<String>> {
     g
 }
 
-fn cycles(g: &BTreeMap<String, BTreeSet<String>>) -> Vec<Vec<String>> {
-    graph::cycles(g)
-}
-
 #[test]
 fn host_modules_have_no_import_cycle() {
     let g = graph();
@@ -45,7 +41,11 @@ fn host_modules_have_no_import_cycle() {
         "the graph reader found only {} modules",
         g.len()
     );
-    assert_eq!(cycles(&g), Vec::<Vec<String>>::new(), "import cycles");
+    assert_eq!(
+        graph::cycles(&g),
+        Vec::<Vec<String>>::new(),
+        "import cycles"
+    );
 }
 
 #[test]
@@ -58,7 +58,7 @@ fn the_cycle_finder_finds_a_cycle() {
     edge(&mut g, "sim", "checkpoint");
     edge(&mut g, "checkpoint", "scene");
     edge(&mut g, "cli", "scene");
-    assert_eq!(cycles(&g), vec![vec!["checkpoint", "scene", "sim"]]);
+    assert_eq!(graph::cycles(&g), vec![vec!["checkpoint", "scene", "sim"]]);
 }
 
 /// No import cycle between the host's files either (issue 44: `output/meta.rs ⇄

@@ -178,14 +178,8 @@ macro_rules! options_from_table {
             /// The table's answer for `scheme`: read if its family is in the row, otherwise
             /// refused with the row's reason.
             pub(crate) fn table_reads(self, scheme: Scheme) -> Result<(), NotRead> {
-                let family = scheme.family();
-                let mut i = 0;
-                let families = self.families();
-                while i < families.len() {
-                    if families[i] as u8 == family as u8 {
-                        return Ok(());
-                    }
-                    i += 1;
+                if self.families().contains(&scheme.family()) {
+                    return Ok(());
                 }
                 Err(match self {
                     $(OptionKey::$variant => refusal!(scheme, $why),)*

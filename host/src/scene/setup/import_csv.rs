@@ -77,6 +77,7 @@ enum Slot {
 fn parse_header(line: &str, lineno: usize, dim: usize) -> Result<Vec<Slot>, String> {
     let mut slots = Vec::new();
     let mut seen: Vec<&str> = Vec::new();
+    let ignored = ignored_columns();
     for (k, raw) in line.split(',').enumerate() {
         let name = raw.trim().trim_matches('"').trim();
         let at = format!("line {lineno}, column {}", k + 1);
@@ -91,14 +92,14 @@ fn parse_header(line: &str, lineno: usize, dim: usize) -> Result<Vec<Slot>, Stri
             Slot::State(c)
         } else if name == "material" {
             Slot::Material
-        } else if ignored_columns().contains(&name) {
+        } else if ignored.contains(&name) {
             Slot::Ignored
         } else {
             return Err(format!(
                 "{at}: unknown column `{}` (known: {}, material; skipped: {})",
                 excerpt(name),
                 STATE_COLUMNS.join(", "),
-                ignored_columns().join(", ")
+                ignored.join(", ")
             ));
         };
         slots.push(slot);
