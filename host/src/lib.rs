@@ -37,6 +37,7 @@ pub mod specs;
 pub mod stability;
 pub mod study;
 pub mod window;
+pub mod words;
 
 /// Why a plot was refused or left out by a build without the cargo feature `plot`.
 pub const NO_PLOT: &str = "this gsph was built without plotting (cargo feature `plot`)";

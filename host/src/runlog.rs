@@ -17,7 +17,7 @@
 
 use crate::output::safe::open_nofollow;
 use sha2::{Digest, Sha256};
-use std::io::Write;
+use std::io::{Read, Write};
 use std::path::{Path, PathBuf};
 
 /// File name of the log in the output folder.
@@ -69,6 +69,42 @@ pub struct SceneInfo<'a> {
     pub text: &'a str,
     /// `--set`/`--unset` overrides, in order.
     pub overrides: &'a [String],
+}
+
+/// The run `dir/run.log` belongs to: the id on its first line (`gsph V, run ID, started
+/// …`), `Ok(None)` when there is no run.log. A restart compares it with its checkpoint's
+/// (a log is never continued by another run).
+pub fn run_id_of(dir: &Path) -> Result<Option<String>, String> {
+    use std::io::BufRead;
+    let path = dir.join(RUN_LOG);
+    match std::fs::symlink_metadata(&path) {
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+        Err(e) => return Err(format!("{}: {e}", path.display())),
+        Ok(m) if !m.file_type().is_file() => {
+            return Err(format!("{}: not a regular file", path.display()))
+        }
+        Ok(_) => {}
+    }
+    let f = std::fs::File::open(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+    // the first line only, and at most 4 KiB of it
+    let mut first = Vec::new();
+    std::io::BufReader::new(f)
+        .take(4096)
+        .read_until(b'\n', &mut first)
+        .map_err(|e| format!("{}: {e}", path.display()))?;
+    let first = String::from_utf8_lossy(&first);
+    let id = first
+        .strip_prefix("gsph ")
+        .and_then(|rest| rest.split(", ").nth(1))
+        .and_then(|w| w.strip_prefix("run "))
+        .filter(|id| !id.is_empty() && id.chars().all(|c| c.is_ascii_alphanumeric()));
+    match id {
+        Some(id) => Ok(Some(id.to_owned())),
+        None => Err(format!(
+            "{}: its first line names no run (`gsph VERSION, run ID, …`)",
+            path.display()
+        )),
+    }
 }
 
 /// An open run.log.
@@ -200,8 +236,14 @@ mod tests {
         assert!(t.contains("overrides: t_end=1\n----- scene text -----\ndim = 1\n"));
         assert!(t.contains("finished\ngsph "), "{t}");
         assert!(t.contains("restarted from the checkpoint at step 7"), "{t}");
+        assert_eq!(run_id_of(d.path()), Ok(Some("a".into())));
         RunLog::start(d.path(), "b", &sc, None).unwrap();
         let t = std::fs::read_to_string(d.path().join(RUN_LOG)).unwrap();
         assert!(!t.contains("run a"), "{t}");
+        assert_eq!(run_id_of(d.path()), Ok(Some("b".into())));
+        std::fs::write(d.path().join(RUN_LOG), "not a log\n").unwrap();
+        assert!(run_id_of(d.path()).unwrap_err().contains("names no run"));
+        std::fs::remove_file(d.path().join(RUN_LOG)).unwrap();
+        assert_eq!(run_id_of(d.path()), Ok(None));
     }
 }

@@ -67,9 +67,26 @@ fn summary_sans_wall(dir: &Path) -> String {
 /// The outputs of two runs agree: final.csv, series.csv, profile.csv, snapshots.xdmf
 /// byte for byte, summary.json but for wall times, every snapshot frame bitwise.
 fn assert_same_outputs(a: &Path, b: &Path) {
-    for f in ["final.csv", "series.csv", "snapshots.xdmf", "snapshots.h5"] {
+    for f in ["final.csv", "series.csv", "snapshots.xdmf"] {
         assert!(read(a, f) == read(b, f), "{f} differs");
     }
+    // snapshots.h5 byte for byte but for the run id each run's file carries
+    let masked = |d: &Path| {
+        let id = serde_json::from_slice::<serde_json::Value>(&read(d, "summary.json")).unwrap()
+            ["run_id"]
+            .as_str()
+            .unwrap()
+            .as_bytes()
+            .to_vec();
+        let mut h5 = read(d, "snapshots.h5");
+        let at = h5
+            .windows(id.len())
+            .position(|w| w == id)
+            .expect("the run id");
+        h5[at..at + id.len()].fill(b'-');
+        h5
+    };
+    assert!(masked(a) == masked(b), "snapshots.h5 differs");
     assert_eq!(
         a.join("profile.csv").exists(),
         b.join("profile.csv").exists()
@@ -424,4 +441,112 @@ fn checkpoint_options_are_validated() {
     let ck = Checkpoint::read(&b).unwrap();
     assert_eq!(ck.policy.every_steps, Some(4));
     assert!(b.join("final.csv").exists());
+}
+
+/// Every file of a folder, by name, with its bytes.
+fn snapshot_of(dir: &Path) -> Vec<(String, Vec<u8>)> {
+    let mut v: Vec<_> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| {
+            let e = e.unwrap();
+            let name = e.file_name().to_string_lossy().into_owned();
+            (name.clone(), read(dir, &name))
+        })
+        .collect();
+    v.sort();
+    v
+}
+
+/// Issue 45 item 1: run A and run B (B with another dissipation), both stopped with a
+/// checkpoint; A's checkpoint.bin copied into B's folder is refused, then A's
+/// checkpoint.h5, snapshots and run.log one by one: each time in one line naming both
+/// files, and nothing in B's folder changes. With all of A's files it resumes.
+#[test]
+fn a_restart_never_continues_one_run_with_another_runs_files() {
+    let scene = case("flyer_plate.toml");
+    let tmp = tempfile::tempdir().unwrap();
+    let (a, b) = (tmp.path().join("a"), tmp.path().join("b"));
+    let (sa, sb) = (a.display().to_string(), b.display().to_string());
+    let stop = ["--stop-after-steps", "20"];
+    ok(&run_args(&scene, &sa, &[], &stop));
+    ok(&run_args(
+        &scene,
+        &sb,
+        &["options.dissipation=compression"],
+        &stop,
+    ));
+    let restart = ["run", "--restart", sb.as_str(), "--quiet"];
+    let mut named = "checkpoint.bin".to_string();
+    for f in [
+        CHECKPOINT_BIN,
+        CHECKPOINT_H5,
+        "snapshots.partial.h5",
+        "run.log",
+    ] {
+        std::fs::copy(a.join(f), b.join(f)).unwrap();
+        if f == "run.log" {
+            break;
+        }
+        let before = snapshot_of(&b);
+        let next = match f {
+            CHECKPOINT_BIN => CHECKPOINT_H5,
+            CHECKPOINT_H5 => "snapshots.partial.h5",
+            _ => "run.log",
+        };
+        one_line_error(&restart, &format!("{sb}/checkpoint.bin is run "));
+        one_line_error(&restart, &format!("but {sb}/{next} is run "));
+        assert!(
+            snapshot_of(&b) == before,
+            "the refused restart wrote into {sb}"
+        );
+        named = next.to_string();
+    }
+    assert_eq!(named, "run.log");
+    ok(&restart);
+    let id = |d: &Path| {
+        serde_json::from_slice::<serde_json::Value>(&read(d, "summary.json")).unwrap()["run_id"]
+            .as_str()
+            .unwrap()
+            .to_owned()
+    };
+    assert_eq!(id(&b), Checkpoint::read(&a).unwrap().run_id);
+}
+
+/// Issue 45 item 2: a checkpoint whose values break the particle table's ranges (a NaN
+/// reference position, a negative mass), checksum recomputed, is refused naming the
+/// particle and the field.
+#[test]
+fn every_value_read_back_is_checked() {
+    let scene = case("flyer_plate.toml");
+    let tmp = tempfile::tempdir().unwrap();
+    let b = tmp.path().join("b");
+    let sb = b.display().to_string();
+    ok(&run_args(&scene, &sb, &[], &["--stop-after-steps", "10"]));
+    let good = read(&b, CHECKPOINT_BIN);
+    // the values at step 0 (x0, m) of a particle that moves (its position differs from
+    // x0 by step 10): the first copy of their bits in the payload is the field's
+    let f0 = read_frame(b.join(CHECKPOINT_H5), 0, usize::MAX).unwrap();
+    let col = |c: &str| f0.table.column(c).unwrap();
+    let k = col("vx").iter().position(|&v| v != 0.0).unwrap();
+    let id = f0.table.id[k];
+    for (column, bad, expect) in [
+        ("x0", f64::NAN, "`x0` is not finite"),
+        ("m", -1.0, "`m` must be positive"),
+    ] {
+        let bits = col(column)[k].to_le_bytes();
+        let mut forged = good.clone();
+        let at = 32
+            + forged[32..]
+                .windows(8)
+                .position(|w| w == bits)
+                .unwrap_or_else(|| panic!("{column} of particle {id} not in the checkpoint"));
+        forged[at..at + 8].copy_from_slice(&bad.to_le_bytes());
+        let sum = gsph::codec::fnv1a64(&forged[32..]);
+        forged[24..32].copy_from_slice(&sum.to_le_bytes());
+        std::fs::write(b.join(CHECKPOINT_BIN), &forged).unwrap();
+        one_line_error(&["run", "--restart", &sb, "--quiet"], expect);
+        one_line_error(&["run", "--restart", &sb, "--quiet"], "particle ");
+    }
+    std::fs::write(b.join(CHECKPOINT_BIN), &good).unwrap();
+    ok(&["run", "--restart", &sb, "--quiet"]);
 }

@@ -165,24 +165,44 @@ fn surface_scan_is_refused_where_not_read() {
 }
 
 /// `options.specific_volume` is refused without strength (the halo would not carry its
-/// slopes, and it stands in for artificial stress in solids), naming the key.
+/// slopes, and it stands in for artificial stress in solids), naming the key; "has
+/// strength" is one rule for the refusal and the effect (issue 45 item 3): a fluid
+/// written either way is refused, a material that is elastic by its shear modulus alone
+/// is not, and runs with the strength effect.
 #[test]
 fn specific_volume_is_refused_without_strength() {
-    let fluid = FLYER.replace(
-        "strength = { type = \"von_mises\", yield_stress = 2.5e9 }\n",
-        "",
-    );
-    assert_ne!(fluid, FLYER);
+    let strength = "strength = { type = \"von_mises\", yield_stress = 2.5e9 }\n";
+    let modulus = "shear_modulus = 48.1e9\n";
+    let no_key = FLYER.replace(strength, "").replace(modulus, "");
+    let fluid = FLYER
+        .replace(strength, "strength = { type = \"fluid\" }\n")
+        .replace(modulus, "");
+    let elastic = FLYER.replace(strength, "");
+    for s in [&no_key, &fluid, &elastic] {
+        assert_ne!(s, FLYER);
+    }
     for scheme in ["pm", "tkc"] {
         let set = [
             format!("scheme={scheme}"),
             "options.specific_volume=interpolated".to_string(),
         ];
-        let e = parse(&fluid, "flyer", &set).unwrap_err().0;
-        assert!(
-            e.contains("options.specific_volume") && e.contains("strength") && !e.contains('\n'),
-            "{scheme}: {e}"
-        );
+        for (what, text) in [("no strength key", &no_key), ("strength = fluid", &fluid)] {
+            let e = parse(text, "flyer", &set).unwrap_err().0;
+            assert!(
+                e.contains("options.specific_volume")
+                    && e.contains("strength")
+                    && !e.contains('\n'),
+                "{scheme}, {what}: {e}"
+            );
+        }
+        let sc = parse(&elastic, "flyer", &set).expect("elastic by its shear modulus");
+        let mats: Vec<_> = sc
+            .materials
+            .iter()
+            .map(gsph::scene::materials::material_of)
+            .collect();
+        let effects = gsph::sim::resolve_effects(&sc, &mats);
+        assert!(effects.contains(gsph_core::effects::EffectSet::STRENGTH));
     }
 }
 

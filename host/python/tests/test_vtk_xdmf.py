@@ -168,7 +168,7 @@ def test_hdf5_attributes_and_compression(finished):
     name, out = finished
     scene, sets, dim = RUNS[name]
     with h5py.File(out / "snapshots.h5", "r") as f:
-        assert f.attrs["dim"] == dim and f.attrs["format_version"] == 2
+        assert f.attrs["dim"] == dim and f.attrs["format_version"] == 3
         assert f.attrs["scene"] == (CASES / scene).read_text()
         assert list(f.attrs["scene_overrides"]) == sets
         if name == "impact_2d":

@@ -2,23 +2,11 @@
 //! order (the solver renumbers particles in memory; the caller never sees that order).
 
 use super::{with_sim, ApiError, ApiResult, Simulation};
+pub use crate::sim::values::Range;
+use crate::sim::values::{range_of, Values};
 use crate::sim::Sim;
 use gsph_core::effects::EffectSet;
-use gsph_core::math::{Sym3, Vector};
 use gsph_core::state::smoothing_length;
-
-/// How a written value is checked ([`Field::writable`] fields).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Range {
-    /// Any finite value.
-    Any,
-    /// Finite and > 0.
-    Positive,
-    /// Finite and >= 0.
-    Nonnegative,
-    /// Finite and in [0, 1].
-    Fraction,
-}
 
 /// What the library knows of a per-particle field: a row of the core's particle table
 /// ([`gsph_core::particle_fields!`] or [`gsph_core::derived_fields!`]).
@@ -55,7 +43,7 @@ macro_rules! field_infos {
             field: stringify!($name),
             kind: stringify!($kind),
             writable: writable!($w),
-            range: range!($range),
+            range: range_of!($range),
             effect: EffectSet::$when,
             unit: $unit,
         },)* });
@@ -90,21 +78,6 @@ macro_rules! writable {
     };
     (read) => {
         false
-    };
-}
-
-macro_rules! range {
-    (any) => {
-        Range::Any
-    };
-    (positive) => {
-        Range::Positive
-    };
-    (nonnegative) => {
-        Range::Nonnegative
-    };
-    (fraction) => {
-        Range::Fraction
     };
 }
 
@@ -181,48 +154,6 @@ fn names() -> String {
     FIELDS.iter().map(|f| f.name).collect::<Vec<_>>().join(", ")
 }
 
-/// A field's element as API values (`components` per particle).
-trait Values {
-    fn get(&self, out: &mut [f64]);
-    fn set(&mut self, x: &[f64]);
-}
-
-impl Values for f64 {
-    fn get(&self, out: &mut [f64]) {
-        out[0] = *self;
-    }
-    fn set(&mut self, x: &[f64]) {
-        *self = x[0];
-    }
-}
-
-impl Values for u16 {
-    fn get(&self, out: &mut [f64]) {
-        out[0] = f64::from(*self);
-    }
-    fn set(&mut self, _: &[f64]) {
-        unreachable!("read-only")
-    }
-}
-
-impl Values for Sym3 {
-    fn get(&self, out: &mut [f64]) {
-        out.copy_from_slice(&self.to_array());
-    }
-    fn set(&mut self, x: &[f64]) {
-        *self = Sym3::from_array([x[0], x[1], x[2], x[3], x[4], x[5]]);
-    }
-}
-
-impl<const D: usize> Values for Vector<D> {
-    fn get(&self, out: &mut [f64]) {
-        out.copy_from_slice(self.as_slice());
-    }
-    fn set(&mut self, x: &[f64]) {
-        *self = Vector::<D>::from_column_slice(x);
-    }
-}
-
 /// Copies `v` of the particles `order` into `out`, `per` values each.
 fn read_into<T: Values>(v: &[T], order: &[usize], per: usize, out: &mut [f64]) {
     for (o, &i) in out.chunks_exact_mut(per).zip(order) {
@@ -267,15 +198,7 @@ gsph_core::particle_fields!(field_access {});
 
 /// The range a written value must lie in, as a message, or `None` when it does.
 fn out_of_range(f: Field, v: f64) -> Option<&'static str> {
-    if !v.is_finite() {
-        return Some("is not finite");
-    }
-    match f.0.range {
-        Range::Any => None,
-        Range::Positive => (v <= 0.0).then_some("must be positive"),
-        Range::Nonnegative => (v < 0.0).then_some("must not be negative"),
-        Range::Fraction => (!(0.0..=1.0).contains(&v)).then_some("must lie in [0, 1]"),
-    }
+    f.0.range.refuses(v)
 }
 
 /// Writes `data` (id order) into field `f` of the particles `order`; positions are wrapped

@@ -213,6 +213,7 @@ impl Simulation {
                 .iter()
                 .map(|m| m.name.clone())
                 .collect(),
+            run_id: crate::outdir::new_run_id(),
         };
         let mut writer = SnapshotWriter::create(dir, self.dim(), &info).map_err(|e| io(dir, e))?;
         writer.append(&self.frame()).map_err(|e| io(dir, e))?;

@@ -302,6 +302,41 @@ impl Checkpoint {
         Ok(())
     }
 
+    /// Checks that the files a restart continues belong to the run of `checkpoint.bin`:
+    /// `checkpoint.h5` (the snapshots up to the checkpoint), `snapshots.partial.h5` (the
+    /// snapshots the restart replaces) and `run.log` (which it appends to) each carry a run
+    /// id, and it must be this one. A checkpoint copied into the folder of another run is
+    /// refused in one line naming both files, before anything is written.
+    pub fn check_same_run(&self) -> Result<(), CheckpointError> {
+        let bin = self.dir.join(CHECKPOINT_BIN);
+        let mismatch = |other: &Path, id: &str| {
+            CheckpointError(format!(
+                "{} is run {} but {} is run {}: a restart never continues one run with another's files (restart the run's own folder, or start afresh)",
+                bin.display(),
+                self.run_id,
+                other.display(),
+                if id.is_empty() { "of no recorded id" } else { id }
+            ))
+        };
+        for name in [CHECKPOINT_H5, crate::output::SNAPSHOTS_PARTIAL_H5] {
+            let h5 = self.dir.join(name);
+            if std::fs::symlink_metadata(&h5).is_err() {
+                continue;
+            }
+            let info = crate::output::read_run_info(&h5).map_err(|e| err(&h5, e))?;
+            let id = info.map(|i| i.run_id).unwrap_or_default();
+            if id != self.run_id {
+                return Err(mismatch(&h5, &id));
+            }
+        }
+        let log = self.dir.join(crate::runlog::RUN_LOG);
+        match crate::runlog::run_id_of(&self.dir) {
+            Ok(Some(id)) if id != self.run_id => Err(mismatch(&log, &id)),
+            Ok(_) => Ok(()),
+            Err(e) => Err(CheckpointError(e)),
+        }
+    }
+
     /// Overwrites the state of `sim` (built from the checkpoint's scene) with the saved one.
     pub fn restore_sim<const D: usize>(&self, sim: &mut Sim<D>) -> Result<(), CheckpointError> {
         let path = self.dir.join(CHECKPOINT_BIN);

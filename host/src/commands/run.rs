@@ -214,6 +214,7 @@ fn restart(dir: &Path, flags: Policy) -> Result<(Scene, PathBuf, CheckpointOptio
         }
         None => {}
     }
+    ck.check_same_run().map_err(|e| e.to_string())?;
     let policy = Policy {
         every_steps: flags.every_steps.or(ck.policy.every_steps),
         every_seconds: flags.every_seconds.or(ck.policy.every_seconds),

@@ -23,8 +23,8 @@
 
 pub mod rcb;
 pub mod report;
-pub mod words;
 
+use crate::words::Words;
 use gsph_core::halo::{Exchange, Fields, GhostWorkspace, Halo};
 use gsph_core::state::System;
 use mpi::collective::SystemOperation;
@@ -32,7 +32,6 @@ use mpi::datatype::{Partition, PartitionMut};
 use mpi::topology::SimpleCommunicator;
 use mpi::traits::*;
 use std::time::Instant;
-use words::Words;
 
 /// Rebalance at a rebuild when `max owned / mean owned - 1` exceeds this.
 pub const REBALANCE_THRESHOLD: f64 = 0.10;

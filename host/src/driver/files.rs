@@ -65,6 +65,7 @@ impl Files {
                 scheme: sim.scheme.name().into(),
                 effects: sim.effects.names().map(String::from).collect(),
                 materials: scene.materials.iter().map(|m| m.name.clone()).collect(),
+                run_id: run_id.into(),
             };
             let mut w = SnapshotWriter::create(dir, D, &info)?;
             for f in &frames {

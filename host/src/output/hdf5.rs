@@ -1,9 +1,9 @@
 //! HDF5 snapshots (`snapshots.h5`) with their XDMF sidecar (`snapshots.xdmf`).
 //!
-//! Layout (format version 2; docs/output.md). Root attributes: `dim` (u32), `format_version`
+//! Layout (format version 3; docs/output.md). Root attributes: `dim` (u32), `format_version`
 //! (u32, [`FORMAT_VERSION`]), `gsph_version`, `scene_name`, `scene` (the scene text as given),
 //! `scene_overrides`, `scheme`, `effects`, `material_names` (index = the `material` column) and
-//! `conventions` (strings, the lists 1-D string arrays; [`RunInfo`]). One group per snapshot,
+//! `conventions`, `run_id` (strings, the lists 1-D string arrays; [`RunInfo`]). One group per snapshot,
 //! `/step_000123`, with attributes `time` (f64, s) and `step` (u64); datasets `position` and
 //! `velocity` (N x 3 f64), `stress` (the Cauchy stress `-p I + S`, N x 3 x 3 f64), one 1-D
 //! dataset per other column of `final.csv` ([`scalar_datasets`]: `id` and `material` as u32, the
@@ -39,7 +39,8 @@ pub use super::{SNAPSHOTS_H5, SNAPSHOTS_PARTIAL_H5, SNAPSHOTS_PARTIAL_XDMF, SNAP
 
 /// The layout version in the root attribute `format_version` (files without it are version 1:
 /// no `stress`, `von_mises`, run attributes, units or compression).
-pub const FORMAT_VERSION: u32 = 2;
+/// Version 3 added `run_id`.
+pub const FORMAT_VERSION: u32 = 3;
 /// Deflate (gzip) level of every dataset (after the shuffle filter). After the shuffle, level 1
 /// compresses a 2D impact's snapshots to 41 % of their raw size, level 4 to 40 % (at two thirds
 /// of the speed), level 6 to 40 % (at 40 %): 1 it is.
@@ -328,6 +329,7 @@ fn write_run_attributes(file: &hdf5::File, dim: usize, info: &RunInfo) -> Result
     str_list_attr(file, "effects", &info.effects)?;
     str_list_attr(file, "material_names", &info.materials)?;
     str_attr(file, "conventions", CONVENTIONS)?;
+    str_attr(file, "run_id", &info.run_id)?;
     Ok(())
 }
 

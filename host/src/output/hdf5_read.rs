@@ -1,7 +1,7 @@
 //! Reading back `snapshots.h5` files written by [`SnapshotWriter`](super::hdf5::SnapshotWriter):
 //! the list of snapshot times, one snapshot as a [`Frame`] and the run's attributes as a
 //! [`RunInfo`]. Files of both layouts read: format version 1 (before `stress`, `von_mises` and the
-//! run attributes) and 2; the derived datasets are not read back (the [`Frame`] holds `p` and the
+//! run attributes), 2 and 3 (2 with `run_id`); the derived datasets are not read back (the [`Frame`] holds `p` and the
 //! deviator they come from).
 //!
 //! Every file read is checked before any data is (issue 25): it is a regular file; no link in
@@ -195,6 +195,11 @@ pub fn read_run_info(path: impl AsRef<Path>) -> Result<Option<RunInfo>, OutputEr
         scheme: str_attr(&file, "scheme")?,
         effects: str_list_attr(&file, "effects")?,
         materials: str_list_attr(&file, "material_names")?,
+        run_id: if file.attr_names()?.iter().any(|a| a == "run_id") {
+            str_attr(&file, "run_id")?
+        } else {
+            String::new()
+        },
     }))
 }
 

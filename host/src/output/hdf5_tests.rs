@@ -33,6 +33,7 @@ fn info() -> RunInfo {
         scheme: "ts2".into(),
         effects: vec!["strength".into(), "damage".into()],
         materials: vec!["steel".into(), "sic".into(), "al".into()],
+        run_id: "0123456789abcdef".into(),
     }
 }
 

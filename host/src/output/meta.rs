@@ -28,6 +28,9 @@ pub struct RunInfo {
     pub effects: Vec<String>,
     /// Material names; the `material` column is an index into this list.
     pub materials: Vec<String>,
+    /// The run's id, as in its `summary.json`, `run.log` and `checkpoint.bin`: a restart
+    /// continues only the files of its own run (empty in files of layout 2 and earlier).
+    pub run_id: String,
 }
 
 const fn q(name: &'static str, unit: &'static str, description: &'static str) -> Quantity {

@@ -527,3 +527,30 @@ fn murnaghan_eos_reads_and_checks_itself() {
         "{e}"
     );
 }
+
+/// A fluid has no shear modulus: `poisson_ratio` beside `strength = fluid` is refused
+/// naming the ratio (it gave a shear modulus the fluid then ignored).
+#[test]
+fn a_poisson_ratio_for_a_fluid_is_refused() {
+    let scene = r#"
+dim = 1
+scheme = "ts2"
+t_end = 1e-6
+[[materials]]
+name = "water"
+rho0 = 1000.0
+poisson_ratio = 0.3
+eos = { type = "murnaghan", c0 = 1480.0, gamma = 7.0 }
+strength = { type = "fluid" }
+[[bodies]]
+material = "water"
+shape = { type = "segment", min = 0.0, max = 1e-2 }
+spacing = 1e-4
+"#;
+    let e = parse_err(scene, &[]);
+    assert!(
+        e.contains("materials[0].poisson_ratio") && e.contains("fluid"),
+        "{e}"
+    );
+    assert!(parse(&scene.replace("poisson_ratio = 0.3\n", ""), "s.toml", &[]).is_ok());
+}

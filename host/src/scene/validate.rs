@@ -206,7 +206,10 @@ fn check_options(s: &Scene) -> R {
         return fail(key, why);
     }
     // the keys of the transverse Riemann problems: there are none in 1D or without strength
-    let no_strength = !s.materials.is_empty() && s.materials.iter().all(|m| m.strength.is_none());
+    // the rule the effects follow (`sim::resolve_effects`): a material has strength as
+    // its model says, a material without a `strength` key by its shear modulus
+    let no_strength = !s.materials.is_empty()
+        && (s.materials.iter()).all(|m| !super::materials::material_of(m).has_strength());
     for (key, set) in [
         (
             "options.transverse_dissipation",

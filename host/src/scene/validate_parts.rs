@@ -138,6 +138,9 @@ pub fn resolve_poisson(s: &mut Scene) -> R {
     for (k, m) in s.materials.iter_mut().enumerate() {
         let Some(nu) = m.poisson_ratio else { continue };
         let key = format!("materials[{k}].poisson_ratio");
+        if matches!(m.strength, Some(Strength::Fluid)) {
+            return fail(&key, "a fluid (strength = fluid) has no shear modulus");
+        }
         if m.shear_modulus != 0.0 {
             return fail(&key, "give either shear_modulus or poisson_ratio, not both");
         }

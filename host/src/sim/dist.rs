@@ -3,8 +3,9 @@
 //! gathered views (table, diagnostics, checkpoints) in global id order.
 
 use super::Sim;
-use crate::dist::{self, rcb::Rcb, words::Words, Dist, Plan, REBALANCE_THRESHOLD};
+use crate::dist::{self, rcb::Rcb, Dist, Plan, REBALANCE_THRESHOLD};
 use crate::sim::SimError;
+use crate::words::Words;
 use gsph_core::math::Vector;
 use gsph_core::schemes::AvRates;
 use std::time::Instant;

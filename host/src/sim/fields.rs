@@ -22,6 +22,23 @@ macro_rules! each_state_field {
     ((named $s:expr, $f:expr, $arg:expr) $($name:ident: $ty:ty, $kind:ident, $when:ident, $acc:ident, $unit:literal, $doc:literal, $io:tt;)*) => {
         $( $f(stringify!($name), &mut $s.$name, $arg)?; )*
     };
+    // the first value outside the range the table gives the field (its `api` range,
+    // where the particle's material calls for the field's effect: [`Sim::outside`]),
+    // with the field's name: `$f(stringify!(FIELD), $sim.outside(&$sim.FIELD, range, effect))?`
+    ((ranged $s:expr, $f:expr) $($name:ident: $ty:ty, $kind:ident, $when:ident, $acc:ident, $unit:literal, $doc:literal, {
+        api($api:literal [$($alias:ident),*], $w:ident, $range:ident)
+        out[$($col:ident $cdoc:literal),*]
+        $(init $init:tt)?
+    };)*) => {
+        $( $f(
+            stringify!($name),
+            $s.outside(
+                &$s.$name,
+                $crate::sim::values::range_of!($range),
+                gsph_core::effects::EffectSet::$when,
+            ),
+        )?; )*
+    };
     // with whether the run stores the field: `$f(&$sim.FIELD, stored, $arg)`
     ((stored $s:expr, $f:expr, $arg:expr) $($name:ident: $ty:ty, $kind:ident, $when:ident, $acc:ident, $unit:literal, $doc:literal, $io:tt;)*) => {
         $( $f(&$s.$name, $s.effects.contains(gsph_core::effects::EffectSet::$when), $arg); )*

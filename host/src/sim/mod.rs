@@ -36,6 +36,7 @@ mod error;
 mod lists;
 mod measure;
 mod state_io;
+pub mod values;
 pub mod walls;
 use by_id::{cause_by_id, overflow_by_id};
 pub use edit::HeldState;
@@ -56,20 +57,28 @@ fn select<const D: usize>(scheme: Scheme, effects: EffectSet) -> Option<StepFn<D
     }
 }
 
+/// The effects a material calls for: hydrodynamics, and strength, plasticity, heat and
+/// damage as its strength model has them.
+pub fn material_effects(m: &Material) -> EffectSet {
+    let mut e = EffectSet::HYDRO;
+    for (has, effect) in [
+        (m.has_strength(), EffectSet::STRENGTH),
+        (m.has_plasticity(), EffectSet::PLASTICITY),
+        (m.has_heat(), EffectSet::HEAT),
+        (m.has_damage(), EffectSet::DAMAGE),
+    ] {
+        if has {
+            e = e.union(effect);
+        }
+    }
+    e
+}
+
 /// The effects a scene calls for (DESIGN §5): from its materials, options and scheme.
 pub fn resolve_effects(scene: &Scene, materials: &[Material]) -> EffectSet {
     let mut e = scene.scheme.effects();
-    if materials.iter().any(|m| m.has_strength()) {
-        e = e.union(EffectSet::STRENGTH);
-    }
-    if materials.iter().any(|m| m.has_plasticity()) {
-        e = e.union(EffectSet::PLASTICITY);
-    }
-    if materials.iter().any(|m| m.has_heat()) {
-        e = e.union(EffectSet::HEAT);
-    }
-    if materials.iter().any(|m| m.has_damage()) {
-        e = e.union(EffectSet::DAMAGE);
+    for m in materials {
+        e = e.union(material_effects(m));
     }
     if scene.periodic.is_some() {
         e = e.union(EffectSet::PERIODIC);

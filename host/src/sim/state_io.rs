@@ -13,8 +13,11 @@
 //! recomputed before they are read in every step. They are saved anyway: the cost is small
 //! and a restart then does not depend on that property of the schemes.
 
+use super::values::{first_outside, Range, Values};
 use super::Sim;
 use crate::codec::{Codec, Dec, DecodeError, Enc};
+use crate::words::Words;
+use gsph_core::effects::EffectSet;
 
 /// Most steps a checkpoint may claim (2^53: counted exactly in an f64 too); a forged
 /// `u64::MAX` would overflow on the next step.
@@ -132,13 +135,6 @@ impl<const D: usize> Sim<D> {
         if ids.windows(2).any(|w| w[0] == w[1]) {
             return Err(DecodeError("two particles have the same id".into()));
         }
-        if !self.build_x.is_empty() {
-            self.owned = self.len();
-            self.add_mirrors()
-                .map_err(|e| DecodeError(format!("walls: {e}")))?;
-            self.build_lists()
-                .map_err(|e| DecodeError(format!("neighbour lists: {e}")))?;
-        }
         if self.materials.len() <= self.mat.iter().copied().max().unwrap_or(0) as usize {
             return Err(DecodeError("a material index names no material".into()));
         }
@@ -153,26 +149,79 @@ impl<const D: usize> Sim<D> {
                 self.step, self.t
             )));
         }
-        for i in 0..n {
-            let bad = if !(self.x[i].iter().all(|v| v.is_finite())) {
-                Some("position is not finite")
-            } else if !(self.v[i].iter().all(|v| v.is_finite())) {
-                Some("velocity is not finite")
-            } else if !(self.m[i].is_finite() && self.m[i] > 0.0) {
-                Some("mass is not positive")
-            } else if !(self.rho[i].is_finite() && self.rho[i] > 0.0) {
-                Some("density is not positive")
-            } else if !self.e[i].is_finite() {
-                Some("energy is not finite")
-            } else if !(self.h[i].is_finite() && self.h[i] > 0.0) {
-                Some("smoothing length is not positive")
-            } else {
-                None
-            };
-            if let Some(field) = bad {
-                return Err(DecodeError(format!("particle {}: {field}", self.ids[i])));
-            }
+        // before anything is built from them (the lists from `build_x`, `build_h`)
+        self.check_values()?;
+        if !self.build_x.is_empty() {
+            self.owned = self.len();
+            self.add_mirrors()
+                .map_err(|e| DecodeError(format!("walls: {e}")))?;
+            self.build_lists()
+                .map_err(|e| DecodeError(format!("neighbour lists: {e}")))?;
         }
         Ok(())
+    }
+
+    /// The first particle whose value in `v` (a field stored with `effect`) lies outside
+    /// `range` where the particle's material calls for `effect`, or is not finite where it
+    /// does not (a steel particle's temperature, 0 K, in a run where another material heats).
+    pub(super) fn outside<T: Values>(
+        &self,
+        v: &[T],
+        range: Range,
+        effect: EffectSet,
+    ) -> Option<(usize, f64, &'static str)> {
+        let acts: Vec<bool> = (self.materials.iter())
+            .map(|m| super::material_effects(m).contains(effect))
+            .collect();
+        let mat = &self.mat;
+        first_outside(v, |i| match acts.get(mat[i] as usize) {
+            Some(true) => range,
+            _ => Range::Any,
+        })
+    }
+
+    /// Every value of the particle state within the range the core's table gives its field
+    /// (`api(…, range)`: finite everywhere, positive masses, densities and smoothing
+    /// lengths, damage in [0, 1], …: derived from the table, so a field added later is
+    /// checked too), every value of the workspace finite, and the smoothing lengths the
+    /// lists were built with positive.
+    fn check_values(&self) -> Result<(), DecodeError> {
+        let ids = &self.ids;
+        let state = |name: &str, bad: Option<(usize, f64, &str)>| match bad {
+            Some((i, y, why)) => Err(DecodeError(format!(
+                "particle {}: `{name}` {why} (got {y:e})",
+                ids[i]
+            ))),
+            None => Ok(()),
+        };
+        gsph_core::particle_fields!(each_state_field { ranged self, state });
+        fn finite<T: Words>(name: &str, v: &[T], ids: &[u32]) -> Result<(), DecodeError> {
+            let mut w = Vec::with_capacity(T::words());
+            for (i, x) in v.iter().enumerate() {
+                w.clear();
+                x.put_words(&mut w);
+                if let Some(y) = w.iter().find(|y| !y.is_finite()) {
+                    return Err(DecodeError(format!(
+                        "particle {}: the workspace's `{name}` holds {y}",
+                        ids.get(i).copied().unwrap_or(u32::MAX)
+                    )));
+                }
+            }
+            Ok(())
+        }
+        finite("sums", &self.sums, ids)?;
+        finite("grad", &self.grad, ids)?;
+        finite("grad_stress", &self.grad_stress, ids)?;
+        finite("corr", &self.corr, ids)?;
+        finite("av", &self.av, ids)?;
+        state("build_x", first_outside(&self.build_x, |_| Range::Any))?;
+        state("build_h", first_outside(&self.build_h, |_| Range::Positive))?;
+        match Range::Nonnegative.refuses(self.mirrors.friction_work) {
+            Some(why) => Err(DecodeError(format!(
+                "the walls' friction work {why} (got {:e} J)",
+                self.mirrors.friction_work
+            ))),
+            None => Ok(()),
+        }
     }
 }
