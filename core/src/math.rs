@@ -71,6 +71,10 @@ pub mod real {
             libm::log(x)
         }
         #[inline(always)]
+        pub fn expm1(x: Real) -> Real {
+            libm::expm1(x)
+        }
+        #[inline(always)]
         pub fn powf(x: Real, y: Real) -> Real {
             libm::pow(x, y)
         }
@@ -110,6 +114,10 @@ pub mod real {
         #[inline(always)]
         pub fn ln(x: Real) -> Real {
             libm::logf(x)
+        }
+        #[inline(always)]
+        pub fn expm1(x: Real) -> Real {
+            libm::expm1f(x)
         }
         #[inline(always)]
         pub fn powf(x: Real, y: Real) -> Real {
@@ -152,6 +160,10 @@ pub mod real {
         #[inline(always)]
         pub fn ln(x: Real) -> Real {
             F32Ext::ln(x)
+        }
+        #[inline(always)]
+        pub fn expm1(x: Real) -> Real {
+            libm::expm1f(x)
         }
         #[inline(always)]
         pub fn powf(x: Real, y: Real) -> Real {

@@ -80,6 +80,9 @@ pub fn run_id_of(dir: &Path) -> Result<Option<String>, String> {
     match std::fs::symlink_metadata(&path) {
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
         Err(e) => return Err(format!("{}: {e}", path.display())),
+        Ok(m) if m.file_type().is_symlink() => {
+            return Err(format!("{}: is a symbolic link", path.display()))
+        }
         Ok(m) if !m.file_type().is_file() => {
             return Err(format!("{}: not a regular file", path.display()))
         }

@@ -267,6 +267,14 @@ fn checkpoint_continues_bit_for_bit() {
     assert_eq!(again.steps(), half.steps());
     again.advance_to(0.4e-6).unwrap();
     assert!(again.table() == whole.table(), "the continued run differs");
+    // a time already passed is refused, not 0 steps (issue 45); the present is 0 steps
+    let e = again.advance_to(-1.0).unwrap_err().to_string();
+    assert!(
+        e.contains("t: -1e0 s lies before the simulation's time"),
+        "{e}"
+    );
+    assert!(again.advance_to(0.1e-6).is_err());
+    assert_eq!(again.advance_to(again.time()).unwrap(), 0);
 }
 
 #[test]

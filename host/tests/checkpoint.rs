@@ -475,6 +475,13 @@ fn a_restart_never_continues_one_run_with_another_runs_files() {
         &["options.dissipation=compression"],
         &stop,
     ));
+    // the stop is the log's last line (issue 45: a stopped run's log had no end)
+    let log = String::from_utf8(read(&b, "run.log")).unwrap();
+    let last = log.lines().last().unwrap();
+    assert!(
+        last.starts_with("STOPPED ") && last.contains("after step 20"),
+        "{last}"
+    );
     let restart = ["run", "--restart", sb.as_str(), "--quiet"];
     let mut named = "checkpoint.bin".to_string();
     for f in [

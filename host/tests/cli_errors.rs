@@ -191,8 +191,9 @@ fn cases() -> Vec<Case> {
         case("no bodies", f(), "check", &["--set", "bodies=[]"], &["bodies: at least one body is required"]),
         case("no materials", f(), "check", &["--set", "materials=[]"], &["materials: at least one material is required"]),
         case("duplicate material name", second_metal, "check", &[], &["scene.toml: materials[1].name: duplicate material name `metal`"]),
-        case("overlapping bodies (check)", f(), "check", &["--set", "bodies.0.shape.max=0.01"], &["particles 50 and 100 overlap"]),
-        case("overlapping bodies (run)", f(), "run", &["--set", "bodies.0.shape.max=0.01"], &["particles 50 and 100 overlap"]),
+        case("overlapping bodies (check)", f(), "check", &["--set", "bodies.0.shape.max=0.01"], &["particles 51 and 101 are at the same point (5.1500e-3,"]),
+        case("overlapping bodies (run)", f(), "run", &["--set", "bodies.0.shape.max=0.01"], &["particles 51 and 101 are at the same point (5.1500e-3,"]),
+        case("overlapping bodies off the lattice", f(), "check", &["--set", "bodies.0.shape.max=0.00802"], &["particles 50 and 80 overlap: 1.263e-5 m apart"]),
         case("neighbour capacity (check)", f(), "check", &["--set", "neighbor_capacity=1"], &["neighbour-capacity overflow: particle 0", "neighbor_capacity"]),
         case("neighbour capacity (run)", f(), "run", &["--set", "neighbor_capacity=1"], &["neighbour-capacity overflow: particle 0", "neighbor_capacity"]),
         case("blow-up at step 1", f(), "run", &["--set", "bodies.0.velocity.value=[1e200]"], &["step 1 ", "particle ", "not finite"]),
@@ -205,6 +206,12 @@ fn cases() -> Vec<Case> {
         case("cfl above 1", f(), "check", &["--set", "cfl=1.5"], &["cfl: must be at most 1 (got 1.5)"]),
         case("zero threads", f(), "run", &["--threads", "0"], &["--threads must be at least 1"]),
         case("usage: threads not a number", f(), "run", &["--threads", "many"], &["'many'", "--threads"]),
+        case("usage: negative threads", f(), "run", &["--threads", "-1"], &["'-1'", "--threads"]),
+        case("usage: negative checkpoint interval", f(), "run", &["--checkpoint-every-steps", "-3"], &["'-3'", "--checkpoint-every-steps"]),
+        case("sound speed beyond every material", f(), "check", &["--set", "materials.0.eos.c0=1e300"], &["materials[0].eos.c0: must be at most 100000 m/s, beyond every real material (got 1e300)"]),
+        case("density below every material", f(), "check", &["--set", "materials.0.rho0=1e-300"], &["materials[0].rho0: must be at least 0.001 kg/m^3, below every real material (got 1e-300)"]),
+        case("shear modulus of a fluid's order", f(), "check", &["--set", "materials.0.shear_modulus=1e-20"], &["materials[0].shear_modulus: must be 0 (a fluid) or at least 1e-8 of the bulk modulus"]),
+        case("hugoniot u_p faster than any impact", window(), "hugoniot", &["--up", "100,1e300"], &["--up: 1e300 m/s is faster than any impact or shock (at most 1e5 m/s)"]),
         case("unknown SIMD level", f(), "run", &["--simd", "sse"], &["--simd sse: unknown instruction-set level `sse` (one of auto, baseline, avx2, avx512)"]),
         case("nonexistent scene file", None, "check", &[], &["missing.toml: cannot read scene"]),
         case("JH1 tensile limit not a tension", impact(), "check", &["--set", "materials.1.strength.tensile_limit=7.5e8"], &["materials[1].strength.tensile_limit: must be negative"]),
@@ -492,6 +499,63 @@ fn overrides_change_scheme_and_resolution() {
 }
 
 /// Points given many times over in a particle file overflow the neighbour lists before the
+/// Issue 45: 20,000 particles at one point with `neighbor_capacity = 20000` are named as
+/// coincident before any list is built (the lists asked for 7 GB and the run aborted).
+#[test]
+fn a_crowd_at_one_point_is_named_before_the_lists_are_built() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    let csv = format!("x\n{}", "2.5e-3\n".repeat(20_000));
+    std::fs::write(dir.join("points.csv"), csv).unwrap();
+    let scene = flyer().replacen(
+        "shape = { type = \"segment\", min = 0.0, max = 0.005 }",
+        "shape = { type = \"particles\", file = \"points.csv\" }",
+        1,
+    );
+    std::fs::write(
+        dir.join("scene.toml"),
+        format!("neighbor_capacity = 20000\n{scene}"),
+    )
+    .unwrap();
+    let o = gsph(dir, &["check", "scene.toml"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.contains("are at the same point (2.5000e-3,"), "{err}");
+}
+
+/// Issue 45: `gsph plot profile` reads profile.csv as carefully as series.csv: an empty,
+/// ragged or foreign file is refused in one line naming the file and line.
+#[test]
+fn plot_profile_refuses_an_empty_or_ragged_table() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    std::fs::write(dir.join("scene.toml"), case_text("riemann_al.toml")).unwrap();
+    let o = gsph(dir, &["run", "scene.toml", "--out", "r", "--quiet"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let good = std::fs::read_to_string(dir.join("r/profile.csv")).unwrap();
+    assert!(gsph(dir, &["plot", "profile", "r"]).status.success());
+    for (text, expect) in [
+        (String::new(), "the header is ``, not gsph's"),
+        (
+            "x,sigma_xx,sigma_xx_exact\n".to_string(),
+            "no rows after the header",
+        ),
+        (format!("{good}1e-3,2e8\n"), "values, the header names 3"),
+        (
+            good.replacen("\n", "\nabc,1,2\n", 1),
+            "line 2, column x: `abc` is not a number",
+        ),
+    ] {
+        std::fs::write(dir.join("r/profile.csv"), &text).unwrap();
+        let o = gsph(dir, &["plot", "profile", "r"]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{text:?}: {err}");
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(err.contains("profile.csv") && err.contains(expect), "{err}");
+    }
+}
+
 /// overlap check can run: the message names two coincident particles, not the capacity
 /// (issue 25: "raise `neighbor_capacity`" was the advice).
 #[test]

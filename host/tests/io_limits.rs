@@ -186,7 +186,23 @@ fn hdf5_files_declaring_more_than_they_hold_are_refused_in_bounded_memory() {
     let mut args = run_args(scene.to_str().unwrap(), "ck");
     args.extend(["--stop-after-steps", "3"]);
     ok(d, &args);
-    std::fs::rename(bomb(d, "c.h5", 1 << 33, false), d.join("ck/checkpoint.h5")).unwrap();
+    let c = bomb(d, "c.h5", 1 << 33, false);
+    // of the checkpoint's run (a restart refuses another run's snapshots before it reads)
+    let id = gsph::checkpoint::Checkpoint::read(&d.join("ck"))
+        .unwrap()
+        .run_id;
+    {
+        let _h5 = h5_lock();
+        let f = hdf5::File::open_rw(&c).unwrap();
+        f.delete_attr("run_id").unwrap();
+        let v: hdf5::types::VarLenUnicode = id.parse().unwrap();
+        f.new_attr::<hdf5::types::VarLenUnicode>()
+            .create("run_id")
+            .unwrap()
+            .write_scalar(&v)
+            .unwrap();
+    }
+    std::fs::rename(c, d.join("ck/checkpoint.h5")).unwrap();
     refused_cheaply(
         d,
         &["run", "--restart", "ck", "--quiet"],

@@ -52,7 +52,10 @@ impl Strength {
     pub fn check(&self) -> Result<(), params::ParamError> {
         match self {
             Strength::Fluid | Strength::Elastic => Ok(()),
-            Strength::VonMises { yield_stress } => params::positive("yield_stress", *yield_stress),
+            Strength::VonMises { yield_stress } => {
+                params::positive("yield_stress", *yield_stress)?;
+                params::physical("yield_stress", *yield_stress, params::ranges::STRESS, "Pa")
+            }
             Strength::JohnsonCook(m) => m.check(),
             Strength::Jh1(m) => m.check(),
         }

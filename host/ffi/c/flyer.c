@@ -8,6 +8,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "gsph.h"
 
@@ -52,6 +53,12 @@ int main(int argc, char **argv) {
     /* a wrong buffer length is refused with a message, not a crash */
     if (gsph_read_field(sim, "pressure", p, count - 1) != GSPH_ERR_ARGUMENT) {
         fprintf(stderr, "flyer: a short buffer was accepted\n");
+        return 1;
+    }
+    /* a time already passed is refused, not 0 steps */
+    uint64_t none = 0;
+    if (gsph_advance(sim, -1.0, &none) != GSPH_ERR_ARGUMENT || !strstr(gsph_last_error(), "lies before")) {
+        fprintf(stderr, "flyer: advancing to t = -1 was accepted\n");
         return 1;
     }
     printf("flyer (C): %zu particles, %llu steps, peak sigma_xx %.17g Pa (gsph run: %.17g)\n",

@@ -1,9 +1,11 @@
-//! The seven equations of state on arbitrary `f64` input.
+//! The eight equations of state on arbitrary `f64` input.
 //!
-//! Contract: no input panics. With parameters the scene validator accepts, bounded to a
-//! generous physical range (rho0 1e-3..1e6 kg/m³, c0 1e-3..1e5 m/s, slopes 0..100,
-//! Grüneisen coefficients -100..100, moduli up to 1e14 Pa; Tillotson: a, b, alpha, beta
-//! 0..100, E0 1e-3..1e12 J/kg, E_iv 0..1e12 J/kg, E_cv - E_iv 1e-3..1e12 J/kg), every
+//! Contract: no input panics. With parameters the scene validator accepts (the ranges of
+//! real materials, `gsph_core::material::params::ranges`: rho0 1e-3..1e5 kg/m³, c0
+//! 1..1e5 m/s, slopes 0..20, Grüneisen coefficients -20..20, bulk moduli 1e3..1e13 Pa,
+//! higher-order moduli -1e13..1e13 Pa; Tillotson: a, b, alpha, beta 0..20, E0
+//! 1e-3..1e10 J/kg, E_iv 0..1e10 J/kg, E_cv - E_iv 1e-3..1e10 J/kg; Murnaghan: gamma
+//! 1e-300..20), every
 //! density 1e-12..1e12
 //! rho0 with |e| <= 1e12 J/kg gives a finite pressure and a finite, positive c² (far beyond
 //! these bounds plain overflow of `c0² rho` or `k3 z³` is possible). Non-finite or
@@ -14,12 +16,12 @@ use common::{fit, fit_log};
 use gsph_core::material::eos::*;
 use libfuzzer_sys::fuzz_target;
 
-fn models(a: &[f64; 5]) -> [Eos; 7] {
-    let rho0 = fit_log(a[0], 1e-3, 1e6);
-    let c0 = fit_log(a[1], 1e-3, 1e5);
-    let s = fit(a[2], 0.0, 100.0);
-    let g = fit(a[3], -100.0, 100.0);
-    let k = fit_log(a[4], 1e-3, 1e14);
+fn models(a: &[f64; 5]) -> [Eos; 8] {
+    let rho0 = fit_log(a[0], 1e-3, 1e5);
+    let c0 = fit_log(a[1], 1.0, 1e5);
+    let s = fit(a[2], 0.0, 20.0);
+    let g = fit(a[3], -20.0, 20.0);
+    let k = fit_log(a[4], 1e3, 1e13);
     [
         Eos::Linear(Linear { rho0, c0, gamma: g }),
         Eos::Logarithmic(Logarithmic {
@@ -42,20 +44,25 @@ fn models(a: &[f64; 5]) -> [Eos; 7] {
         Eos::Polynomial(Polynomial {
             rho0,
             k1: k,
-            k2: fit(a[1], -1e14, 1e14),
-            k3: fit(a[2], -1e14, 1e14),
+            k2: fit(a[1], -1e13, 1e13),
+            k3: fit(a[2], -1e13, 1e13),
         }),
         Eos::Tillotson(Tillotson {
             rho0,
             a: s,
-            b: fit(a[3], 0.0, 100.0),
+            b: fit(a[3], 0.0, 20.0),
             big_a: k,
-            big_b: fit(a[1], -1e14, 1e14),
+            big_b: fit(a[1], -1e13, 1e13),
             alpha: s,
-            beta: fit(a[3], 0.0, 100.0),
-            e0: fit_log(a[1], 1e-3, 1e12),
-            e_iv: fit(a[4], 0.0, 1e12),
-            e_cv: fit(a[4], 0.0, 1e12) + fit_log(a[0], 1e-3, 1e12),
+            beta: fit(a[3], 0.0, 20.0),
+            e0: fit_log(a[1], 1e-3, 1e10),
+            e_iv: fit(a[4], 0.0, 1e10),
+            e_cv: fit(a[4], 0.0, 1e10) + fit_log(a[0], 1e-3, 1e10),
+        }),
+        Eos::Murnaghan(Murnaghan {
+            rho0,
+            c0,
+            gamma: fit_log(a[2], 1e-300, 20.0),
         }),
     ]
 }
@@ -107,6 +114,11 @@ fuzz_target!(|input: (bool, [f64; 5], f64, f64)| {
                 e0: a[1],
                 e_iv: a[4],
                 e_cv: a[0],
+            }),
+            Eos::Murnaghan(Murnaghan {
+                rho0: a[0],
+                c0: a[1],
+                gamma: a[2],
             }),
         ];
         for m in raw {

@@ -143,6 +143,9 @@ def test_write_snapshots_one_frame_and_errors(tmp_path):
         sim.write_snapshot(tmp_path / "x.h5")
     with pytest.raises(gsph.ArgumentError, match="no snapshot file is open"):
         sim.append_snapshot()
+    # a time already passed is refused (issue 45), not 0 steps
+    with pytest.raises(gsph.ArgumentError, match="lies before the simulation's time"):
+        sim.advance(-1)
 
 
 def test_overrides_unset_keys():

@@ -370,6 +370,13 @@ impl Simulation {
         if !t.is_finite() {
             return Err(ApiError::Argument(format!("t: must be finite (got {t:e})")));
         }
+        // a time already passed is a caller's mistake, not zero steps to take
+        if t < self.time() * (1.0 - 1e-12) {
+            return Err(ApiError::Argument(format!(
+                "t: {t:e} s lies before the simulation's time {:e} s (advance runs forward to t)",
+                self.time()
+            )));
+        }
         let first = self.steps();
         while self.time() < t * (1.0 - 1e-12) {
             let mut dt = self.stable_dt()?;

@@ -3,6 +3,9 @@
 use crate::scene::{self, scene_name};
 use std::path::PathBuf;
 
+/// The fastest particle velocity or shock speed `gsph hugoniot` takes, m/s.
+pub const MAX_SPEED: f64 = 1e5;
+
 /// Arguments of `gsph hugoniot`.
 #[derive(clap::Args, Debug)]
 pub struct HugoniotArgs {
@@ -15,13 +18,13 @@ pub struct HugoniotArgs {
     #[arg(long)]
     pub bracket: Option<String>,
     /// Bisection stops below this bracket width, m/s.
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
     pub tolerance: f64,
     /// Feed lengths entering during each trial (seed: 3).
-    #[arg(long, default_value_t = 3.0)]
+    #[arg(long, default_value_t = 3.0, allow_negative_numbers = true)]
     pub samples: f64,
     /// Feed lengths over which the production profiles are averaged.
-    #[arg(long, default_value_t = 4.5)]
+    #[arg(long, default_value_t = 4.5, allow_negative_numbers = true)]
     pub average: f64,
     /// Scene overrides.
     #[command(flatten)]
@@ -30,7 +33,7 @@ pub struct HugoniotArgs {
     #[arg(long)]
     pub out: Option<PathBuf>,
     /// Worker threads (default: all cores).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub threads: Option<usize>,
     /// No per-trial progress lines.
     #[arg(long)]
@@ -76,8 +79,21 @@ pub fn command(args: HugoniotArgs) -> Result<(), String> {
             return Err(format!("{flag}: must be positive (got {v})"));
         }
     }
+    // speeds of real impacts and shocks: a particle velocity or a shock speed beyond
+    // 1e5 m/s (meteoroids reach 7.2e4) is a typo, and 1e300 overflows the first step
+    let ups = super::parse_positive("--up", &up)?;
+    let fast = |flag: &str, v: &[f64]| match v.iter().find(|&&x| x > MAX_SPEED) {
+        Some(x) => Err(format!(
+            "{flag}: {x:e} m/s is faster than any impact or shock (at most {MAX_SPEED:e} m/s)"
+        )),
+        None => Ok(()),
+    };
+    fast("--up", &ups)?;
+    if let Some((lo, hi)) = bracket {
+        fast("--bracket", &[lo, hi])?;
+    }
     let opts = crate::window::hugoniot::HugoniotOptions {
-        ups: super::parse_positive("--up", &up)?,
+        ups,
         bracket,
         tolerance,
         samples,

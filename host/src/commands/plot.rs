@@ -67,7 +67,7 @@ pub enum PlotCommand {
         #[arg(long)]
         outline: Option<PathBuf>,
         /// The rod's axis: 0, 1 or 2.
-        #[arg(long, default_value_t = 2)]
+        #[arg(long, default_value_t = 2, allow_negative_numbers = true)]
         axis: usize,
         /// A point of the impact face on the axis, `X,Y,Z` (m).
         #[arg(long, default_value = "0,0,0")]

@@ -20,7 +20,7 @@ pub struct RunArgs {
     #[command(flatten)]
     pub overrides: super::Overrides,
     /// Worker threads (default: all cores).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub threads: Option<usize>,
     /// No progress bar.
     #[arg(long)]
@@ -31,16 +31,16 @@ pub struct RunArgs {
     #[arg(long, value_name = "LEVEL")]
     pub simd: Option<String>,
     /// Write OUT/checkpoint.bin every K steps (docs/checkpoint.md).
-    #[arg(long, value_name = "K")]
+    #[arg(long, value_name = "K", allow_negative_numbers = true)]
     pub checkpoint_every_steps: Option<u64>,
     /// Write OUT/checkpoint.bin every S seconds of wall time.
-    #[arg(long, value_name = "S")]
+    #[arg(long, value_name = "S", allow_negative_numbers = true)]
     pub checkpoint_every_seconds: Option<f64>,
     /// Continue the run checkpointed in DIR to t_end; its outputs go to DIR.
     #[arg(long, value_name = "DIR", conflicts_with_all = ["scene", "out", "set", "unset"])]
     pub restart: Option<PathBuf>,
     /// Write a checkpoint after step N and stop, as if interrupted (tests).
-    #[arg(long, value_name = "N", hide = true)]
+    #[arg(long, value_name = "N", hide = true, allow_negative_numbers = true)]
     pub stop_after_steps: Option<u64>,
 }
 

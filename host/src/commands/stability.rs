@@ -19,7 +19,7 @@ pub struct StabilityArgs {
     #[arg(long, default_value = "cases/hard")]
     pub cases: PathBuf,
     /// Worker threads (default: all cores).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub threads: Option<usize>,
 }
 

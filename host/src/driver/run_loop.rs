@@ -16,12 +16,20 @@ pub(super) fn run_dim<const D: usize>(
 ) -> Result<Outcome, RunError> {
     let mut log = None;
     let result = run_dim_logged::<D>(scene, scene_name, parts, opts, ckpt, &mut log);
-    if let (Err(e), Some(log)) = (&result, &log) {
-        let what = match e {
-            RunError::Interrupted { .. } => "INTERRUPTED",
-            _ => "FAILED",
-        };
-        log.append(&format!("{what} {}: {e}", crate::runlog::utc_now()));
+    match (&result, &log) {
+        (Err(e), Some(log)) => {
+            let what = match e {
+                RunError::Interrupted { .. } => "INTERRUPTED",
+                _ => "FAILED",
+            };
+            log.append(&format!("{what} {}: {e}", crate::runlog::utc_now()));
+        }
+        // `--stop-after-steps`: the run ends here too, with a checkpoint to resume from
+        (Ok(Outcome::Stopped { step }), Some(log)) => log.append(&format!(
+            "STOPPED {}: after step {step} (--stop-after-steps), checkpoint written; `gsph run --restart` continues",
+            crate::runlog::utc_now()
+        )),
+        _ => {}
     }
     result
 }

@@ -221,10 +221,51 @@ pub fn check_file_name(name: &str) -> Result<(), String> {
 /// caller to prefix with the key and file.
 pub fn regular_file(path: &Path) -> Result<u64, String> {
     let meta = std::fs::metadata(path).map_err(|e| format!("cannot read: {e}"))?;
-    if meta.is_file() {
-        Ok(meta.len())
-    } else {
-        Err("not a regular file".into())
+    if !meta.is_file() {
+        return Err("not a regular file".into());
+    }
+    if let Some(fs) = pseudo_file_system(path) {
+        return Err(format!(
+            "a file of the kernel's {fs}, not a data file (nothing of it is read)"
+        ));
+    }
+    Ok(meta.len())
+}
+
+/// The kernel file system `path` lies on when it is one whose files are made up on
+/// reading (procfs, sysfs, …: a "regular file" of length 0 that yields the process's
+/// environment, say), by the file system's magic number on Linux and the path elsewhere.
+fn pseudo_file_system(path: &Path) -> Option<&'static str> {
+    #[cfg(target_os = "linux")]
+    {
+        use std::os::unix::ffi::OsStrExt;
+        let c = std::ffi::CString::new(path.as_os_str().as_bytes()).ok()?;
+        let mut st: libc::statfs = unsafe { std::mem::zeroed() };
+        // SAFETY: `c` is a NUL-terminated path and `st` a writable statfs
+        if unsafe { libc::statfs(c.as_ptr(), &mut st) } == 0 {
+            // <linux/magic.h>
+            return match (st.f_type as i64) & 0xffff_ffff {
+                0x9fa0 => Some("/proc (procfs)"),
+                0x6265_6572 => Some("/sys (sysfs)"),
+                0x6462_6720 => Some("debugfs"),
+                0x7472_6163 => Some("tracefs"),
+                0x2738_6c73 => Some("cgroup2fs"),
+                0x0027_e0eb => Some("cgroupfs"),
+                0x1cd1 => Some("devpts"),
+                0x6e73_6673 => Some("nsfs"),
+                0x7363_6673 => Some("securityfs"),
+                0xcafe_4a11 => Some("bpf"),
+                _ => None,
+            };
+        }
+        None
+    }
+    #[cfg(not(target_os = "linux"))]
+    {
+        let real = std::fs::canonicalize(path).ok()?;
+        ["/proc", "/sys", "/dev"]
+            .into_iter()
+            .find(|d| real.starts_with(d))
     }
 }
 
@@ -374,9 +415,17 @@ mod tests {
                 regular_file(Path::new("/dev/zero")).unwrap_err(),
                 "not a regular file"
             );
-            // a /proc file reports length 0 and is read up to the bound
+            // a /proc file (reporting length 0, made up on reading) is not read at all
             let e = read_text(Path::new("/proc/self/maps"), 8).unwrap_err();
-            assert!(e.contains("more than the 8 bytes"), "{e}");
+            assert!(
+                e.starts_with("a file of the kernel's /proc (procfs)"),
+                "{e}"
+            );
+            let e = regular_file(Path::new("/sys/kernel/mm/transparent_hugepage/enabled"));
+            assert!(
+                e.map_or_else(|e| e.contains("sysfs"), |_| false)
+                    || !Path::new("/sys/kernel").exists()
+            );
         }
     }
 }

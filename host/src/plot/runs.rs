@@ -238,20 +238,51 @@ pub fn profile(dir: &Path, out: Option<PathBuf>) -> Result<PathBuf, String> {
             path.display()
         )
     })?;
+    // checked as series.csv is: the header gsph writes, every row whole and a number
+    // in each field (the exact value may be empty where the reference has none)
+    const HEADER: &str = "x,sigma_xx,sigma_xx_exact";
+    let mut lines = text.lines();
+    let header = lines.next().unwrap_or("");
+    if header.trim_end() != HEADER {
+        return Err(format!(
+            "{}: the header is `{}`, not gsph's `{HEADER}`",
+            path.display(),
+            excerpt(header)
+        ));
+    }
     let mut sph = Vec::new();
     let mut exact = Vec::new();
-    for line in text.lines().skip(1) {
+    for (k, line) in lines.enumerate().filter(|(_, l)| !l.trim().is_empty()) {
         let f: Vec<&str> = line.split(',').collect();
-        let x: f64 = f.first().and_then(|v| v.parse().ok()).unwrap_or(f64::NAN);
-        if let Some(v) = f.get(1).and_then(|v| v.parse::<f64>().ok()) {
-            sph.push((x, v));
+        let at = |c: usize, name: &str| -> Result<f64, String> {
+            f[c].trim().parse::<f64>().map_err(|_| {
+                format!(
+                    "{} line {}, column {name}: `{}` is not a number",
+                    path.display(),
+                    k + 2,
+                    excerpt(f[c])
+                )
+            })
+        };
+        if f.len() != 3 {
+            return Err(format!(
+                "{} line {}: {} values, the header names 3 (a truncated file?)",
+                path.display(),
+                k + 2,
+                f.len()
+            ));
         }
-        exact.push((
-            x,
-            f.get(2)
-                .and_then(|v| v.parse::<f64>().ok())
-                .unwrap_or(f64::NAN),
-        ));
+        let x = at(0, "x")?;
+        sph.push((x, at(1, "sigma_xx")?));
+        let e = if f[2].trim().is_empty() {
+            f64::NAN
+        } else {
+            at(2, "sigma_xx_exact")?
+        };
+        exact.push((x, e));
+    }
+    if sph.is_empty() {
+        return Err(format!("{}: no rows after the header", path.display()));
     }
     let name = dir
         .file_name()

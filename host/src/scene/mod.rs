@@ -185,11 +185,23 @@ fn toml_error(text: &str, origin: &str, e: &toml::de::Error) -> String {
         }
         None => String::new(),
     };
-    // (the parser quotes what it found: an excerpt of it)
-    format!(
-        "{origin}{at}: malformed TOML: {}",
-        shorten_quotes(&cause.join("; "))
-    )
+    // (the parser quotes what it found: an excerpt of it); where it gives no reason (a
+    // NUL in a comment), the character it stopped at
+    let mut why = shorten_quotes(&cause.join("; "));
+    if why.is_empty() {
+        let found = e
+            .span()
+            .and_then(|s| text.get(s.start.min(text.len())..))
+            .and_then(|rest| rest.chars().next());
+        why = match found {
+            Some(c) if c.is_control() => format!(
+                "the control character U+{:04X}, which TOML allows nowhere (not even in a comment)",
+                c as u32
+            ),
+            _ => "the parser gives no reason".into(),
+        };
+    }
+    format!("{origin}{at}: malformed TOML: {why}")
 }
 
 /// `KEY=VALUE` of a `--set` as a message shows it: whole up to 120 characters (an inline

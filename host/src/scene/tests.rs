@@ -554,3 +554,14 @@ spacing = 1e-4
     );
     assert!(parse(&scene.replace("poisson_ratio = 0.3\n", ""), "s.toml", &[]).is_ok());
 }
+
+/// A NUL in a comment: the parser gives no reason, the message names the character.
+#[test]
+fn a_nul_in_a_comment_is_named() {
+    let e = parse_err("dim = 1\n# a \u{0} b\n", &[]);
+    assert!(
+        e.starts_with("scene.toml:2:")
+            && e.contains("malformed TOML: the control character U+0000"),
+        "{e}"
+    );
+}

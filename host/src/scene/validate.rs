@@ -199,6 +199,10 @@ fn check_output(s: &Scene) -> R {
     Ok(())
 }
 
+/// The smallest ratio of a solid's shear modulus to its bulk modulus at the reference
+/// state (rubber's is about 1e-3).
+pub const MIN_SHEAR_TO_BULK: f64 = 1e-8;
+
 /// The `[options]` keys: read by the scheme (the core says), in range.
 fn check_options(s: &Scene) -> R {
     let o = &s.options;
@@ -297,7 +301,32 @@ fn check_materials(s: &Scene) -> R {
         }
         positive(&format!("{key}.rho0"), m.rho0)?;
         non_negative(&format!("{key}.shear_modulus"), m.shear_modulus)?;
+        // within the ranges of real materials (gsph_core::material::params::ranges)
+        validate_model(&key, {
+            use gsph_core::material::params::{physical, ranges::*};
+            physical("rho0", m.rho0, DENSITY, "kg/m^3")
+                .and_then(|()| physical("shear_modulus", m.shear_modulus, MODULUS, "Pa"))
+                .and_then(|()| match m.tensile_strength {
+                    Some(t) => physical("tensile_strength", t, STRESS, "Pa"),
+                    None => Ok(()),
+                })
+        })?;
         validate_model(&format!("{key}.eos"), m.eos.check())?;
+        // a shear modulus far below the bulk modulus makes the transverse Riemann
+        // problems divide rounding residuals of the tractions by an impedance near zero
+        // (the pm family's density went NaN at G = 1e-25 Pa with K = 7e10 Pa): below
+        // 1e-8 K (no solid comes near: rubber's G/K is about 1e-3) the material is a fluid
+        let bulk = m.rho0 * super::materials::material_of(m).eos(m.rho0, 0.0).c2;
+        if m.shear_modulus > 0.0 && m.shear_modulus < MIN_SHEAR_TO_BULK * bulk {
+            return fail(
+                &format!("{key}.shear_modulus"),
+                format!(
+                    "must be 0 (a fluid) or at least {MIN_SHEAR_TO_BULK:e} of the bulk modulus at rho0 (K = {} Pa): shear waves slower than that are a fluid's (got {})",
+                    num(bulk),
+                    num(m.shear_modulus)
+                ),
+            );
+        }
         if let Some(t) = m.tensile_strength {
             positive(&format!("{key}.tensile_strength"), t)?;
             if matches!(m.strength, Some(Strength::Jh1(_))) {

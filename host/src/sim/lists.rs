@@ -148,6 +148,7 @@ impl<const D: usize> Sim<D> {
     /// (`spacing` indexed by id); a neighbour overflow caused by particles on top of each
     /// other is reported as that overlap ([`Sim::overlap_near`]).
     pub(super) fn first_rebuild(&mut self, spacing: &[f64]) -> Result<(), SimError> {
+        self.check_same_points()?;
         if let Err(e) = self.rebuild() {
             if let SimError::Neighbors(NeighborError::Overflow { particle, .. }) = e {
                 if let Some(overlap) = self.overlap_near(particle, spacing) {
@@ -207,6 +208,40 @@ impl<const D: usize> Sim<D> {
             distance,
             at,
         })
+    }
+
+    /// Refuses particles at exactly the same point before any list is built: a crowd of
+    /// them fills every list to its capacity (20,000 particles at one point with
+    /// `neighbor_capacity = 20000` asked for gigabytes before the overlap check ran). A
+    /// sort of the positions: n log n, an index per particle.
+    fn check_same_points(&self) -> Result<(), SimError> {
+        let n = self.owned.min(self.len());
+        // the bits of each coordinate (+ 0.0 makes -0 and 0 one point)
+        let key = |i: u32| -> [u64; D] {
+            let x = &self.x[i as usize];
+            core::array::from_fn(|a| (x[a] + 0.0).to_bits())
+        };
+        let mut order: Vec<u32> = (0..n as u32).collect();
+        order.sort_unstable_by_key(|&i| key(i));
+        match order.windows(2).find(|w| key(w[0]) == key(w[1])) {
+            Some(w) => {
+                let (a, b) = (w[0] as usize, w[1] as usize);
+                let (a, b) = if self.ids[a] < self.ids[b] {
+                    (a, b)
+                } else {
+                    (b, a)
+                };
+                let mut at = [0.0; 3];
+                at[..D].copy_from_slice(self.x[a].as_slice());
+                Err(SimError::Overlap {
+                    i: self.ids[a],
+                    j: self.ids[b],
+                    distance: 0.0,
+                    at,
+                })
+            }
+            None => Ok(()),
+        }
     }
 
     /// Refuses particles nearer than half their spacing (`spacing` indexed by id).

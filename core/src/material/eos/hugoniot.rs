@@ -27,7 +27,8 @@
 //! (parent module doc).
 
 use super::state::{guard_density, EosState};
-use crate::material::params::{non_negative, positive, ParamError};
+use crate::material::params::ranges::*;
+use crate::material::params::{non_negative, physical, positive, ParamError};
 use crate::math::Real;
 
 /// Parameters of the Hugoniot (isothermal Mie–Grüneisen) EOS.
@@ -92,7 +93,9 @@ impl Hugoniot {
     /// formulas need ([`crate::material::params`]).
     pub fn check(&self) -> Result<(), ParamError> {
         positive("c0", self.c0)?;
-        non_negative("s1", self.s1)
+        physical("c0", self.c0, SOUND_SPEED, "m/s")?;
+        non_negative("s1", self.s1)?;
+        physical("s1", self.s1, COEFFICIENT, "")
     }
 
     /// Pressure (Pa) and `c²` (m²/s²) at `rho` (kg/m³); `e` (J/kg) is ignored (Gamma = 0).

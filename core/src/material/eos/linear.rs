@@ -9,7 +9,8 @@
 //! `e = 0`) or at negative energies; there `c²` is floored (see the parent module).
 
 use super::state::{floor_c2, EosState};
-use crate::material::params::{finite, positive, ParamError};
+use crate::material::params::ranges::*;
+use crate::material::params::{physical, positive, ParamError};
 use crate::math::Real;
 
 /// Parameters of the linear EOS.
@@ -35,7 +36,8 @@ impl Linear {
     /// formulas need ([`crate::material::params`]).
     pub fn check(&self) -> Result<(), ParamError> {
         positive("c0", self.c0)?;
-        finite("gamma", self.gamma)
+        physical("c0", self.c0, SOUND_SPEED, "m/s")?;
+        physical("gamma", self.gamma, COEFFICIENT, "")
     }
 
     /// Pressure (Pa) and `c²` (m²/s²) at `rho` (kg/m³), `e` (J/kg).

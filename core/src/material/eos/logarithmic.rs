@@ -4,7 +4,8 @@
 //! is kept.
 
 use super::state::EosState;
-use crate::material::params::{positive, ParamError};
+use crate::material::params::ranges::*;
+use crate::material::params::{physical, positive, ParamError};
 use crate::math::{real, Real};
 
 /// Parameters of the logarithmic EOS.
@@ -26,7 +27,8 @@ impl Logarithmic {
     /// Checks the parameters (all but `rho0`, the material's): the rules the model's
     /// formulas need ([`crate::material::params`]).
     pub fn check(&self) -> Result<(), ParamError> {
-        positive("bulk_modulus", self.bulk_modulus)
+        positive("bulk_modulus", self.bulk_modulus)?;
+        physical("bulk_modulus", self.bulk_modulus, BULK_MODULUS, "Pa")
     }
 
     /// Pressure (Pa) and `c²` (m²/s²) at `rho` (kg/m³); `e` (J/kg) is ignored.

@@ -21,7 +21,8 @@
 //! finite and continuous for every finite `rho`.
 
 use super::state::{floor_c2, guard_density, EosState};
-use crate::material::params::{finite, non_negative, positive, ParamError};
+use crate::material::params::ranges::*;
+use crate::material::params::{non_negative, physical, positive, ParamError};
 use crate::math::Real;
 
 /// Parameters of the Mie–Grüneisen EOS (seed 000 eq 37).
@@ -48,8 +49,10 @@ impl MieGruneisen {
     /// formulas need ([`crate::material::params`]).
     pub fn check(&self) -> Result<(), ParamError> {
         positive("c0", self.c0)?;
+        physical("c0", self.c0, SOUND_SPEED, "m/s")?;
         non_negative("s1", self.s1)?;
-        finite("gamma0", self.gamma0)
+        physical("s1", self.s1, COEFFICIENT, "")?;
+        physical("gamma0", self.gamma0, COEFFICIENT, "")
     }
 
     /// The cold part `Q` (Pa) and `dQ/drho` (m²/s²) at `rho` (kg/m³).

@@ -6,7 +6,8 @@
 //! (`K' = gamma`), so the weak-shock slope is `(1 + gamma)/4` ([`super::Eos::hugoniot_slope`]).
 
 use super::state::EosState;
-use crate::material::params::{positive, ParamError};
+use crate::material::params::ranges::*;
+use crate::material::params::{physical, positive, ParamError};
 use crate::math::{real, Real};
 
 /// Parameters of the Murnaghan (Tait) EOS.
@@ -30,19 +31,23 @@ impl Murnaghan {
     /// Checks the parameters (all but `rho0`, the material's): `c0 > 0`, `gamma > 0`.
     pub fn check(&self) -> Result<(), ParamError> {
         positive("c0", self.c0)?;
-        positive("gamma", self.gamma)
+        physical("c0", self.c0, SOUND_SPEED, "m/s")?;
+        positive("gamma", self.gamma)?;
+        physical("gamma", self.gamma, COEFFICIENT, "")
     }
 
     /// Pressure (Pa) and `c²` (m²/s²) at `rho` (kg/m³); `e` (J/kg) is ignored.
     #[inline]
     pub fn eval(&self, rho: Real, e: Real) -> EosState {
         let _ = e;
-        let eta = rho / self.rho0;
+        // (eta^gamma - 1)/gamma as expm1(gamma ln eta)/gamma: exact to rounding for every
+        // gamma, tending to the logarithmic EOS's ln eta as gamma -> 0 (where
+        // eta^gamma - 1 rounds to 0)
+        let ln_eta = real::ln(rho / self.rho0);
         let c02 = self.c0 * self.c0;
-        let pow = real::powf(eta, self.gamma - 1.0);
         EosState {
-            p: self.rho0 * c02 / self.gamma * (eta * pow - 1.0),
-            c2: c02 * pow,
+            p: self.rho0 * c02 * (real::expm1(self.gamma * ln_eta) / self.gamma),
+            c2: c02 * real::exp((self.gamma - 1.0) * ln_eta),
         }
     }
 }
@@ -84,6 +89,24 @@ mod tests {
     #[test]
     fn finite_everywhere() {
         check_finite(|r, e| WATER.eval(r, e), 1000.0, 1e5);
+    }
+
+    /// As gamma -> 0 the pressure tends to the logarithmic EOS's `rho0 c0² ln eta` (the
+    /// plain `eta^gamma - 1` rounds to 0 there), and gamma = 1 is the linear EOS.
+    #[test]
+    fn small_gamma_tends_to_the_logarithmic_eos() {
+        let ln_p = 1000.0 * 1480.0 * 1480.0 * libm::log(1.1);
+        for gamma in [1e-300, 1e-20, 1e-8] {
+            let s = Murnaghan { gamma, ..WATER }.eval(1100.0, 0.0);
+            assert_rel(s.p, ln_p, 1e-7, "P at gamma -> 0");
+            assert_rel(s.c2, 1480.0 * 1480.0 / 1.1, 1e-7, "c² at gamma -> 0");
+        }
+        let lin = Murnaghan {
+            gamma: 1.0,
+            ..WATER
+        }
+        .eval(1100.0, 0.0);
+        assert_rel(lin.p, 1480.0 * 1480.0 * 100.0, 1e-12, "P at gamma = 1");
     }
 
     #[test]

@@ -7,7 +7,8 @@
 //! negative `k3` at large `z`), where the fit is outside its range.
 
 use super::state::{floor_c2, EosState};
-use crate::material::params::{finite, positive, ParamError};
+use crate::material::params::ranges::*;
+use crate::material::params::{physical, positive, ParamError};
 use crate::math::Real;
 
 /// Parameters of the polynomial EOS (seed 000 eq 39).
@@ -36,8 +37,10 @@ impl Polynomial {
     /// formulas need ([`crate::material::params`]).
     pub fn check(&self) -> Result<(), ParamError> {
         positive("k1", self.k1)?;
-        finite("k2", self.k2)?;
-        finite("k3", self.k3)
+        physical("k1", self.k1, BULK_MODULUS, "Pa")?;
+        let either_sign = (Some(-MODULUS.1.unwrap_or(0.0)), MODULUS.1);
+        physical("k2", self.k2, either_sign, "Pa")?;
+        physical("k3", self.k3, either_sign, "Pa")
     }
 
     /// Pressure (Pa) and `c²` (m²/s²) at `rho` (kg/m³); `e` (J/kg) is ignored.

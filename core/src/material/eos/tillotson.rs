@@ -46,7 +46,8 @@
 //! [`super::C2_FLOOR_FRACTION`] times the reference `c0² = A/rho0` (parent module).
 
 use super::state::{floor_c2, EosState};
-use crate::material::params::{check, finite, non_negative, positive, ParamError, Rule};
+use crate::material::params::ranges::*;
+use crate::material::params::{check, non_negative, physical, positive, ParamError, Rule};
 use crate::math::{real, Real};
 
 /// Parameters of the Tillotson EOS (Tillotson 1962; Melosh 1989; Benz & Asphaug 1999).
@@ -92,15 +93,24 @@ impl Tillotson {
     /// Checks the parameters (all but `rho0`, the material's): the rules the model's
     /// formulas need ([`crate::material::params`]).
     pub fn check(&self) -> Result<(), ParamError> {
-        non_negative("a", self.a)?;
-        non_negative("b", self.b)?;
+        for (key, v) in [
+            ("a", self.a),
+            ("b", self.b),
+            ("alpha", self.alpha),
+            ("beta", self.beta),
+        ] {
+            non_negative(key, v)?;
+            physical(key, v, COEFFICIENT, "")?;
+        }
         positive("big_a", self.big_a)?;
-        finite("big_b", self.big_b)?;
-        non_negative("alpha", self.alpha)?;
-        non_negative("beta", self.beta)?;
+        physical("big_a", self.big_a, BULK_MODULUS, "Pa")?;
+        let either_sign = (Some(-MODULUS.1.unwrap_or(0.0)), MODULUS.1);
+        physical("big_b", self.big_b, either_sign, "Pa")?;
         positive("e0", self.e0)?;
+        physical("e0", self.e0, SPECIFIC_ENERGY, "J/kg")?;
         non_negative("e_iv", self.e_iv)?;
-        finite("e_cv", self.e_cv)?;
+        physical("e_iv", self.e_iv, SPECIFIC_ENERGY, "J/kg")?;
+        physical("e_cv", self.e_cv, SPECIFIC_ENERGY, "J/kg")?;
         check(
             "e_cv",
             self.e_cv,

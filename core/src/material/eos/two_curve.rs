@@ -23,7 +23,8 @@
 
 use super::hugoniot::{linear_us_up_hugoniot, RefCurve};
 use super::state::{floor_c2, EosState};
-use crate::material::params::{finite, non_negative, positive, ParamError};
+use crate::material::params::ranges::*;
+use crate::material::params::{non_negative, physical, positive, ParamError};
 use crate::math::Real;
 
 /// Parameters of the two-curve Mie–Grüneisen EOS (seed 004 eqs 6–7).
@@ -50,8 +51,10 @@ impl TwoCurve {
     /// formulas need ([`crate::material::params`]).
     pub fn check(&self) -> Result<(), ParamError> {
         positive("c_a", self.c_a)?;
+        physical("c_a", self.c_a, SOUND_SPEED, "m/s")?;
         non_negative("s_a", self.s_a)?;
-        finite("gamma", self.gamma)
+        physical("s_a", self.s_a, COEFFICIENT, "")?;
+        physical("gamma", self.gamma, COEFFICIENT, "")
     }
 
     /// Reference curves `P_ref`, `e_ref` and their `rho` derivatives at `rho` (kg/m³).

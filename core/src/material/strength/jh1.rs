@@ -27,7 +27,8 @@
 //! completes the damage happens within a step, the deviator is returned onto the failed
 //! curve in that same step (its extra plastic strain and work are reported).
 use super::von_mises::radial_return;
-use crate::material::params::{check, exceeds, non_negative, positive, ParamError, Rule};
+use crate::material::params::ranges::*;
+use crate::material::params::{check, exceeds, non_negative, physical, positive, ParamError, Rule};
 use crate::math::real::{ln, max, min};
 use crate::math::{Real, Sym3};
 
@@ -84,20 +85,33 @@ impl Jh1 {
     /// Checks the parameters: strengths, `p1`, `eps_f_max`, `p_max`, `eps_dot0` > 0;
     /// `p2 > p1`; `sigma_f_max`, `c_f`, `c` >= 0; `tensile_limit` < 0.
     pub fn check(&self) -> Result<(), ParamError> {
-        positive("sigma_i1", self.sigma_i1)?;
-        positive("p1", self.p1)?;
-        positive("sigma_i2", self.sigma_i2)?;
+        for (key, v) in [
+            ("sigma_i1", self.sigma_i1),
+            ("p1", self.p1),
+            ("sigma_i2", self.sigma_i2),
+            ("p_max", self.p_max),
+        ] {
+            positive(key, v)?;
+            physical(key, v, STRESS, "Pa")?;
+        }
         exceeds("p2", self.p2, "p1", self.p1, "Pa")?;
+        physical("p2", self.p2, STRESS, "Pa")?;
         non_negative("sigma_f_max", self.sigma_f_max)?;
+        physical("sigma_f_max", self.sigma_f_max, STRESS, "Pa")?;
         non_negative("c_f", self.c_f)?;
+        physical("c_f", self.c_f, COEFFICIENT, "")?;
         let tension = Rule::Negative {
             meaning: "a hydrostatic tension",
         };
         check("tensile_limit", self.tensile_limit, tension)?;
+        let tension_range = (STRESS.1.map(|hi| -hi), None);
+        physical("tensile_limit", self.tensile_limit, tension_range, "Pa")?;
         positive("eps_f_max", self.eps_f_max)?;
-        positive("p_max", self.p_max)?;
+        physical("eps_f_max", self.eps_f_max, COEFFICIENT, "")?;
         non_negative("c", self.c)?;
-        positive("eps_dot0", self.eps_dot0)
+        physical("c", self.c, COEFFICIENT, "")?;
+        positive("eps_dot0", self.eps_dot0)?;
+        physical("eps_dot0", self.eps_dot0, STRAIN_RATE, "1/s")
     }
 
     /// Silicon carbide of seed 000 Table 4: sigma_i1 7.1 GPa, P1 2.5 GPa, sigma_i2 12.2 GPa,

@@ -28,7 +28,8 @@
 //! module `W = sigma_y d` (J/m³) and `dT = chi W / (rho c_p)` (K).
 use super::return_map::ReturnMap;
 use super::von_mises::radial_return;
-use crate::material::params::{check, exceeds, non_negative, positive, ParamError, Rule};
+use crate::material::params::ranges::*;
+use crate::material::params::{check, exceeds, non_negative, physical, positive, ParamError, Rule};
 use crate::math::real::{abs, ln, max, min, powf};
 use crate::math::{Real, Sym3};
 
@@ -96,13 +97,27 @@ impl JohnsonCook {
     /// `b`, `c` >= 0; `t_melt > t_room`; `taylor_quinney` in [0, 1].
     pub fn check(&self) -> Result<(), ParamError> {
         positive("a", self.a)?;
+        physical("a", self.a, STRESS, "Pa")?;
         non_negative("b", self.b)?;
+        physical("b", self.b, STRESS, "Pa")?;
         positive("n", self.n)?;
+        physical("n", self.n, COEFFICIENT, "")?;
         non_negative("c", self.c)?;
+        physical("c", self.c, COEFFICIENT, "")?;
         positive("m", self.m)?;
+        physical("m", self.m, COEFFICIENT, "")?;
         positive("eps_dot0", self.eps_dot0)?;
+        physical("eps_dot0", self.eps_dot0, STRAIN_RATE, "1/s")?;
         positive("t_room", self.t_room)?;
+        physical("t_room", self.t_room, TEMPERATURE, "K")?;
+        physical("t_melt", self.t_melt, TEMPERATURE, "K")?;
         positive("specific_heat", self.specific_heat)?;
+        physical(
+            "specific_heat",
+            self.specific_heat,
+            SPECIFIC_HEAT,
+            "J/(kg K)",
+        )?;
         exceeds("t_melt", self.t_melt, "t_room", self.t_room, "K")?;
         let fraction = Rule::Within { lo: 0.0, hi: 1.0 };
         check("taylor_quinney", self.taylor_quinney, fraction)

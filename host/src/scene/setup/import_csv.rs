@@ -84,10 +84,6 @@ fn parse_header(line: &str, lineno: usize, dim: usize) -> Result<Vec<Slot>, Stri
         if name.is_empty() {
             return Err(format!("{at}: empty column name"));
         }
-        if seen.contains(&name) {
-            return Err(format!("{at}: column `{}` appears twice", excerpt(name)));
-        }
-        seen.push(name);
         let slot = if let Some(c) = STATE_COLUMNS.iter().position(|&s| s == name) {
             Slot::State(c)
         } else if name == "material" {
@@ -95,13 +91,19 @@ fn parse_header(line: &str, lineno: usize, dim: usize) -> Result<Vec<Slot>, Stri
         } else if ignored.contains(&name) {
             Slot::Ignored
         } else {
+            // nothing of a file that is not a particle table is quoted (a file named by
+            // mistake, or on purpose, never leaks through the message)
             return Err(format!(
-                "{at}: unknown column `{}` (known: {}, material; skipped: {})",
-                excerpt(name),
+                "{at}: not a column name gsph knows (known: {}, material; skipped: {})",
                 STATE_COLUMNS.join(", "),
                 ignored.join(", ")
             ));
         };
+        // a known name, so quoting it quotes nothing of the file
+        if seen.contains(&name) {
+            return Err(format!("{at}: column `{name}` appears twice"));
+        }
+        seen.push(name);
         slots.push(slot);
     }
     let has = |c: usize| slots.contains(&Slot::State(c));

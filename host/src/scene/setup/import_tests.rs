@@ -557,7 +557,7 @@ fn bad_particle_files_are_one_line_naming_the_row() {
         ("x,y,m\n0,0,1\nNaN,0,1\n", "", "bad.csv: line 3, column `x`: NaN not finite"),
         ("x,y,m\n0,0,-1\n", "", "bad.csv: line 2, column `m`: -1 must be positive"),
         ("x,y,z,m\n0,0,1e-3,1\n", "", "bad.csv: line 2, column `z`: 0.001 must be 0 in a 2D scene"),
-        ("x,y,Vx,m\n0,0,1,1\n", "", "bad.csv: line 1, column 3: unknown column `Vx` (known: x, y, z, vx,"),
+        ("x,y,Vx,m\n0,0,1,1\n", "", "bad.csv: line 1, column 3: not a column name gsph knows (known: x, y, z, vx,"),
         ("x,y,x\n0,0,0\n", "", "bad.csv: line 1, column 3: column `x` appears twice"),
         ("x,y,sxx,syy,m\n0,0,0,0,1\n", "", "bad.csv: line 1: the deviator columns sxx, syy, szz, sxy, sxz, syz come all six or none"),
         ("x,y,damage,m\n0,0,2,1\n", "", "bad.csv: line 2, column `damage`: 2 must lie in [0, 1]"),
