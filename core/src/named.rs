@@ -68,7 +68,9 @@ mod impls {
     use crate::kernel::Kernel;
     use crate::limiter::Limiter;
     use crate::riemann::Dissipation;
-    use crate::schemes::options::{Integrator, MusclTime, RiemannSolver, SpecificVolume};
+    use crate::schemes::options::{
+        EnergyEquation, Integrator, MusclTime, RiemannSolver, SpecificVolume,
+    };
     use crate::schemes::scheme::Scheme;
 
     serde_by_name!(Scheme, "scheme", "av, pm, ts1, ts2, tkc");
@@ -83,4 +85,5 @@ mod impls {
     serde_by_name!(MusclTime, "value", "predictor, courant, none");
     serde_by_name!(Integrator, "integrator", "euler, leapfrog");
     serde_by_name!(SpecificVolume, "specific volume", "product, interpolated");
+    serde_by_name!(EnergyEquation, "energy equation", "internal, total");
 }

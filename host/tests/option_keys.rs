@@ -52,6 +52,7 @@ const KEYS: &[(&str, &[&str])] = &[
         "options.riemann=two_shock",
         &["pm", "pm+muscl", "pm+correction", "ts1", "ts2", "tkc"],
     ),
+    ("options.energy_equation=total", &["pm", "pm+muscl"]),
     (
         "options.dissipation=compression",
         &["pm", "pm+muscl", "pm+correction", "ts1", "ts2", "tkc"],

@@ -30,8 +30,8 @@ pub mod workspace;
 pub use av::records::AvRates;
 pub use family::{SchemeFamily, StepFn};
 pub use options::{
-    Integrator, MusclTime, NotRead, OptionKey, RiemannSolver, SceneOptions, SchemeOptions,
-    SpecificVolume,
+    EnergyEquation, Integrator, MusclTime, NotRead, OptionKey, RiemannSolver, SceneOptions,
+    SchemeOptions, SpecificVolume,
 };
 pub use pm::records::PmStar;
 pub use scheme::{Family, Scheme};

@@ -47,6 +47,7 @@ pub(crate) fn covers(o: &SchemeOptions) -> bool {
         surface_scan: _,
         det_epsilon: _,
         specific_volume: _,
+        energy_equation: _,
         correction: _,
         muscl: _,
     } = *o;

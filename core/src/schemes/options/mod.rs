@@ -19,7 +19,9 @@
 
 mod values;
 
-pub use values::{Integrator, MusclTime, OptionType, Range, RiemannSolver, SpecificVolume};
+pub use values::{
+    EnergyEquation, Integrator, MusclTime, OptionType, Range, RiemannSolver, SpecificVolume,
+};
 
 use super::scheme::{Family, Scheme};
 use crate::effects::EffectSet;
@@ -79,6 +81,8 @@ macro_rules! scheme_options {
                 "The specific volumes of the pair force: the seeds' 1/(rho_i rho_j), or Sugiura & Inutsuka's interpolation";
             det_epsilon: Real = 0.05, DetEpsilon, "1", NonNegative, [Pm, Ts], NO_SURFACE,
                 "L is not inverted where det L is below this";
+            energy_equation: EnergyEquation = EnergyEquation::Internal, EnergyEquation, "", Any, [Pm], NO_ENERGY_EQUATION,
+                "pm's energy equation: the seed's internal-energy rate at the start-of-step velocity, or the total-energy rate (exact total energy; tkc's)";
             correction: bool = false, Correction, "", Any, [Pm], ONLY_PM,
                 "Kernel gradient correction for scheme pm (tkc always has it)";
             muscl: bool = false, Muscl, "", Any, [Pm], ONLY_PM,
@@ -347,6 +351,10 @@ pub(crate) mod why {
     pub const NO_MUSCL_TIME: &str = "only ts2's reconstruction has a time treatment";
     pub const NO_SCAN: &str =
         "its kernel is not corrected, so no particle is switched to L = I; tkc and pm with options.correction scan";
+    pub const NO_ENERGY_EQUATION: &str =
+        "its energy equation is fixed; pm chooses (tkc and pm with correction book the total energy)";
+    pub const TOTAL_WITH_CORRECTION: &str =
+        "with kernel correction it always books the total energy (Rublev & Murzov eq 11)";
     pub const NO_SPECIFIC_VOLUME: &str =
         "its pair force's specific volumes are not interpolated; pm and tkc interpolate them";
     pub const NO_SURFACE: &str =

@@ -59,6 +59,10 @@ impl OptionType for SpecificVolume {
     const VALUES: &'static str = "`product`, `interpolated`";
 }
 
+impl OptionType for EnergyEquation {
+    const VALUES: &'static str = "`internal`, `total`";
+}
+
 /// Where a number-valued option must lie (checked when a scene is read).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Range {
@@ -184,3 +188,18 @@ pub enum SpecificVolume {
 }
 
 scene_names!(SpecificVolume { Product => "product", Interpolated => "interpolated" });
+
+/// The energy equation of scheme `pm` (`options.energy_equation`; `tkc` and `pm` with
+/// correction always book the total energy, Rublev & Murzov eq 11).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EnergyEquation {
+    /// The seed's (Connolly et al. 2013 eq 16): the internal-energy rate
+    /// `sum f t*.(v* - v_i)` at the start-of-step velocity. Its total energy is not the
+    /// work of the stepped momentum: each step adds `m |a|² dt²/2` per particle.
+    Internal,
+    /// The total-energy rate `sum f t*.v*`, booked as `de = dt (power - a.(v + dv/2))`:
+    /// total energy exact to round-off (tkc's).
+    Total,
+}
+
+scene_names!(EnergyEquation { Internal => "internal", Total => "total" });

@@ -132,8 +132,9 @@ pub(crate) fn covers<const D: usize>(params: &StepParams<'_, D>) -> bool {
         surface_lambda: _,
         surface_scan: _,
         det_epsilon: _,
-        // read by the pair force and the integrator, not by the star
+        // read by the pair force, the energy sums and the integrator, not by the star
         specific_volume: _,
+        energy_equation: _,
         integrator: _,
         artificial_stress: _,
         artificial_stress_exponent: _,

@@ -17,7 +17,8 @@ use crate::schemes::workspace::{StepParams, Workspace};
 use crate::state::{PairSums, StepError, System};
 
 /// One leap-frog step of `pm`/`tkc` (`core/src/schemes/leapfrog.rs`): density by its
-/// exponential, the total energy with correction (tkc), the internal energy without (pm).
+/// exponential, the total energy with correction (tkc) or `options.energy_equation =
+/// "total"`, else the internal energy (pm, the seed's).
 pub(super) fn step<const D: usize, E: Effects, X: Executor>(
     sys: &mut System<'_, D>,
     ws: &mut Workspace<'_, D>,
@@ -28,7 +29,7 @@ pub(super) fn step<const D: usize, E: Effects, X: Executor>(
     let eval = |sys: &mut System<'_, D>, ws: &mut Workspace<'_, D>| {
         rates::<D, E, X>(sys, ws, params, exec, halo)
     };
-    if E::CORRECTION {
+    if super::total_energy::<D, E>(params) {
         leapfrog::step::<D, E, X, true, true>(sys, ws, params, exec, eval)
     } else {
         leapfrog::step::<D, E, X, true, false>(sys, ws, params, exec, eval)

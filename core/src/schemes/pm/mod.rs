@@ -63,7 +63,7 @@ use crate::schemes::common::{
     artificial_stress_tensors, halo_exchange, refresh_aux, refresh_eos, refresh_pressure,
 };
 use crate::schemes::family::SchemeFamily;
-use crate::schemes::options::{Integrator, SchemeOptions, SpecificVolume};
+use crate::schemes::options::{EnergyEquation, Integrator, SchemeOptions, SpecificVolume};
 use crate::schemes::pairs::geometry_pass;
 use crate::schemes::scheme::Family;
 use crate::schemes::workspace::{Layout, StepParams, Workspace};
@@ -206,6 +206,14 @@ impl SchemeFamily for Pm {
         }
         Ok(())
     }
+}
+
+/// Whether the step books the total energy (`sum f t*.v*`, exact): always with kernel
+/// correction (`tkc`, Rublev & Murzov eq 11), for `pm` with `options.energy_equation =
+/// "total"`; else the seed's internal-energy rate at the start-of-step velocity.
+#[inline(always)]
+pub(super) fn total_energy<const D: usize, E: Effects>(params: &StepParams<'_, D>) -> bool {
+    E::CORRECTION || params.options.energy_equation == EnergyEquation::Total
 }
 
 /// What every pair pass of a step reads besides the particles: the start exchange, the

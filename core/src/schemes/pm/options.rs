@@ -25,6 +25,7 @@ pub(crate) fn reads(
         Integrator => read_if(muscl, scheme, why::FIRST_ORDER_EULER),
         CorrectedSlopes => read_if(correction && muscl, scheme, why::NO_CORRECTED_SLOPES),
         SurfaceLambda | SurfaceScan | DetEpsilon => read_if(correction, scheme, why::NO_SURFACE),
+        EnergyEquation => read_if(!correction, scheme, why::TOTAL_WITH_CORRECTION),
         Correction if scheme == Scheme::Tkc => Err(NotRead::Always { what: "correction" }),
         Muscl if scheme == Scheme::Tkc => Err(NotRead::Always { what: "MUSCL" }),
         _ => return None,

@@ -347,8 +347,9 @@ pub(crate) fn pair_star<const D: usize, E: Effects>(
 /// The pair sums of particle i from the solved star states: the kinematic sums (velocity
 /// divergence and gradient from the contact velocities) when `KIN`, the dynamic sums
 /// (acceleration and power at the contacts) when `DYN`. With correction (`tkc`, seed 004
-/// eq 11) `power` is the total energy rate `sum f_ij . V*_ij`; otherwise (`pm`, seed 000
-/// eq 16) the internal energy rate `sum f_ij . (V*_ij - v_i)`.
+/// eq 11) or `options.energy_equation = "total"` `power` is the total energy rate
+/// `sum f_ij . V*_ij`; otherwise (`pm`, seed 000 eq 16) the internal energy rate
+/// `sum f_ij . (V*_ij - v_i)` ([`super::total_energy`]).
 #[inline(always)]
 pub(super) fn gather<
     const D: usize,
@@ -374,6 +375,7 @@ pub(super) fn gather<
     } = *ctx;
     let vi = sys.v[i];
     let inv_i = aux[i].inv_rho;
+    let total = super::total_energy::<D, E>(params);
     let mut out = PairSums::<D>::default();
     let mut grad_v = Matrix::<D>::zeros();
     for_each_pair(params, geom, i, |pr, e| {
@@ -397,14 +399,14 @@ pub(super) fn gather<
             };
             let f = -2.0 * mj * pr.dw * vv;
             out.acc += ts * f;
-            out.power += f * ts.dot(if E::CORRECTION { &vs } else { &dv });
+            out.power += f * ts.dot(if total { &vs } else { &dv });
             if ART {
                 // a pair force outside the Riemann problem: its work at the pair's mean
                 // velocity (total energy form with correction, internal otherwise)
                 let a = pair_acceleration(mj, fac[e.pair], &art[i], &art[j], &pr.grad);
                 let vbar = (vi + sys.v[j]) * 0.5;
                 out.acc += a;
-                out.power += a.dot(&if E::CORRECTION { vbar } else { vbar - vi });
+                out.power += a.dot(&if total { vbar } else { vbar - vi });
             }
         }
         if KIN {

@@ -22,8 +22,9 @@ pub(super) fn kinematic_update<const D: usize, E: Effects>(
     }
 }
 
-/// Velocity, energy and position of local particle `k`. With correction the energy
-/// equation is seed 004's total energy, `E += dt sum f.V*`, which with
+/// Velocity, energy and position of local particle `k`. With correction (or pm's
+/// `options.energy_equation = "total"`) the energy equation is seed 004's total energy,
+/// `E += dt sum f.V*`, which with
 /// `e = E - v²/2` is `de = dt (power - acc . (v + dv/2))`: exactly conservative.
 #[inline(always)]
 pub(super) fn dynamic_update<const D: usize, E: Effects>(
@@ -34,7 +35,7 @@ pub(super) fn dynamic_update<const D: usize, E: Effects>(
 ) {
     let dt = params.dt;
     let dv = ps.acc * dt;
-    if E::CORRECTION {
+    if super::total_energy::<D, E>(params) {
         let xdot = s.v[k] + dv * 0.5;
         s.e[k] += dt * (ps.power - ps.acc.dot(&xdot));
     } else {

@@ -53,6 +53,7 @@ pub(crate) fn covers<const D: usize>(params: &StepParams<'_, D>) -> bool {
         surface_scan: _,
         det_epsilon: _,
         specific_volume: _,
+        energy_equation: _,
         artificial_stress: _,
         artificial_stress_exponent: _,
         constant_h: _,
