@@ -80,10 +80,10 @@ mod impls {
         "limiter",
         "minmod, superbee, mc, vanleer, sweby:BETA"
     );
-    serde_by_name!(RiemannSolver, "Riemann solver", "acoustic, two_shock");
+    serde_by_name!(RiemannSolver, "Riemann solver", RiemannSolver::KNOWN);
     serde_by_name!(Dissipation, "dissipation", "compression, full");
     serde_by_name!(MusclTime, "value", "predictor, courant, none");
-    serde_by_name!(Integrator, "integrator", "euler, leapfrog");
-    serde_by_name!(SpecificVolume, "specific volume", "product, interpolated");
-    serde_by_name!(EnergyEquation, "energy equation", "internal, total");
+    serde_by_name!(Integrator, "integrator", Integrator::KNOWN);
+    serde_by_name!(SpecificVolume, "specific volume", SpecificVolume::KNOWN);
+    serde_by_name!(EnergyEquation, "energy equation", EnergyEquation::KNOWN);
 }

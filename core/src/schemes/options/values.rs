@@ -43,24 +43,8 @@ impl OptionType for Dissipation {
     const VALUES: &'static str = "`full`, `compression`";
 }
 
-impl OptionType for RiemannSolver {
-    const VALUES: &'static str = "`acoustic`, `two_shock`";
-}
-
 impl OptionType for MusclTime {
     const VALUES: &'static str = "`none`, `predictor`, `courant`";
-}
-
-impl OptionType for Integrator {
-    const VALUES: &'static str = "`euler`, `leapfrog`";
-}
-
-impl OptionType for SpecificVolume {
-    const VALUES: &'static str = "`product`, `interpolated`";
-}
-
-impl OptionType for EnergyEquation {
-    const VALUES: &'static str = "`internal`, `total`";
 }
 
 /// Where a number-valued option must lie (checked when a scene is read).
@@ -74,25 +58,31 @@ pub enum Range {
     NonNegative,
 }
 
-/// `NAMES`, `name`, `from_name` and `Display` (the scene name) of an enum chosen by name
-/// in a scene's `[options]`.
+/// `NAMES`, `KNOWN`, `name`, `from_name`, `Display` (the scene name) and the
+/// [`OptionType`] of an enum chosen by name in a scene's `[options]`: its names are
+/// written here once (the serde impl's message reads `KNOWN`, `crate::named`).
 macro_rules! scene_names {
-    ($t:ident { $($v:ident => $s:literal),+ $(,)? }) => {
+    ($t:ident { $v0:ident => $s0:literal $(, $v:ident => $s:literal)* $(,)? }) => {
         impl $t {
             /// The scene names, in the order messages list them.
-            pub const NAMES: [&'static str; [$($s),+].len()] = [$($s),+];
+            pub const NAMES: [&'static str; [$s0 $(, $s)*].len()] = [$s0 $(, $s)*];
+
+            /// The scene names as a message lists them (`a, b`).
+            pub const KNOWN: &'static str = concat!($s0 $(, ", ", $s)*);
 
             /// The scene name.
             pub const fn name(self) -> &'static str {
                 match self {
-                    $($t::$v => $s),+
+                    $t::$v0 => $s0,
+                    $($t::$v => $s),*
                 }
             }
 
             /// The choice of a scene name.
             pub fn from_name(name: &str) -> Option<$t> {
                 match name {
-                    $($s => Some($t::$v),)+
+                    $s0 => Some($t::$v0),
+                    $($s => Some($t::$v),)*
                     _ => None,
                 }
             }
@@ -103,6 +93,10 @@ macro_rules! scene_names {
             fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
                 f.write_str(self.name())
             }
+        }
+
+        impl OptionType for $t {
+            const VALUES: &'static str = concat!("`", $s0, "`" $(, ", `", $s, "`")*);
         }
     };
 }
