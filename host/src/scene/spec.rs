@@ -456,6 +456,47 @@ pub enum VelocitySpec {
         #[serde(default)]
         axis: usize,
     },
+    /// The first bending mode of a cantilever clamped at `root` (SPHinXsys's oscillating
+    /// plate): along the beam axis `axis`, at `xi = (x_axis - root_axis)/length`, the
+    /// deflection velocity `v_direction = tip phi(xi)` for `xi > 0` (0 behind the root),
+    /// `phi(xi) = [M (cos k xi - cosh k xi) - N (sin k xi - sinh k xi)] / Q`,
+    /// `M = sin k + sinh k`, `N = cos k + cosh k`, `Q = 2 (cos k sinh k - sin k cosh k)`,
+    /// so that `phi(0) = phi'(0) = 0` (clamped) and `phi(1) = 1` (the tip moves at `tip`);
+    /// `k = 1.875` (the root of `1 + cos k cosh k = 0`) is the first mode (2D and 3D).
+    Cantilever {
+        /// A point of the clamped face, m.
+        root: Vec<f64>,
+        /// Length of the free beam, m.
+        length: f64,
+        /// Velocity of the tip, m/s.
+        tip: f64,
+        /// The beam's axis (default 0, x).
+        #[serde(default)]
+        axis: usize,
+        /// The axis the beam bends along (default 1, y).
+        #[serde(default = "axis_y")]
+        direction: usize,
+        /// The mode's wave number `k L` (default 1.875, the first mode).
+        #[serde(default = "first_cantilever_mode")]
+        k: f64,
+    },
+}
+
+fn axis_y() -> usize {
+    1
+}
+
+fn first_cantilever_mode() -> f64 {
+    1.875
+}
+
+/// `phi(xi)` of [`VelocitySpec::Cantilever`]: the cantilever mode of wave number `k`,
+/// 1 at the tip (`xi = 1`), 0 with zero slope at the root (`xi = 0`).
+pub fn cantilever_mode(k: f64, xi: f64) -> f64 {
+    let (m, n) = (k.sin() + k.sinh(), k.cos() + k.cosh());
+    let q = 2.0 * (k.cos() * k.sinh() - k.sin() * k.cosh());
+    let kx = k * xi;
+    (m * (kx.cos() - kx.cosh()) - n * (kx.sin() - kx.sinh())) / q
 }
 
 /// Initial mechanical states.

@@ -565,3 +565,29 @@ fn a_nul_in_a_comment_is_named() {
         "{e}"
     );
 }
+
+/// The cantilever's first mode (`velocity.type = "cantilever"`): clamped at the root (no
+/// velocity, no slope), the tip at `tip`, k = 1.875 near the root of 1 + cos k cosh k;
+/// SPHinXsys's plate starts with KE0 = 4.0647984 J/m (docs/notes/issue46_peers.md), which
+/// `cases/plate_oscillating.toml` reproduces (series.csv's first `kinetic`).
+#[test]
+fn the_cantilever_mode_is_clamped_at_the_root_and_one_at_the_tip() {
+    let k = 1.875_f64;
+    assert!((1.0 + k.cos() * k.cosh()).abs() < 2e-3);
+    assert_eq!(cantilever_mode(k, 0.0), 0.0);
+    assert!((cantilever_mode(k, 1.0) - 1.0).abs() < 1e-14);
+    let slope = (cantilever_mode(k, 1e-6) - cantilever_mode(k, -1e-6)) / 2e-6;
+    assert!(slope.abs() < 1e-8, "{slope}");
+    let plate = include_str!("../../../cases/plate_oscillating.toml");
+    let sc = parse(plate, "plate.toml", &[]).unwrap();
+    let parts = build_particles(&sc).unwrap();
+    let ke: f64 = (0..parts.len())
+        .map(|i| 0.5 * parts.m[i] * parts.v[i].iter().map(|v| v * v).sum::<f64>())
+        .sum();
+    assert!((ke - 4.064_798_4).abs() < 1e-6, "KE0 {ke}");
+    let e = parse_err(plate, &["bodies.0.velocity.direction=0"]);
+    assert!(
+        e.contains("bodies[0].velocity.direction: must differ"),
+        "{e}"
+    );
+}

@@ -605,6 +605,39 @@ fn check_motion(s: &Scene, key: &str, b: &BodySpec) -> R {
             finite(&format!("{key}.velocity.omega"), *omega)?;
             dims(&format!("{key}.velocity.center"), center, s.dim)?;
         }
+        Some(VelocitySpec::Cantilever {
+            root,
+            length,
+            tip,
+            axis,
+            direction,
+            k,
+        }) => {
+            if s.dim == 1 {
+                return fail(
+                    &format!("{key}.velocity"),
+                    "a beam bends in a plane: use it in 2D or 3D",
+                );
+            }
+            dims(&format!("{key}.velocity.root"), root, s.dim)?;
+            positive(&format!("{key}.velocity.length"), *length)?;
+            finite(&format!("{key}.velocity.tip"), *tip)?;
+            positive(&format!("{key}.velocity.k"), *k)?;
+            for (name, a) in [("axis", *axis), ("direction", *direction)] {
+                if a >= s.dim {
+                    return fail(
+                        &format!("{key}.velocity.{name}"),
+                        format!("axis {a} does not exist in {}D", s.dim),
+                    );
+                }
+            }
+            if axis == direction {
+                return fail(
+                    &format!("{key}.velocity.direction"),
+                    format!("must differ from the beam's axis {axis}"),
+                );
+            }
+        }
         Some(VelocitySpec::Pulse {
             amplitude,
             k: kk,

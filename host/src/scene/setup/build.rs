@@ -570,6 +570,19 @@ fn velocity(spec: Option<&VelocitySpec>, x: &[f64; 3]) -> [f64; 3] {
             let s = x[*axis] - center;
             v[*axis] = amplitude * (-k * s * s).exp();
         }
+        Some(VelocitySpec::Cantilever {
+            root,
+            length,
+            tip,
+            axis,
+            direction,
+            k,
+        }) => {
+            let xi = (x[*axis] - root[*axis]) / length;
+            if xi > 0.0 {
+                v[*direction] = tip * crate::scene::spec::cantilever_mode(*k, xi);
+            }
+        }
     }
     v
 }
