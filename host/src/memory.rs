@@ -45,7 +45,32 @@ pub fn available() -> Option<u64> {
 /// neighbourhood under compression.
 pub fn bytes_per_particle(dim: usize, kernel: Kernel, h_factor: f64) -> f64 {
     let neighbours = crate::neighbors::default_capacity(dim, kernel, h_factor) as f64;
-    1024.0 + 24.0 * neighbours
+    1024.0 + LIST_BYTES_PER_ENTRY * neighbours
+}
+
+/// Bytes of one neighbour-list entry with its share of the per-pair buffers.
+pub const LIST_BYTES_PER_ENTRY: f64 = 24.0;
+
+/// Refuses neighbour lists of `particles` × `capacity` entries (the lists hold `capacity`
+/// per particle whatever the neighbourhood) when they exceed what is available
+/// (`available`, bytes): named `neighbor_capacity`, the key that sets their size.
+pub fn check_lists_fit(
+    particles: usize,
+    capacity: usize,
+    available: Option<u64>,
+) -> Result<(), String> {
+    let Some(avail) = available else {
+        return Ok(());
+    };
+    let need = particles as f64 * capacity as f64 * LIST_BYTES_PER_ENTRY;
+    if need > avail as f64 {
+        return Err(format!(
+            "neighbor_capacity: {particles} particles x {capacity} neighbours need about {} of neighbour lists, more than the {} available on this machine",
+            gib(need),
+            gib(avail as f64)
+        ));
+    }
+    Ok(())
 }
 
 fn gib(b: f64) -> String {
@@ -98,5 +123,13 @@ mod tests {
             "{e}"
         );
         check_fits(each, 9e7, None, "k").unwrap();
+        check_lists_fit(20_000, 20_000, Some(24 << 30)).unwrap();
+        let e = check_lists_fit(20_000, 20_000, Some(1 << 30)).unwrap_err();
+        assert!(
+            e.starts_with(
+                "neighbor_capacity: 20000 particles x 20000 neighbours need about 8.9 GiB"
+            ),
+            "{e}"
+        );
     }
 }

@@ -72,12 +72,9 @@ fn assert_same_outputs(a: &Path, b: &Path) {
     }
     // snapshots.h5 byte for byte but for the run id each run's file carries
     let masked = |d: &Path| {
-        let id = serde_json::from_slice::<serde_json::Value>(&read(d, "summary.json")).unwrap()
-            ["run_id"]
-            .as_str()
-            .unwrap()
-            .as_bytes()
-            .to_vec();
+        let id = gsph::outdir::summary_run_id(d)
+            .expect("a run id")
+            .into_bytes();
         let mut h5 = read(d, "snapshots.h5");
         let at = h5
             .windows(id.len())
@@ -510,13 +507,10 @@ fn a_restart_never_continues_one_run_with_another_runs_files() {
     }
     assert_eq!(named, "run.log");
     ok(&restart);
-    let id = |d: &Path| {
-        serde_json::from_slice::<serde_json::Value>(&read(d, "summary.json")).unwrap()["run_id"]
-            .as_str()
-            .unwrap()
-            .to_owned()
-    };
-    assert_eq!(id(&b), Checkpoint::read(&a).unwrap().run_id);
+    assert_eq!(
+        gsph::outdir::summary_run_id(&b),
+        Some(Checkpoint::read(&a).unwrap().run_id)
+    );
 }
 
 /// Issue 45 item 2: a checkpoint whose values break the particle table's ranges (a NaN

@@ -186,11 +186,16 @@ pub mod ranges {
     /// Elastic moduli (bulk, shear and the EOS's pressure coefficients), Pa: at most 1e13,
     /// twenty times diamond's bulk modulus (4.4e11).
     pub const MODULUS: (Option<Real>, Option<Real>) = (None, Some(1e13));
+    /// Pressure coefficients of either sign (a polynomial EOS's `k2`, `k3`, Tillotson's
+    /// B), Pa: magnitude at most [`MODULUS`]'s bound.
+    pub const SIGNED_MODULUS: (Option<Real>, Option<Real>) = (Some(-1e13), Some(1e13));
     /// Bulk moduli, Pa, from below: 1e3 (a thousandth of the softest foams').
     pub const BULK_MODULUS: (Option<Real>, Option<Real>) = (Some(1e3), Some(1e13));
     /// Strengths and pressures of a strength model, Pa: at most 1e12, ten times the
     /// ideal strength of diamond.
     pub const STRESS: (Option<Real>, Option<Real>) = (None, Some(1e12));
+    /// Tensions (a negative tensile limit), Pa: magnitude at most [`STRESS`]'s bound.
+    pub const TENSION: (Option<Real>, Option<Real>) = (Some(-1e12), None);
     /// Dimensionless slopes and exponents (Hugoniot slope s, Grüneisen Γ, the exponents
     /// and coefficients of the strength models): magnitudes up to 20 (real materials: up
     /// to about 5; K' of porous media up to about 15).

@@ -73,6 +73,17 @@ pub fn series_rows<'a>(
     header: &[&str],
     lines: impl Iterator<Item = &'a str>,
 ) -> Result<Vec<Vec<f64>>, String> {
+    table_rows(path, header, lines, &[])
+}
+
+/// [`series_rows`] where the columns named in `blank` may be empty (read as NaN: where
+/// profile.csv's exact solution has no value).
+fn table_rows<'a>(
+    path: &Path,
+    header: &[&str],
+    lines: impl Iterator<Item = &'a str>,
+    blank: &[&str],
+) -> Result<Vec<Vec<f64>>, String> {
     lines
         .enumerate()
         .filter(|(_, l)| !l.trim().is_empty())
@@ -91,6 +102,9 @@ pub fn series_rows<'a>(
                 .iter()
                 .zip(header)
                 .map(|(v, name)| {
+                    if v.trim().is_empty() && blank.contains(name) {
+                        return Ok(f64::NAN);
+                    }
                     v.trim().parse::<f64>().map_err(|_| {
                         format!(
                             "{} line {line}, column {}: `{}` is not a number",
@@ -250,37 +264,10 @@ pub fn profile(dir: &Path, out: Option<PathBuf>) -> Result<PathBuf, String> {
             excerpt(header)
         ));
     }
-    let mut sph = Vec::new();
-    let mut exact = Vec::new();
-    for (k, line) in lines.enumerate().filter(|(_, l)| !l.trim().is_empty()) {
-        let f: Vec<&str> = line.split(',').collect();
-        let at = |c: usize, name: &str| -> Result<f64, String> {
-            f[c].trim().parse::<f64>().map_err(|_| {
-                format!(
-                    "{} line {}, column {name}: `{}` is not a number",
-                    path.display(),
-                    k + 2,
-                    excerpt(f[c])
-                )
-            })
-        };
-        if f.len() != 3 {
-            return Err(format!(
-                "{} line {}: {} values, the header names 3 (a truncated file?)",
-                path.display(),
-                k + 2,
-                f.len()
-            ));
-        }
-        let x = at(0, "x")?;
-        sph.push((x, at(1, "sigma_xx")?));
-        let e = if f[2].trim().is_empty() {
-            f64::NAN
-        } else {
-            at(2, "sigma_xx_exact")?
-        };
-        exact.push((x, e));
-    }
+    let header: Vec<&str> = HEADER.split(',').collect();
+    let rows = table_rows(&path, &header, lines, &["sigma_xx_exact"])?;
+    let sph: Vec<(f64, f64)> = rows.iter().map(|r| (r[0], r[1])).collect();
+    let exact: Vec<(f64, f64)> = rows.iter().map(|r| (r[0], r[2])).collect();
     if sph.is_empty() {
         return Err(format!("{}: no rows after the header", path.display()));
     }

@@ -195,6 +195,12 @@ impl<const D: usize> Sim<D> {
                     .min_by(|a, b| a.0.total_cmp(&b.0))
             })?;
         let (distance, a, b) = pair;
+        Some(self.overlap(a, b, distance))
+    }
+
+    /// The overlap of local particles `a` and `b`, `distance` apart, named lower id first
+    /// and located at that particle.
+    fn overlap(&self, a: usize, b: usize, distance: f64) -> SimError {
         let (a, b) = if self.ids[a] < self.ids[b] {
             (a, b)
         } else {
@@ -202,12 +208,12 @@ impl<const D: usize> Sim<D> {
         };
         let mut at = [0.0; 3];
         at[..D].copy_from_slice(self.x[a].as_slice());
-        Some(SimError::Overlap {
+        SimError::Overlap {
             i: self.ids[a],
             j: self.ids[b],
             distance,
             at,
-        })
+        }
     }
 
     /// Refuses particles at exactly the same point before any list is built: a crowd of
@@ -224,22 +230,7 @@ impl<const D: usize> Sim<D> {
         let mut order: Vec<u32> = (0..n as u32).collect();
         order.sort_unstable_by_key(|&i| key(i));
         match order.windows(2).find(|w| key(w[0]) == key(w[1])) {
-            Some(w) => {
-                let (a, b) = (w[0] as usize, w[1] as usize);
-                let (a, b) = if self.ids[a] < self.ids[b] {
-                    (a, b)
-                } else {
-                    (b, a)
-                };
-                let mut at = [0.0; 3];
-                at[..D].copy_from_slice(self.x[a].as_slice());
-                Err(SimError::Overlap {
-                    i: self.ids[a],
-                    j: self.ids[b],
-                    distance: 0.0,
-                    at,
-                })
-            }
+            Some(w) => Err(self.overlap(w[0] as usize, w[1] as usize, 0.0)),
             None => Ok(()),
         }
     }

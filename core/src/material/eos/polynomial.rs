@@ -38,9 +38,8 @@ impl Polynomial {
     pub fn check(&self) -> Result<(), ParamError> {
         positive("k1", self.k1)?;
         physical("k1", self.k1, BULK_MODULUS, "Pa")?;
-        let either_sign = (Some(-MODULUS.1.unwrap_or(0.0)), MODULUS.1);
-        physical("k2", self.k2, either_sign, "Pa")?;
-        physical("k3", self.k3, either_sign, "Pa")
+        physical("k2", self.k2, SIGNED_MODULUS, "Pa")?;
+        physical("k3", self.k3, SIGNED_MODULUS, "Pa")
     }
 
     /// Pressure (Pa) and `c²` (m²/s²) at `rho` (kg/m³); `e` (J/kg) is ignored.

@@ -104,8 +104,7 @@ impl Tillotson {
         }
         positive("big_a", self.big_a)?;
         physical("big_a", self.big_a, BULK_MODULUS, "Pa")?;
-        let either_sign = (Some(-MODULUS.1.unwrap_or(0.0)), MODULUS.1);
-        physical("big_b", self.big_b, either_sign, "Pa")?;
+        physical("big_b", self.big_b, SIGNED_MODULUS, "Pa")?;
         positive("e0", self.e0)?;
         physical("e0", self.e0, SPECIFIC_ENERGY, "J/kg")?;
         non_negative("e_iv", self.e_iv)?;

@@ -104,8 +104,7 @@ impl Jh1 {
             meaning: "a hydrostatic tension",
         };
         check("tensile_limit", self.tensile_limit, tension)?;
-        let tension_range = (STRESS.1.map(|hi| -hi), None);
-        physical("tensile_limit", self.tensile_limit, tension_range, "Pa")?;
+        physical("tensile_limit", self.tensile_limit, TENSION, "Pa")?;
         positive("eps_f_max", self.eps_f_max)?;
         physical("eps_f_max", self.eps_f_max, COEFFICIENT, "")?;
         non_negative("c", self.c)?;

@@ -14,9 +14,6 @@ pub use crate::memory::MAX_PARTICLES;
 pub const MAX_CELLS: f64 = (1u64 << 30) as f64;
 /// Most neighbour-list entries (particles times capacity, 4 bytes each).
 pub const MAX_NEIGHBOR_ENTRIES: f64 = (1u64 << 32) as f64;
-/// Bytes of one neighbour-list entry with its share of the per-pair buffers (the figure
-/// of [`crate::memory::bytes_per_particle`]).
-pub const LIST_BYTES_PER_ENTRY: f64 = 24.0;
 
 /// `v <= limit`, false for NaN.
 fn at_most(v: f64, limit: f64) -> bool {
@@ -63,19 +60,8 @@ pub fn check_particles(scene: &Scene, parts: &InitialParticles) -> Result<(), Sc
             parts.len()
         )));
     }
-    // the lists hold `capacity` entries per particle whatever the neighbourhood (and the
-    // per-pair buffers as many): 24 bytes each, as `memory::bytes_per_particle` counts
-    let need = entries * LIST_BYTES_PER_ENTRY;
-    if let Some(avail) = crate::memory::available() {
-        if need > avail as f64 {
-            return Err(SceneError(format!(
-                "neighbor_capacity: {} particles x {capacity} neighbours need about {:.1} GiB of neighbour lists, more than the {:.1} GiB available on this machine",
-                parts.len(),
-                need / (1u64 << 30) as f64,
-                avail as f64 / (1u64 << 30) as f64
-            )));
-        }
-    }
+    crate::memory::check_lists_fit(parts.len(), capacity, crate::memory::available())
+        .map_err(SceneError)?;
     Ok(())
 }
 
