@@ -7,7 +7,8 @@
 //!   Each compiled specialisation of a scheme is monomorphised over one such set
 //!   `E: Effects`, whose associated constants are compile-time booleans: branches such as
 //!   `if E::STRENGTH { .. }` are folded away, so a hydro-only run contains no strength code.
-//! - **Run-time** (plasticity, damage, heat, periodic boundaries, artificial stress) act per
+//! - **Run-time** (plasticity, damage, heat, periodic boundaries, artificial stress,
+//!   hourglass stiffness) act per
 //!   particle or as one predictable term of a pair; the step reads them as flags where it
 //!   needs them: periodic boundaries and artificial stress from
 //!   [`crate::schemes::workspace::StepParams::effects`], plasticity, damage and heat from the storage
@@ -64,20 +65,25 @@ impl EffectSet {
     /// Monaghan's artificial stress against the tensile instability (Gray, Monaghan &
     /// Swift 2001), in every scheme's pair forces.
     pub const ARTIFICIAL_STRESS: EffectSet = EffectSet(1 << 8);
+    /// The hourglass stiffness of solids (`crate::schemes::hourglass`): a stored,
+    /// non-dissipative restoring force on each particle's displacement away from the
+    /// affine motion of its neighbours (only with strength; a scene without is refused).
+    pub const HOURGLASS: EffectSet = EffectSet(1 << 9);
     /// The run-time effects: flags of every step ([`Effects::RUNTIME`]).
     pub const RUNTIME: EffectSet = EffectSet(
         Self::PLASTICITY.0
             | Self::DAMAGE.0
             | Self::HEAT.0
             | Self::PERIODIC.0
-            | Self::ARTIFICIAL_STRESS.0,
+            | Self::ARTIFICIAL_STRESS.0
+            | Self::HOURGLASS.0,
     );
     /// The effects compiled into a specialisation (the rest are run-time flags).
     pub const COMPILED: EffectSet =
         EffectSet(Self::STRENGTH.0 | Self::CORRECTION.0 | Self::MUSCL.0);
 
     /// Every named effect with its bit, in display order.
-    pub const NAMED: [(&'static str, EffectSet); 9] = [
+    pub const NAMED: [(&'static str, EffectSet); 10] = [
         ("strength", Self::STRENGTH),
         ("plasticity", Self::PLASTICITY),
         ("damage", Self::DAMAGE),
@@ -86,6 +92,7 @@ impl EffectSet {
         ("muscl", Self::MUSCL),
         ("periodic", Self::PERIODIC),
         ("artificial_stress", Self::ARTIFICIAL_STRESS),
+        ("hourglass", Self::HOURGLASS),
         ("moving_window", Self::MOVING_WINDOW),
     ];
 

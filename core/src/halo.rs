@@ -20,7 +20,7 @@
 
 use crate::effects::EffectSet;
 use crate::math::Vector;
-use crate::state::{Correction, Gradients, System};
+use crate::state::{Correction, Gradients, Hourglass, System};
 
 /// A set of per-particle fields that neighbours read.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
@@ -51,6 +51,8 @@ impl Fields {
     pub const GRAD_STRESS: Fields = Fields(1 << 10);
     /// Kernel corrections ([`crate::schemes::workspace::Workspace::corr`]).
     pub const CORR: Fields = Fields(1 << 11);
+    /// Hourglass records ([`crate::schemes::workspace::Workspace::hg`]).
+    pub const HOURGLASS: Fields = Fields(1 << 12);
     /// The state a stress-based pair pass reads at the start of a step: geometry (x, h)
     /// and the Cauchy stress, velocity and wave speed of the other side (`av`'s rates,
     /// `pm`/`tkc`'s correction, gradients and Riemann problems).
@@ -65,7 +67,7 @@ impl Fields {
             | Fields::DAMAGE.0,
     );
     /// Every field, in the order [`Fields::names`] gives.
-    pub const ALL: [(Fields, &'static str); 12] = [
+    pub const ALL: [(Fields, &'static str); 13] = [
         (Fields::X, "x"),
         (Fields::H, "h"),
         (Fields::V, "v"),
@@ -78,6 +80,7 @@ impl Fields {
         (Fields::GRAD, "grad"),
         (Fields::GRAD_STRESS, "grad_stress"),
         (Fields::CORR, "corr"),
+        (Fields::HOURGLASS, "hourglass"),
     ];
 
     /// The union.
@@ -131,6 +134,8 @@ pub struct GhostWorkspace<'a, const D: usize> {
     pub grad_stress: &'a mut [[Vector<D>; 6]],
     /// Kernel corrections (empty without correction).
     pub corr: &'a mut [Correction<D>],
+    /// Hourglass records (empty without the hourglass stiffness).
+    pub hg: &'a mut [Hourglass<D>],
 }
 
 /// The caller's hook between passes (module docs).

@@ -216,6 +216,11 @@ macro_rules! scratch_records {
                 w: Matrix<D> = Matrix::<D>::zeros(), matrix, "The spin `W = (G - G^T)/2` of the velocity gradient `G` corrected with the full `L^-1` (no free-surface switch; exact for an affine velocity field wherever `L` is invertible): the rigid rotation the contact family's transverse Riemann problems leave out with `options.objective` (`pm`, `tkc`)";
                 sv: Vector<D> = Vector::<D>::zeros(), vector, "The gradient of the specific volume `1/rho` from the plain kernel sum, `-(1/rho^2) sum_j m_j grad W_ij`, with `options.specific_volume = \"interpolated\"` (`pm`, `tkc`; `schemes::pm::volume`)";
             }
+            Hourglass "What the hourglass stiffness's force pass reads of a particle and its neighbours (`schemes::hourglass`)" {
+                q: Vector<D> = Vector::<D>::zeros(), vector, "The restoring force `k_i d_i` of the particle's hourglass displacement, N (per unit length in 2D)";
+                t: Matrix<D> = Matrix::<D>::zeros(), matrix, "`(q_i ⊗ y_i) C_i`: the first moment `y_i` of the particle's neighbour weights and its gradient correction `C_i`, the tensor of the force that the affine part of the rate brings, N";
+                vol: Real = 0.0, scalar, "The volume `m/rho` the rate was summed with (the force pass uses the same), m³";
+            }
             Correction "Kernel gradient correction of one particle (`tkc`)" {
                 l_inv: Matrix<D> = Matrix::<D>::identity(), matrix, "The matrix `L^-1` applied to kernel gradients (identity near free surfaces)";
                 lambda_min: Real = 1.0, scalar, "Smallest eigenvalue of L (free-surface indicator)";

@@ -4,7 +4,7 @@
 
 use gsph_core::math::{Matrix, Real, Sym3, Vector};
 use gsph_core::schemes::AvRates;
-use gsph_core::state::{Correction, Gradients, PairSums};
+use gsph_core::state::{Correction, Gradients, Hourglass, PairSums};
 use nalgebra::SMatrix;
 
 /// 64-bit FNV-1a of `bytes`. Any change of a single byte changes the hash (each step of

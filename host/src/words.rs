@@ -3,7 +3,7 @@
 
 use gsph_core::math::{Matrix, Real, Sym3, Vector};
 use gsph_core::schemes::AvRates;
-use gsph_core::state::{Correction, Gradients, PairSums};
+use gsph_core::state::{Correction, Gradients, Hourglass, PairSums};
 use nalgebra::SMatrix;
 
 /// A value that travels as a fixed number of `f64` words.

@@ -8,10 +8,10 @@ use crate::halo::{Exchange, GhostWorkspace, Halo};
 use crate::material::{strength, Material, Strength};
 use crate::math::{real, Matrix, Real, Sym3, Vector};
 use crate::schemes::workspace::StepParams;
-use crate::state::{smoothing_length, Aux, Correction, Gradients, PairGeom, System};
+use crate::state::{smoothing_length, Aux, Correction, Gradients, Hourglass, PairGeom, System};
 
 /// Calls the caller's halo hook with `x` when the step of a run with `effects` makes it
-/// (see [`crate::halo`]). Takes the three workspace arrays neighbours read, not the workspace,
+/// (see [`crate::halo`]). Takes the four workspace arrays neighbours read, not the workspace,
 /// so that a step can hold the pair geometry borrowed across the call.
 #[inline(always)]
 pub(crate) fn exchange<const D: usize>(
@@ -22,18 +22,20 @@ pub(crate) fn exchange<const D: usize>(
     grad: &mut [Gradients<D>],
     grad_stress: &mut [[Vector<D>; 6]],
     corr: &mut [Correction<D>],
+    hg: &mut [Hourglass<D>],
 ) {
     if x.applies(effects) {
         let ws = GhostWorkspace {
             grad,
             grad_stress,
             corr,
+            hg,
         };
         halo.refresh(x, sys, ws);
     }
 }
 
-/// [`exchange`] with the step's effects and the three workspace arrays neighbours read:
+/// [`exchange`] with the step's effects and the four workspace arrays neighbours read:
 /// `halo_exchange!(params, halo, x, sys, ws)`. A macro, not a method of the workspace,
 /// so that the step can keep other workspace fields borrowed across the call.
 macro_rules! halo_exchange {
@@ -46,6 +48,7 @@ macro_rules! halo_exchange {
             $ws.grad,
             $ws.grad_stress,
             $ws.corr,
+            $ws.hg,
         )
     };
 }

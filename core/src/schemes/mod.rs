@@ -17,6 +17,7 @@ pub mod artificial_stress;
 pub mod av;
 pub(crate) mod common;
 pub mod family;
+pub mod hourglass;
 pub(crate) mod leapfrog;
 pub mod options;
 pub(crate) mod pairs;

@@ -13,7 +13,7 @@ use crate::kernel::Kernel;
 use crate::material::Material;
 use crate::math::{Matrix, Real, Vector};
 use crate::neighbors::{Neighbors, Periodic};
-use crate::state::{Aux, Correction, Gradients, PairGeom, PairSums, StepError};
+use crate::state::{Aux, Correction, Gradients, Hourglass, PairGeom, PairSums, StepError};
 
 /// The reals per particle of [`Workspace::rec`] for a family in `d` dimensions.
 pub const fn record_len(family: Family, d: usize) -> usize {
@@ -37,6 +37,8 @@ pub struct Workspace<'a, const D: usize> {
     pub grad_stress: &'a mut [[Vector<D>; 6]],
     /// Kernel correction.
     pub corr: &'a mut [Correction<D>],
+    /// Hourglass records (effect `hourglass`).
+    pub hg: &'a mut [Hourglass<D>],
     /// Leap-frog rates (`av`); persistent between steps.
     pub av: &'a mut [AvRates<D>],
     /// Artificial stress tensors `R_i` (effect `artificial_stress`).
@@ -69,6 +71,8 @@ pub struct Layout {
     pub grad_stress: bool,
     /// [`Workspace::corr`].
     pub corr: bool,
+    /// [`Workspace::hg`].
+    pub hg: bool,
     /// [`Workspace::av`].
     pub av: bool,
     /// [`Workspace::geom`] (one per unordered pair), and [`Workspace::fac`] with `art`: the
@@ -92,6 +96,7 @@ impl Layout {
             grad: effects.contains(EffectSet::MUSCL),
             grad_stress: false,
             corr: effects.contains(EffectSet::CORRECTION),
+            hg: effects.contains(EffectSet::HOURGLASS),
             av: false,
             geom: true,
             art: effects.contains(EffectSet::ARTIFICIAL_STRESS),
@@ -113,6 +118,7 @@ impl<const D: usize> Workspace<'_, D> {
             ("grad", layout.grad, self.grad.len(), n),
             ("grad_stress", layout.grad_stress, self.grad_stress.len(), n),
             ("corr", layout.corr, self.corr.len(), n),
+            ("hg", layout.hg, self.hg.len(), n),
             ("av", layout.av, self.av.len(), n),
             ("art", layout.art, self.art.len(), n),
             ("fac", layout.art && layout.geom, self.fac.len(), pairs),

@@ -340,6 +340,7 @@ fn put_fields<const D: usize>(
     put(fields.contains(Fields::GRAD), ws.grad, i, out);
     put(fields.contains(Fields::GRAD_STRESS), ws.grad_stress, i, out);
     put(fields.contains(Fields::CORR), ws.corr, i, out);
+    put(fields.contains(Fields::HOURGLASS), ws.hg, i, out);
 }
 
 /// Reads what [`put_fields`] wrote into particle `i`; returns the words read.
@@ -375,6 +376,7 @@ fn get_fields<const D: usize>(
         &mut at,
     );
     get(fields.contains(Fields::CORR), ws.corr, i, src, &mut at);
+    get(fields.contains(Fields::HOURGLASS), ws.hg, i, src, &mut at);
     at
 }
 

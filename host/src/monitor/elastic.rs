@@ -8,6 +8,7 @@ use crate::output::table::ParticleTable;
 use crate::scene::{InitialParticles, MonitorSpec};
 use gsph_core::material::Material;
 use gsph_core::math::{Sym3, Vector};
+use gsph_core::schemes::hourglass;
 
 /// The diagnostics a scene asks for, with what they need from the initial particles.
 #[derive(Debug, Clone)]
@@ -22,6 +23,9 @@ pub struct Elastic {
     moduli: Vec<(f64, f64)>,
     /// Record the strain energy (`strain_energy`).
     strain: bool,
+    /// The hourglass stiffness's xi (effect `hourglass`): its stored energy counts with
+    /// the strain energy.
+    hourglass: Option<f64>,
     /// The initial kinetic plus strain energy, J (`mechanical_energy`).
     mechanical: Option<f64>,
     /// The initial angular momentum about the z axis through the origin, kg m²/s
@@ -42,6 +46,7 @@ impl Elastic {
         dim: usize,
         parts: &InitialParticles,
         materials: &[Material],
+        hourglass: Option<f64>,
     ) -> Option<Elastic> {
         if !spec.bodies
             && !spec.strain_energy
@@ -82,6 +87,7 @@ impl Elastic {
             bodies,
             moduli,
             strain: spec.strain_energy,
+            hourglass,
             mechanical,
             angular: spec.angular_momentum.then(|| {
                 (0..parts.x.len())
@@ -183,13 +189,21 @@ impl Elastic {
         out
     }
 
-    /// The elastic strain energy `sum V (p²/(2K) + S:S/(4G))`, J.
+    /// The elastic strain energy `sum V (p²/(2K) + S:S/(4G))`, J, with the energy the
+    /// hourglass stiffness stores (`gsph_core::schemes::hourglass::stored_energy`) where
+    /// the run has it.
     fn strain_energy(&self, t: &ParticleTable) -> f64 {
         let mut se = 0.0;
         for i in 0..t.len() {
             let (k, g) = self.moduli[t.material[i] as usize];
             let s = Sym3::new(t.sxx[i], t.syy[i], t.szz[i], t.sxy[i], t.sxz[i], t.syz[i]);
-            se += t.m[i] / t.rho[i] * strain_density(t.p[i], &s, k, g);
+            let vol = t.m[i] / t.rho[i];
+            se += vol * strain_density(t.p[i], &s, k, g);
+            if let Some(xi) = self.hourglass {
+                let kh = hourglass::stiffness(xi, g, vol, t.h[i], t.damage[i]);
+                let d = Vector::<3>::new(t.hgx[i], t.hgy[i], t.hgz[i]);
+                se += hourglass::stored_energy(kh, &d);
+            }
         }
         se
     }

@@ -173,10 +173,9 @@ impl Monitor {
             t_end: scene.t_end,
             damaging: materials.iter().map(Material::has_damage).collect(),
             heat: materials.iter().any(Material::has_heat),
-            elastic: scene
-                .monitor
-                .as_ref()
-                .and_then(|m| Elastic::new(m, scene.dim, parts, materials)),
+            elastic: scene.monitor.as_ref().and_then(|m| {
+                Elastic::new(m, scene.dim, parts, materials, scene.options.hourglass)
+            }),
             rod: scene
                 .monitor
                 .as_ref()

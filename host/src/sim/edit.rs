@@ -7,7 +7,7 @@ use super::{vec_of, Particle, Sim};
 use crate::scene::InitialParticles;
 use gsph_core::math::{Sym3, Vector};
 use gsph_core::schemes::{AvRates, Layout};
-use gsph_core::state::{smoothing_length, Correction, Gradients, PairSums};
+use gsph_core::state::{smoothing_length, Correction, Gradients, Hourglass, PairSums};
 
 /// Keeps the elements of `v` whose mask entry is true (an empty `v`, storage of an absent
 /// effect, stays empty).
@@ -50,6 +50,7 @@ impl<const D: usize> Sim<D> {
         filter(&mut self.grad, keep);
         filter(&mut self.grad_stress, keep);
         filter(&mut self.corr, keep);
+        filter(&mut self.hg_rec, keep);
         filter(&mut self.av, keep);
         filter(&mut self.art, keep);
         filter(&mut self.aux, keep);
@@ -91,6 +92,8 @@ impl<const D: usize> Sim<D> {
                     .copied()
                     .unwrap_or_else(|| mat.initial_temperature()),
                 h: smoothing_length::<D>(self.h_factor, parts.m[i], parts.rho[i]),
+                // a new particle sits where its neighbours' affine motion puts it
+                hg: Vector::<D>::zeros(),
                 // where it was created, or the reference a particle file gives
                 x0: parts.x0.get(i).map_or(x, vec_of::<D>),
             });
@@ -115,6 +118,9 @@ impl<const D: usize> Sim<D> {
         }
         if layout.corr {
             self.corr.push(Correction::default());
+        }
+        if layout.hg {
+            self.hg_rec.push(Hourglass::default());
         }
         if layout.art {
             self.art.push(gsph_core::math::Matrix::<D>::zeros());

@@ -80,6 +80,7 @@ impl<const D: usize> Sim<D> {
         apply(&mut self.grad, order);
         apply(&mut self.grad_stress, order);
         apply(&mut self.corr, order);
+        apply(&mut self.hg_rec, order);
         apply(&mut self.av, order);
         apply(&mut self.art, order);
         apply(&mut self.aux, order);

@@ -93,6 +93,9 @@ pub fn resolve_effects(scene: &Scene, materials: &[Material]) -> EffectSet {
     if scene.options.artificial_stress.is_some() {
         e = e.union(EffectSet::ARTIFICIAL_STRESS);
     }
+    if scene.options.hourglass.is_some() {
+        e = e.union(EffectSet::HOURGLASS);
+    }
     e.closed()
 }
 
@@ -114,6 +117,8 @@ pub struct Sim {
     grad: Vec<Gradients<D>>,
     grad_stress: Vec<[Vector<D>; 6]>,
     corr: Vec<Correction<D>>,
+    /// The hourglass stiffness's records (scratch: written before they are read in every step).
+    hg_rec: Vec<Hourglass<D>>,
     av: Vec<AvRates<D>>,
     /// The first CFL step this simulation took (or was restarted with): the reference of
     /// the collapse check in [`Sim::checked_dt`].
@@ -247,6 +252,7 @@ impl<const D: usize> Sim<D> {
             grad: Vec::new(),
             grad_stress: Vec::new(),
             corr: Vec::new(),
+            hg_rec: Vec::new(),
             dt_first: None,
             av: Vec::new(),
             art: Vec::new(),
@@ -356,6 +362,7 @@ impl<const D: usize> Sim<D> {
             ("ws.grad", size_of_val(&self.grad[..])),
             ("ws.grad_stress", size_of_val(&self.grad_stress[..])),
             ("ws.corr", size_of_val(&self.corr[..])),
+            ("ws.hg", size_of_val(&self.hg_rec[..])),
             ("ws.av", size_of_val(&self.av[..])),
             ("ws.art", size_of_val(&self.art[..])),
             ("ws.rec", self.records_len() * std::mem::size_of::<Real>()),
@@ -495,6 +502,7 @@ impl<const D: usize> Sim<D> {
             grad: &mut self.grad,
             grad_stress: &mut self.grad_stress,
             corr: &mut self.corr,
+            hg: &mut self.hg_rec,
             av: &mut self.av,
             art: &mut self.art,
             rec: &mut self.rec,

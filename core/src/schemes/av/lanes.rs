@@ -35,6 +35,7 @@ pub(crate) fn covers(o: &SchemeOptions) -> bool {
         // read by av's other passes (the smoothing length update), not by the pairs
         constant_h: _,
         // the Godunov families'
+        hourglass: _,
         limiter: _,
         riemann: _,
         dissipation: _,

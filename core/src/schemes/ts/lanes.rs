@@ -57,6 +57,8 @@ pub(crate) fn covers<const D: usize>(params: &StepParams<'_, D>) -> bool {
         artificial_stress: _,
         artificial_stress_exponent: _,
         constant_h: _,
+        // the hourglass stiffness's own passes (portable), not the star
+        hourglass: _,
         // the effects the step is compiled with (`E`), not read from here
         correction: _,
         muscl: _,

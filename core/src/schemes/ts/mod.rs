@@ -68,6 +68,7 @@ use crate::schemes::common::{
     refresh_pressure,
 };
 use crate::schemes::family::SchemeFamily;
+use crate::schemes::hourglass;
 use crate::schemes::options::{Integrator, SchemeOptions};
 use crate::schemes::pairs::geometry_pass;
 use crate::schemes::scheme::Family;
@@ -83,8 +84,9 @@ pub use records::{record_len, TsStar};
 /// 2. Before the continuity pass, with MUSCL: the gradients (its reconstruction reads the
 ///    slopes of both sides of every pair).
 /// 3. After the continuity update (rho, S, p, c, damage changed): the deviatoric pass reads
-///    S, p, damage and aux (from rho); without it the hydro pass is next and reads rho, p,
-///    c, damage.
+///    S, p, damage and aux (from rho), and the hourglass force the records of the
+///    stiffness's update (effect `hourglass`); without it the hydro pass is next and
+///    reads rho, p, c, damage.
 /// 4. Before the hydro pass, after the deviatoric update (v, e and so p, c changed).
 pub const EXCHANGES: [Exchange; 4] = [
     Exchange {
@@ -111,7 +113,8 @@ pub const EXCHANGES: [Exchange; 4] = [
             .with(Fields::S)
             .with(Fields::P)
             .with(Fields::C)
-            .with(Fields::DAMAGE),
+            .with(Fields::DAMAGE)
+            .with(Fields::HOURGLASS),
         needs: EffectSet::HYDRO,
         needs_any: EffectSet::HYDRO,
     },
@@ -135,7 +138,8 @@ impl SchemeFamily for Ts {
         .union(EffectSet::HEAT)
         .union(EffectSet::PERIODIC)
         .union(EffectSet::MUSCL)
-        .union(EffectSet::ARTIFICIAL_STRESS);
+        .union(EffectSet::ARTIFICIAL_STRESS)
+        .union(EffectSet::HOURGLASS);
     const EXCHANGES: &'static [Exchange] = &EXCHANGES;
 
     fn layout(effects: EffectSet, options: &SchemeOptions) -> Layout {
@@ -166,6 +170,11 @@ impl SchemeFamily for Ts {
         //    always in the deviatoric step, and in smooth flow with MUSCL.
         let [_, _, deviatoric, hydro] = &EXCHANGES;
         kinematics::<D, E, X>(sys, ws, params, exec, halo);
+        let stiff = hourglass::on::<D, E>(params);
+        if stiff {
+            // from the start-of-step velocities and positions, as the deviator
+            hourglass::update::<D, X>(sys, ws.geom, ws.aux, ws.hg, params, exec);
+        }
         let (geom, fac): (&[PairGeom<D>], &[Real]) = (ws.geom, ws.fac);
         exec.run(
             (sys.reborrow(), &ws.sums[..]),
@@ -189,6 +198,9 @@ impl SchemeFamily for Ts {
         }
         if E::STRENGTH || art_on {
             deviatoric_pass::<D, E, X>(sys, geom, ws.aux, ws.art, fac, ws.sums, params, exec);
+            if stiff {
+                hourglass::add_forces::<D, X>(sys, geom, ws.hg, ws.sums, params, exec);
+            }
             exec.run(
                 (sys.reborrow(), &ws.sums[..]),
                 |_, (mut s, sums): (System<'_, D>, &[PairSums<D>])| {

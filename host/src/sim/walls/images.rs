@@ -123,6 +123,7 @@ impl<const D: usize> Sim<D> {
         cut(&mut self.grad, n);
         cut(&mut self.grad_stress, n);
         cut(&mut self.corr, n);
+        cut(&mut self.hg_rec, n);
         cut(&mut self.av, n);
         cut(&mut self.art, n);
         cut(&mut self.aux, n);
@@ -186,6 +187,7 @@ impl<const D: usize> Sim<D> {
                 dup(&mut self.grad, i, n);
                 dup(&mut self.grad_stress, i, n);
                 dup(&mut self.corr, i, n);
+                dup(&mut self.hg_rec, i, n);
                 dup(&mut self.av, i, n);
                 dup(&mut self.art, i, n);
                 dup(&mut self.aux, i, n);

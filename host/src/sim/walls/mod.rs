@@ -174,6 +174,9 @@ impl<const D: usize> Halo<D> for Mirrors<D> {
             if f.contains(Fields::CORR) && !ws.corr.is_empty() {
                 ws.corr[g] = ws.corr[o].mirror(pl);
             }
+            if f.contains(Fields::HOURGLASS) && !ws.hg.is_empty() {
+                ws.hg[g] = ws.hg[o].mirror(pl);
+            }
         }
     }
 }
@@ -206,6 +209,7 @@ impl<const D: usize> Halo<D> for Both<'_, D> {
             grad,
             grad_stress,
             corr,
+            hg,
         } = ws;
         self.dist.refresh(
             &wide,
@@ -214,6 +218,7 @@ impl<const D: usize> Halo<D> for Both<'_, D> {
                 grad: &mut *grad,
                 grad_stress: &mut *grad_stress,
                 corr: &mut *corr,
+                hg: &mut *hg,
             },
         );
         self.mirrors.refresh(
@@ -223,6 +228,7 @@ impl<const D: usize> Halo<D> for Both<'_, D> {
                 grad,
                 grad_stress,
                 corr,
+                hg,
             },
         );
     }

@@ -1,0 +1,184 @@
+//! The hourglass stiffness of solids (effect `hourglass`, `options.hourglass = xi`): a
+//! stored, non-dissipative restoring force against the zero-energy particle modes of
+//! SPH elasticity, derived from an energy so that its work is exact (issue 46).
+//!
+//! **State.** Each particle carries an *hourglass displacement* `d_i` (the particle field
+//! `hg`): how far it has moved away from the affine motion of its neighbours, integrated
+//! in time and rotated with its spin,
+//!
+//! ```text
+//! d_i' = W_i d_i + a_i,   a_i = sum_j w_ij (v_i - v_j) - L_i y_i,
+//! w_ij = V_j omega_ij,    omega_ij = r_ij |W'(r_ij)| / D,    y_i = sum_j w_ij (x_i - x_j),
+//! L_i  = sum_j V_j (v_j - v_i) ⊗ C_i grad_i W_ij,   C_i = (sum_j V_j (x_j - x_i) ⊗ grad_i W_ij)^-1,
+//! ```
+//!
+//! with `W_i` the skew part of the corrected velocity gradient `L_i`. `a_i` vanishes for
+//! every affine velocity field `v = G x + c` wherever `C_i` exists, free surfaces included
+//! (`sum_j w_ij (v_i - v_j) = G y_i`), so a rigid rotation or a uniform strain stores
+//! nothing, and the rotation keeps `d` objective. The weights sum to about one inside a
+//! body (`sum_j V_j r |W'| = D`), so `d_i` is about the particle's offset from the
+//! position its neighbours' affine motion predicts.
+//!
+//! **Energy and force.** The stored energy is `Phi = sum_i k_i |d_i|^2 / 2` with
+//! `k_i = xi G_i V_i / h_i^2` (`G` the shear modulus; scaled by `1 - damage`). The
+//! rotation does no work (`d . W d = 0`), so `dPhi/dt = sum_i q_i . a_i` with
+//! `q_i = k_i d_i`, a linear form in the velocities: the force whose power is exactly
+//! `-dPhi/dt` is, on particle `i`,
+//!
+//! ```text
+//! f_i = sum_j [ omega_ij (V_i q_j - V_j q_i) - (V_i T_j + V_j T_i) grad_i W_ij ],   T_i = (q_i ⊗ y_i) C_i
+//! ```
+//!
+//! (the first term from `sum_j w_ij (v_i - v_j)`, the second, a stress-like term, from
+//! `L_i y_i`). Each pair's share is antisymmetric, so linear momentum is conserved to
+//! round-off; the force is not central, and angular momentum is conserved as well as
+//! the corrected gradient's stress forces conserve it. No peer code does it this way:
+//! SPHinXsys's GNOG penalty integrates a per-particle *acceleration* whose work is no
+//! energy's (its total energy grows 4-12 % on the breathing ring, issue 46), and
+//! Ganzenmüller's stiffness (LAMMPS SMD) needs a total-Lagrangian reference. This is
+//! Flanagan & Belytschko's hourglass stiffness (1981) in particle form: a rate-form
+//! generalised displacement, co-rotated, with the force its energy's adjoint. Per
+//! particle, not per pair, so it lives in the particle table (checkpoints, halos,
+//! migrations and walls' images carry it as any field) and costs two pair passes.
+//!
+//! **Time integration.** [`update`] advances `d` from the start-of-step state (the same
+//! velocities and positions the deviator is advanced from), then [`add_forces`] adds the
+//! force of the new `d` to a sub-step's sums with the scheme's own power booking (the
+//! pair-mean velocity, as the deviatoric forces): the scheme's energy equation books its
+//! work into internal energy exactly, so total energy (kinetic + internal) stays what the
+//! scheme makes it, and `Phi` ([`stored_energy`]) is the part of the internal energy the
+//! stiffness holds; the monitor counts it with the strain energy.
+
+use crate::effects::EffectSet;
+use crate::exec::Executor;
+use crate::math::{det, inverse, Matrix, Real, Vector};
+use crate::schemes::common::outer;
+use crate::schemes::pairs::for_each_pair;
+use crate::schemes::workspace::StepParams;
+use crate::state::{Aux, Hourglass, PairGeom, PairSums, System};
+
+/// The stiffness `k = xi G V / h^2` of a particle (N/m per unit length in 2D), zero for a
+/// material without shear modulus and scaled by `1 - damage`.
+#[inline(always)]
+pub fn stiffness(xi: Real, shear_modulus: Real, vol: Real, h: Real, damage: Real) -> Real {
+    xi * shear_modulus * vol / (h * h) * (1.0 - damage)
+}
+
+/// The energy `k |d|^2 / 2` the stiffness stores in one particle, J (per unit length in 2D).
+#[inline(always)]
+pub fn stored_energy<const D: usize>(k: Real, d: &Vector<D>) -> Real {
+    0.5 * k * d.norm_squared()
+}
+
+/// The exact rotation `(I - A/2)^-1 (I + A/2)` of the Cayley transform of `A = W dt`
+/// (orthogonal for a skew `A`: `|R d| = |d|` to round-off), or the identity where it is
+/// singular (never for a skew `A`).
+#[inline(always)]
+fn cayley<const D: usize>(a: &Matrix<D>) -> Matrix<D> {
+    let half = a * 0.5;
+    let id = Matrix::<D>::identity();
+    match inverse(&(id - half)) {
+        Some(inv) => inv * (id + half),
+        None => id,
+    }
+}
+
+/// Advances every particle's hourglass displacement over `params.dt` from the state at
+/// the start of the step and writes the records the force pass reads (`hg`). Reads of
+/// its neighbours x, v and the volumes in `aux`; a pair pass.
+pub fn update<const D: usize, X: Executor>(
+    sys: &mut System<'_, D>,
+    geom: &[PairGeom<D>],
+    aux: &[Aux],
+    hg: &mut [Hourglass<D>],
+    params: &StepParams<'_, D>,
+    exec: &X,
+) {
+    let xi = params.options.hourglass;
+    let dt = params.dt;
+    let det_eps = params.options.det_epsilon;
+    let (x, v, h, mat, damage) = (&*sys.x, &*sys.v, &*sys.h, &*sys.mat, &*sys.damage);
+    let d_inv = 1.0 / D as Real;
+    exec.run(
+        (&mut *sys.hg, hg),
+        |off, (disp, recs): (&mut [Vector<D>], &mut [Hourglass<D>])| {
+            for (k, (d, rec)) in disp.iter_mut().zip(recs.iter_mut()).enumerate() {
+                let i = off + k;
+                let (xi_, vi) = (x[i], v[i]);
+                let mut a_mat = Matrix::<D>::zeros();
+                let mut l_raw = Matrix::<D>::zeros();
+                let mut sv = Vector::<D>::zeros();
+                let mut y = Vector::<D>::zeros();
+                for_each_pair(params, geom, i, |pr, _| {
+                    let j = pr.j;
+                    let vol = aux[j].vol;
+                    let gw = pr.grad * vol;
+                    let xji = x[j] - xi_;
+                    let vji = v[j] - vi;
+                    a_mat += outer(&xji, &gw);
+                    l_raw += outer(&vji, &gw);
+                    // w_ij = V_j r |W'| / D (zero outside the support: dw = 0)
+                    let w = -vol * pr.r * pr.dw * d_inv;
+                    sv -= vji * w;
+                    y -= xji * w;
+                });
+                let c = match inverse(&a_mat) {
+                    Some(inv) if det(&a_mat) >= det_eps => inv,
+                    _ => Matrix::<D>::identity(),
+                };
+                let l = l_raw * c.transpose();
+                let spin = (l - l.transpose()) * 0.5;
+                let rate = sv - l * y;
+                *d = cayley(&(spin * dt)) * *d + rate * dt;
+                let m = &params.materials[mat[i] as usize];
+                let dmg = if damage.is_empty() { 0.0 } else { damage[i] };
+                let q = *d * stiffness(xi, m.shear_modulus, aux[i].vol, h[i], dmg);
+                *rec = Hourglass {
+                    q,
+                    t: outer(&q, &y) * c,
+                    vol: aux[i].vol,
+                };
+            }
+        },
+    );
+}
+
+/// Adds the stiffness's force (module docs) to every particle's `acc` and its power at
+/// the pair-mean velocity to `power` (per unit mass, as the deviatoric pass books its
+/// forces). Reads the neighbours' records `hg` ([`update`]); a pair pass.
+pub fn add_forces<const D: usize, X: Executor>(
+    sys: &System<'_, D>,
+    geom: &[PairGeom<D>],
+    hg: &[Hourglass<D>],
+    sums: &mut [PairSums<D>],
+    params: &StepParams<'_, D>,
+    exec: &X,
+) {
+    let d_inv = 1.0 / D as Real;
+    exec.run(sums, |off, chunk: &mut [PairSums<D>]| {
+        for (k, out) in chunk.iter_mut().enumerate() {
+            let i = off + k;
+            let vi = sys.v[i];
+            let ri = &hg[i];
+            let inv_m = 1.0 / sys.m[i];
+            let mut f = Vector::<D>::zeros();
+            let mut power = 0.0;
+            for_each_pair(params, geom, i, |pr, _| {
+                let rj = &hg[pr.j];
+                let omega = -pr.r * pr.dw * d_inv;
+                let fij = (rj.q * ri.vol - ri.q * rj.vol) * omega
+                    - (rj.t * ri.vol + ri.t * rj.vol) * pr.grad;
+                f += fij;
+                power += fij.dot(&((vi + sys.v[pr.j]) * 0.5));
+            });
+            out.acc += f * inv_m;
+            out.power += power * inv_m;
+        }
+    });
+}
+
+/// True when the step of a run with `effects` runs the stiffness.
+#[inline(always)]
+pub(crate) fn on<const D: usize, E: crate::effects::Effects>(params: &StepParams<'_, D>) -> bool {
+    params.has::<E>(EffectSet::HOURGLASS)
+}
