@@ -274,6 +274,7 @@ mod runner {
                 grad: &mut [],
                 grad_stress: &mut [],
                 corr: &mut [],
+                hg: &mut [],
                 av: &mut [],
                 art: &mut [],
                 rec: &mut [],

@@ -161,6 +161,7 @@ fn run(n: usize, sol: &FlyerPlate) -> Result<Row, String> {
             grad: &mut [],
             grad_stress: &mut [],
             corr: &mut [],
+            hg: &mut [],
             av: &mut [],
             art: &mut [],
             rec: &mut [],

@@ -220,6 +220,8 @@ macro_rules! scratch_records {
                 q: Vector<D> = Vector::<D>::zeros(), vector, "The restoring force `k_i d_i` of the particle's hourglass displacement, N (per unit length in 2D)";
                 t: Matrix<D> = Matrix::<D>::zeros(), matrix, "`(q_i ⊗ y_i) C_i`: the first moment `y_i` of the particle's neighbour weights and its gradient correction `C_i`, the tensor of the force that the affine part of the rate brings, N";
                 vol: Real = 0.0, scalar, "The volume `m/rho` the rate was summed with (the force pass uses the same), m³";
+                c: Matrix<D> = Matrix::<D>::identity(), matrix, "The kernel gradient correction `C_i` of the rate (the identity where `det C_i^-1 < det_epsilon`)";
+                l: Matrix<D> = Matrix::<D>::zeros(), matrix, "The corrected velocity gradient `L_i` the rate was summed with, 1/s (`ts` advances its deviator with it)";
             }
             Correction "Kernel gradient correction of one particle (`tkc`)" {
                 l_inv: Matrix<D> = Matrix::<D>::identity(), matrix, "The matrix `L^-1` applied to kernel gradients (identity near free surfaces)";

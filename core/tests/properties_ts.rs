@@ -193,6 +193,7 @@ fn run<const D: usize, E: Effects>(c: &Case) -> Result<Totals, StepError> {
             grad: &mut grad,
             grad_stress: &mut [],
             corr: &mut [],
+            hg: &mut [],
             av: &mut [],
             art: &mut [],
             rec: &mut [],

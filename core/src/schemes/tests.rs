@@ -203,6 +203,7 @@ fn run<F: SchemeFamily, E: Effects + Plasticity>(t_end: Real) -> (Real, Real, Re
             grad,
             grad_stress: gs,
             corr,
+            hg: &mut [],
             av,
             art: &mut [],
             rec: &mut [],

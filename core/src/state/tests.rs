@@ -24,6 +24,7 @@ fn check(temp: &mut [Real], damage: &mut [Real], eps_p: &mut [Real]) -> Result<(
         eps_p,
         damage,
         temp,
+        hg: &mut [],
     };
     check_finite(&sys)
 }

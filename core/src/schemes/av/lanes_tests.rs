@@ -55,6 +55,7 @@ fn all_rates<const D: usize, E: Effects>(
         grad: &mut [],
         grad_stress: &mut [],
         corr: &mut [],
+        hg: &mut [],
         av: &mut av,
         art: &mut art,
         rec: &mut rec,

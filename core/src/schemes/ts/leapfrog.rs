@@ -72,7 +72,7 @@ fn rates<const D: usize, E: Effects, X: Executor>(
         artificial_stress_tensors::<D, E, X>(sys, ws.art, params, exec);
     }
     if E::STRENGTH || art_on {
-        deviatoric_pass::<D, E, X>(sys, geom, ws.aux, ws.art, fac, ws.sums, params, exec);
+        deviatoric_pass::<D, E, X>(sys, geom, ws.aux, ws.art, fac, &[], ws.sums, params, exec);
         add_forces(ws.av, ws.sums, exec);
     }
     hydro_pass::<D, E, X>(

@@ -73,7 +73,7 @@ use crate::schemes::options::{Integrator, SchemeOptions};
 use crate::schemes::pairs::geometry_pass;
 use crate::schemes::scheme::Family;
 use crate::schemes::workspace::{Layout, StepParams, Workspace};
-use crate::state::{PairGeom, PairSums, StepError, System};
+use crate::state::{Hourglass, PairGeom, PairSums, StepError, System};
 pub use records::{record_len, TsStar};
 
 /// The halo exchanges of a `ts` step, in order (see [`crate::halo`]).
@@ -176,20 +176,27 @@ impl SchemeFamily for Ts {
             hourglass::update::<D, X>(sys, ws.geom, ws.aux, ws.hg, params, exec);
         }
         let (geom, fac): (&[PairGeom<D>], &[Real]) = (ws.geom, ws.fac);
+        let hg: &[Hourglass<D>] = if stiff { ws.hg } else { &[] };
         exec.run(
             (sys.reborrow(), &ws.sums[..]),
-            |_, (mut s, sums): (System<'_, D>, &[PairSums<D>])| {
+            |off, (mut s, sums): (System<'_, D>, &[PairSums<D>])| {
                 for k in 0..s.len() {
                     let mat = &params.materials[s.mat[k] as usize];
                     s.rho[k] *= real::exp(-dt * sums[k].div);
                     if E::STRENGTH {
-                        advance_deviator::<D, E>(&mut s, k, mat, &sums[k].grad_v, dt);
+                        // with the stiffness, the corrected gradient (module docs)
+                        let grad_v = match hg.get(off + k) {
+                            Some(r) => &r.l,
+                            None => &sums[k].grad_v,
+                        };
+                        advance_deviator::<D, E>(&mut s, k, mat, grad_v, dt);
                     }
                     refresh_pressure(&mut s, k, mat);
                 }
             },
         );
         halo_exchange!(params, halo, deviatoric, sys, ws);
+        let hg: &[Hourglass<D>] = if stiff { ws.hg } else { &[] };
         // 2. Deviatoric step (with strength or artificial stress): no dissipation.
         refresh_aux::<D, false, X>(sys, ws.aux, params, exec);
         let art_on = params.has::<E>(EffectSet::ARTIFICIAL_STRESS);
@@ -197,9 +204,9 @@ impl SchemeFamily for Ts {
             artificial_stress_tensors::<D, E, X>(sys, ws.art, params, exec);
         }
         if E::STRENGTH || art_on {
-            deviatoric_pass::<D, E, X>(sys, geom, ws.aux, ws.art, fac, ws.sums, params, exec);
+            deviatoric_pass::<D, E, X>(sys, geom, ws.aux, ws.art, fac, hg, ws.sums, params, exec);
             if stiff {
-                hourglass::add_forces::<D, X>(sys, geom, ws.hg, ws.sums, params, exec);
+                hourglass::add_forces::<D, X>(sys, geom, hg, ws.sums, params, exec);
             }
             exec.run(
                 (sys.reborrow(), &ws.sums[..]),

@@ -137,6 +137,8 @@ pub fn update<const D: usize, X: Executor>(
                     q,
                     t: outer(&q, &y) * c,
                     vol: aux[i].vol,
+                    c,
+                    l,
                 };
             }
         },
@@ -182,3 +184,6 @@ pub fn add_forces<const D: usize, X: Executor>(
 pub(crate) fn on<const D: usize, E: crate::effects::Effects>(params: &StepParams<'_, D>) -> bool {
     params.has::<E>(EffectSet::HOURGLASS)
 }
+
+#[cfg(test)]
+mod tests;
