@@ -217,7 +217,8 @@ macro_rules! scratch_codec {
 gsph_core::scratch_records!(scratch_codec {});
 struct_codec!(AvRates<D>,
     acc: SMatrix<f64, D, 1>, de: f64, drho: f64, ds: Sym3, rate: f64,
-    v_half: SMatrix<f64, D, 1>, e_half: f64, rho_half: f64, s_half: Sym3);
+    v_half: SMatrix<f64, D, 1>, e_half: f64, rho_half: f64, s_half: Sym3,
+    dhg: SMatrix<f64, D, 1>, hg_half: SMatrix<f64, D, 1>);
 
 #[cfg(test)]
 mod tests {

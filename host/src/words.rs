@@ -126,7 +126,7 @@ gsph_core::scratch_records!(scratch_words {});
 
 impl<const D: usize> Words for AvRates<D> {
     fn words() -> usize {
-        2 * D + 17
+        4 * D + 17
     }
     fn put_words(&self, out: &mut Vec<f64>) {
         self.acc.put_words(out);
@@ -136,6 +136,8 @@ impl<const D: usize> Words for AvRates<D> {
         self.v_half.put_words(out);
         out.extend_from_slice(&[self.e_half, self.rho_half]);
         self.s_half.put_words(out);
+        self.dhg.put_words(out);
+        self.hg_half.put_words(out);
     }
     fn from_words(s: &[f64]) -> Self {
         let mut at = 0;
@@ -153,6 +155,8 @@ impl<const D: usize> Words for AvRates<D> {
         let e_half = next(1)[0];
         let rho_half = next(1)[0];
         let s_half = Sym3::from_words(next(6));
+        let dhg = Vector::<D>::from_words(next(D));
+        let hg_half = Vector::<D>::from_words(next(D));
         AvRates {
             acc,
             de,
@@ -163,6 +167,8 @@ impl<const D: usize> Words for AvRates<D> {
             e_half,
             rho_half,
             s_half,
+            dhg,
+            hg_half,
         }
     }
 }
@@ -213,6 +219,8 @@ mod tests {
             e_half: 8.0,
             rho_half: 9.0,
             s_half: Sym3::ZERO,
+            dhg: Vector::<2>::new(11.0, 12.0),
+            hg_half: Vector::<2>::new(13.0, 14.0),
         };
         a.s_half.xy = 10.0;
         round_trip(a);

@@ -190,6 +190,26 @@ fn restart_is_bitwise_with_driven_particles_and_a_front_monitor() {
     );
 }
 
+#[test]
+fn restart_is_bitwise_with_the_hourglass_stiffness() {
+    // its displacement is particle state; with the leap-frog its rate carries over too
+    let ring = case("ring_spin.toml");
+    for integrator in ["euler", "leapfrog"] {
+        let int = format!("options.integrator={integrator}");
+        restart_matches(
+            &ring,
+            &[
+                "resolution_scale=0.5",
+                "t_end=1e-5",
+                "options.hourglass=1",
+                "options.dissipation=compression",
+                &int,
+            ],
+            &[19],
+        );
+    }
+}
+
 /// A splitmix64 step: the delays of the kill loop, reproducible.
 #[test]
 fn restart_is_bitwise_with_walls_a_symmetry_plane_and_friction() {

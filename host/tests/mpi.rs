@@ -238,6 +238,31 @@ fn the_leapfrog_is_rank_count_independent() {
     );
 }
 
+/// The hourglass stiffness (issue 46): its displacement migrates with the particles and
+/// its records cross the halo; ts2 split and tkc leap-frog give the serial bytes on any
+/// rank count.
+#[test]
+fn the_hourglass_stiffness_is_rank_count_independent() {
+    for (scheme, integrator) in [("ts2", "euler"), ("tkc", "leapfrog")] {
+        let (s, i) = (
+            format!("scheme={scheme}"),
+            format!("options.integrator={integrator}"),
+        );
+        same_everywhere(
+            &format!("rings_hourglass_{scheme}"),
+            "rings.toml",
+            &[
+                "resolution_scale=0.5",
+                "max_steps=60",
+                &s,
+                &i,
+                "options.hourglass=1",
+                "options.dissipation=compression",
+            ],
+        );
+    }
+}
+
 /// A checkpoint written on 2 ranks restarts on 3 ranks and in one process, and both end
 /// with the bytes of the uninterrupted serial run.
 #[test]

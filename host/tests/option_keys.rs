@@ -273,13 +273,15 @@ fn the_keys_tested_here_are_the_tables() {
     }
     // the keys shown elsewhere: transverse_dissipation and objective act only in 2D/3D
     // (host/tests/elastic_monitor.rs), surface_scan above and host/tests/correction_flags.rs,
-    // artificial stress tests/tests/artificial_stress.rs
+    // artificial stress tests/tests/artificial_stress.rs, the hourglass stiffness
+    // tests/tests/hourglass.rs
     for other in [
         "transverse_dissipation",
         "objective",
         "surface_scan",
         "artificial_stress",
         "artificial_stress_exponent",
+        "hourglass",
     ] {
         tested.insert(other);
     }

@@ -39,6 +39,27 @@ fn bitwise_identical_for_1_2_and_4_threads() {
             vec!["scheme=tkc", "resolution_scale=0.5", "t_end=1e-5"],
         ),
         ("riemann_al_2d", vec!["scheme=av"]),
+        // the hourglass stiffness: its displacement is state, its records a halo field
+        (
+            "ring_breathing",
+            vec![
+                "scheme=ts2",
+                "resolution_scale=0.5",
+                "t_end=2e-5",
+                "options.hourglass=1",
+                "options.dissipation=compression",
+            ],
+        ),
+        (
+            "ring_spin",
+            vec![
+                "scheme=tkc",
+                "resolution_scale=0.5",
+                "t_end=1e-5",
+                "options.hourglass=1",
+                "options.integrator=leapfrog",
+            ],
+        ),
     ] {
         let one = final_state(1, case, &set);
         for threads in [2, 4] {
@@ -72,6 +93,15 @@ fn renumbering_the_particles_changes_no_bit() {
         (
             "rings",
             vec!["scheme=pm", "resolution_scale=0.5", "t_end=2e-6"],
+        ),
+        (
+            "rings",
+            vec![
+                "scheme=ts1",
+                "resolution_scale=0.5",
+                "t_end=2e-6",
+                "options.hourglass=1",
+            ],
         ),
     ] {
         let set: Vec<String> = set.iter().map(|s| s.to_string()).collect();

@@ -8,7 +8,7 @@ use crate::halo::{Exchange, GhostWorkspace, Halo};
 use crate::material::{strength, Material, Strength};
 use crate::math::{real, Matrix, Real, Sym3, Vector};
 use crate::schemes::workspace::StepParams;
-use crate::state::{smoothing_length, Aux, Correction, Gradients, Hourglass, PairGeom, System};
+use crate::state::{smoothing_length, Aux, PairGeom, System};
 
 /// Calls the caller's halo hook with `x` when the step of a run with `effects` makes it
 /// (see [`crate::halo`]). Takes the four workspace arrays neighbours read, not the workspace,
@@ -19,18 +19,9 @@ pub(crate) fn exchange<const D: usize>(
     halo: &mut dyn Halo<D>,
     x: &Exchange,
     sys: &mut System<'_, D>,
-    grad: &mut [Gradients<D>],
-    grad_stress: &mut [[Vector<D>; 6]],
-    corr: &mut [Correction<D>],
-    hg: &mut [Hourglass<D>],
+    ws: GhostWorkspace<'_, D>,
 ) {
     if x.applies(effects) {
-        let ws = GhostWorkspace {
-            grad,
-            grad_stress,
-            corr,
-            hg,
-        };
         halo.refresh(x, sys, ws);
     }
 }
@@ -45,10 +36,12 @@ macro_rules! halo_exchange {
             $halo,
             $x,
             $sys,
-            $ws.grad,
-            $ws.grad_stress,
-            $ws.corr,
-            $ws.hg,
+            $crate::halo::GhostWorkspace {
+                grad: $ws.grad,
+                grad_stress: $ws.grad_stress,
+                corr: $ws.corr,
+                hg: $ws.hg,
+            },
         )
     };
 }

@@ -42,6 +42,8 @@ pub(crate) fn step<const D: usize, E: Effects, X: Executor, const EXP: bool, con
 ) -> Result<(), StepError> {
     let dt = params.dt;
     let hdt = 0.5 * dt;
+    // the hourglass displacement (effect `hourglass`) is advanced as the deviator
+    let stiff = params.has::<E>(EffectSet::HOURGLASS);
     if !ws.primed {
         rates(sys, ws);
         ws.primed = true;
@@ -68,6 +70,10 @@ pub(crate) fn step<const D: usize, E: Effects, X: Executor, const EXP: bool, con
                     let trial = a.s_half + a.ds * hdt;
                     return_deviator::<D, E>(&mut s, k, mat, trial, a.rate, dt, false);
                 }
+                if stiff {
+                    a.hg_half = s.hg[k] + a.dhg * hdt;
+                    s.hg[k] = a.hg_half + a.dhg * hdt;
+                }
                 refresh_eos(&mut s, k, mat, params);
             }
         },
@@ -87,6 +93,8 @@ pub(crate) fn step<const D: usize, E: Effects, X: Executor, const EXP: bool, con
                     let trial = a.s_half + a.ds * hdt;
                     return_deviator::<D, E>(&mut s, k, mat, trial, a.rate, dt, true);
                 }
+                // the hourglass displacement was completed by `rates`
+                // (`crate::schemes::hourglass::rates`)
                 refresh_eos(&mut s, k, mat, params);
             }
         },

@@ -243,21 +243,12 @@ fn check_options(s: &Scene) -> R {
             "not read without strength (no material has a strength model; it stands in for artificial stress in solids)",
         );
     }
-    // the stiffness's scale is the shear modulus, and it steps with the split's
-    // symplectic Euler (the leap-frog's rates do not carry its displacement yet)
-    if o.hourglass.is_some() {
-        if no_strength {
-            return fail(
-                "options.hourglass",
-                "not read without strength (no material has a shear modulus to scale the stiffness)",
-            );
-        }
-        if o.integrator == Some(gsph_core::schemes::Integrator::Leapfrog) {
-            return fail(
-                "options.hourglass",
-                "not read with options.integrator = \"leapfrog\" (the stiffness steps with the first-order integrators only)",
-            );
-        }
+    // the stiffness's scale is the shear modulus
+    if o.hourglass.is_some() && no_strength {
+        return fail(
+            "options.hourglass",
+            "not read without strength (no material has a shear modulus to scale the stiffness)",
+        );
     }
     // the ranges of the options table
     for key in OptionKey::ALL {

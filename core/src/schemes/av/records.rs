@@ -23,6 +23,10 @@ pub struct AvRates<const D: usize> {
     pub rho_half: Real,
     /// Half-step deviator (scratch).
     pub s_half: Sym3,
+    /// The rate of the hourglass displacement (effect `hourglass`), m/s.
+    pub dhg: Vector<D>,
+    /// Half-step hourglass displacement (scratch).
+    pub hg_half: Vector<D>,
 }
 
 impl<const D: usize> Default for AvRates<D> {
@@ -37,6 +41,8 @@ impl<const D: usize> Default for AvRates<D> {
             e_half: 0.0,
             rho_half: 0.0,
             s_half: Sym3::ZERO,
+            dhg: Vector::<D>::zeros(),
+            hg_half: Vector::<D>::zeros(),
         }
     }
 }

@@ -84,8 +84,9 @@ fn cayley<const D: usize>(a: &Matrix<D>) -> Matrix<D> {
 }
 
 /// Advances every particle's hourglass displacement over `params.dt` from the state at
-/// the start of the step and writes the records the force pass reads (`hg`). Reads of
-/// its neighbours x, v and the volumes in `aux`; a pair pass.
+/// the start of the step (`d <- R(W dt) d + a dt`, `R` the Cayley rotation) and writes
+/// the records the force pass reads (`hg`): the step of the first-order integrators.
+/// Reads of its neighbours x, v and the volumes in `aux`; a pair pass.
 pub fn update<const D: usize, X: Executor>(
     sys: &mut System<'_, D>,
     geom: &[PairGeom<D>],
@@ -94,61 +95,155 @@ pub fn update<const D: usize, X: Executor>(
     params: &StepParams<'_, D>,
     exec: &X,
 ) {
-    let xi = params.options.hourglass;
     let dt = params.dt;
-    let det_eps = params.options.det_epsilon;
-    let (x, v, h, mat, damage) = (&*sys.x, &*sys.v, &*sys.h, &*sys.mat, &*sys.damage);
-    let d_inv = 1.0 / D as Real;
+    let (x, v, h, mat, damage) = (&*sys.x, &*sys.v, &*sys.h, sys.mat, &*sys.damage);
     exec.run(
         (&mut *sys.hg, hg),
         |off, (disp, recs): (&mut [Vector<D>], &mut [Hourglass<D>])| {
             for (k, (d, rec)) in disp.iter_mut().zip(recs.iter_mut()).enumerate() {
                 let i = off + k;
-                let (xi_, vi) = (x[i], v[i]);
-                let mut a_mat = Matrix::<D>::zeros();
-                let mut l_raw = Matrix::<D>::zeros();
-                let mut sv = Vector::<D>::zeros();
-                let mut y = Vector::<D>::zeros();
-                for_each_pair(params, geom, i, |pr, _| {
-                    let j = pr.j;
-                    let vol = aux[j].vol;
-                    let gw = pr.grad * vol;
-                    let xji = x[j] - xi_;
-                    let vji = v[j] - vi;
-                    a_mat += outer(&xji, &gw);
-                    l_raw += outer(&vji, &gw);
-                    // w_ij = V_j r |W'| / D (zero outside the support: dw = 0)
-                    let w = -vol * pr.r * pr.dw * d_inv;
-                    sv -= vji * w;
-                    y -= xji * w;
-                });
-                let c = match inverse(&a_mat) {
-                    Some(inv) if det(&a_mat) >= det_eps => inv,
-                    _ => Matrix::<D>::identity(),
-                };
-                let l = l_raw * c.transpose();
-                let spin = (l - l.transpose()) * 0.5;
-                let rate = sv - l * y;
-                *d = cayley(&(spin * dt)) * *d + rate * dt;
-                let m = &params.materials[mat[i] as usize];
-                let dmg = if damage.is_empty() { 0.0 } else { damage[i] };
-                let q = *d * stiffness(xi, m.shear_modulus, aux[i].vol, h[i], dmg);
-                *rec = Hourglass {
-                    q,
-                    t: outer(&q, &y) * c,
-                    vol: aux[i].vol,
-                    c,
-                    l,
-                };
+                let kin = kinematics(x, v, aux, geom, params, i);
+                *d = cayley(&(kin.spin * dt)) * *d + kin.rate * dt;
+                *rec = kin.record(d, (h, mat, damage), aux, params, i);
             }
         },
     );
 }
 
+/// The leap-frog's evaluation at the predicted end state: the rate `d' = W d + a` of
+/// every particle's hourglass displacement into `rates` (`dhg`), and the records the
+/// forces of that state read into `hg`. With `half = Some(dt/2)` (every evaluation but
+/// the first) the displacement is first completed to the end of the step,
+/// `d = d_half + d' dt/2` (`hg_half`, the first half of the step's kick), so that the
+/// forces act with the final displacement as they act at the final positions (velocity
+/// Verlet); with the predicted one instead the stiff hourglass modes gained energy
+/// (the breathing ring's (KE + SE)/E0 reached 1.054, issue 46). A pair pass.
+#[allow(clippy::too_many_arguments)] // the pass's inputs, its two outputs and the half step
+pub fn rates<const D: usize, X: Executor>(
+    sys: &mut System<'_, D>,
+    geom: &[PairGeom<D>],
+    aux: &[Aux],
+    hg: &mut [Hourglass<D>],
+    rates: &mut [crate::schemes::AvRates<D>],
+    params: &StepParams<'_, D>,
+    half: Option<Real>,
+    exec: &X,
+) {
+    let (x, v, h, mat, damage) = (&*sys.x, &*sys.v, &*sys.h, sys.mat, &*sys.damage);
+    exec.run(
+        (&mut *sys.hg, (rates, hg)),
+        |off,
+         (disp, (out, recs)): (
+            &mut [Vector<D>],
+            (&mut [crate::schemes::AvRates<D>], &mut [Hourglass<D>]),
+        )| {
+            for (k, (d, (r, rec))) in disp
+                .iter_mut()
+                .zip(out.iter_mut().zip(recs.iter_mut()))
+                .enumerate()
+            {
+                let i = off + k;
+                let kin = kinematics(x, v, aux, geom, params, i);
+                r.dhg = kin.spin * *d + kin.rate;
+                if let Some(hdt) = half {
+                    *d = r.hg_half + r.dhg * hdt;
+                }
+                *rec = kin.record(d, (h, mat, damage), aux, params, i);
+            }
+        },
+    );
+}
+
+/// What a particle's neighbourhood gives the stiffness: the correction `C_i`, the
+/// corrected gradient `L_i` and its spin, the first moment `y_i` and the rate `a_i`.
+struct Kinematics<const D: usize> {
+    c: Matrix<D>,
+    l: Matrix<D>,
+    spin: Matrix<D>,
+    y: Vector<D>,
+    rate: Vector<D>,
+}
+
+/// The sums of particle `i` (module docs).
+#[inline(always)]
+fn kinematics<const D: usize>(
+    x: &[Vector<D>],
+    v: &[Vector<D>],
+    aux: &[Aux],
+    geom: &[PairGeom<D>],
+    params: &StepParams<'_, D>,
+    i: usize,
+) -> Kinematics<D> {
+    let d_inv = 1.0 / D as Real;
+    let (xi_, vi) = (x[i], v[i]);
+    let mut a_mat = Matrix::<D>::zeros();
+    let mut l_raw = Matrix::<D>::zeros();
+    let mut sv = Vector::<D>::zeros();
+    let mut y = Vector::<D>::zeros();
+    for_each_pair(params, geom, i, |pr, _| {
+        let j = pr.j;
+        let vol = aux[j].vol;
+        let gw = pr.grad * vol;
+        let xji = x[j] - xi_;
+        let vji = v[j] - vi;
+        a_mat += outer(&xji, &gw);
+        l_raw += outer(&vji, &gw);
+        // w_ij = V_j r |W'| / D (zero outside the support: dw = 0)
+        let w = -vol * pr.r * pr.dw * d_inv;
+        sv -= vji * w;
+        y -= xji * w;
+    });
+    let c = match inverse(&a_mat) {
+        Some(inv) if det(&a_mat) >= params.options.det_epsilon => inv,
+        _ => Matrix::<D>::identity(),
+    };
+    let l = l_raw * c.transpose();
+    Kinematics {
+        c,
+        l,
+        spin: (l - l.transpose()) * 0.5,
+        y,
+        rate: sv - l * y,
+    }
+}
+
+impl<const D: usize> Kinematics<D> {
+    /// The record of particle `i` with displacement `d`.
+    #[inline(always)]
+    fn record(
+        &self,
+        d: &Vector<D>,
+        (h, mat, damage): (&[Real], &[u16], &[Real]),
+        aux: &[Aux],
+        params: &StepParams<'_, D>,
+        i: usize,
+    ) -> Hourglass<D> {
+        let m = &params.materials[mat[i] as usize];
+        let dmg = if damage.is_empty() { 0.0 } else { damage[i] };
+        let k = stiffness(
+            params.options.hourglass,
+            m.shear_modulus,
+            aux[i].vol,
+            h[i],
+            dmg,
+        );
+        let q = *d * k;
+        Hourglass {
+            q,
+            t: outer(&q, &self.y) * self.c,
+            vol: aux[i].vol,
+            c: self.c,
+            l: self.l,
+        }
+    }
+}
+
 /// Adds the stiffness's force (module docs) to every particle's `acc` and its power at
 /// the pair-mean velocity to `power` (per unit mass, as the deviatoric pass books its
-/// forces). Reads the neighbours' records `hg` ([`update`]); a pair pass.
-pub fn add_forces<const D: usize, X: Executor>(
+/// forces), less `acc . v_i` where the scheme's `power` is an internal-energy rate at the
+/// start-of-step velocity (`INTERNAL`: `pm`'s seed form). Reads the neighbours' records
+/// `hg` ([`update`]); a pair pass.
+pub fn add_forces<const D: usize, X: Executor, const INTERNAL: bool>(
     sys: &System<'_, D>,
     geom: &[PairGeom<D>],
     hg: &[Hourglass<D>],
@@ -173,6 +268,9 @@ pub fn add_forces<const D: usize, X: Executor>(
                 f += fij;
                 power += fij.dot(&((vi + sys.v[pr.j]) * 0.5));
             });
+            if INTERNAL {
+                power -= f.dot(&vi);
+            }
             out.acc += f * inv_m;
             out.power += power * inv_m;
         }

@@ -102,8 +102,10 @@ fn block(vel: impl Fn(&Vector<2>) -> Vector<2>, d0: impl Fn(usize) -> Vector<2>,
         .hg(&mut d)
         .build()
         .expect("every field a run stores");
-    let mut options = SchemeOptions::default();
-    options.hourglass = 2.0;
+    let options = SchemeOptions {
+        hourglass: 2.0,
+        ..SchemeOptions::default()
+    };
     let params = StepParams {
         dt,
         materials: &mats,
@@ -123,7 +125,7 @@ fn block(vel: impl Fn(&Vector<2>) -> Vector<2>, d0: impl Fn(usize) -> Vector<2>,
     let mut rec = [Hourglass::<2>::default(); N];
     update::<2, Serial>(&mut sys, geom, &aux, &mut rec, &params, &Serial);
     let mut sums = [PairSums::<2>::default(); N];
-    add_forces::<2, Serial>(&sys, geom, &rec, &mut sums, &params, &Serial);
+    add_forces::<2, Serial, false>(&sys, geom, &rec, &mut sums, &params, &Serial);
     let mut out = Out {
         x: [Vector::<2>::zeros(); N],
         m,

@@ -89,7 +89,7 @@ macro_rules! scheme_options {
                 "MUSCL reconstruction for scheme pm (tkc always has it)";
             artificial_stress: Real = 0.3, ArtificialStress, "1", Positive, [Av, Pm, Ts], EVERY_SCHEME,
                 "Monaghan's artificial stress against the tensile instability: its epsilon (at most 1; setting it turns the effect on)";
-            hourglass: Real = 1.0, Hourglass, "1", Positive, [Ts], NO_HOURGLASS,
+            hourglass: Real = 1.0, Hourglass, "1", Positive, [Pm, Ts], NO_HOURGLASS,
                 "The hourglass stiffness of solids, non-dissipative and stored: its xi (stiffness xi G V/h^2 on each particle's displacement from its neighbours' affine motion; setting it turns the effect on)";
             artificial_stress_exponent: u32 = 4, ArtificialStressExponent, "", Any, [Av, Pm, Ts], EVERY_SCHEME,
                 "The exponent n of the artificial stress's factor f_ij^n (1 to 16)";
@@ -361,7 +361,7 @@ pub(crate) mod why {
         "its pair force's specific volumes are not interpolated; pm and tkc interpolate them";
     pub const NO_SURFACE: &str =
         "it has no free-surface rule; ts1, ts2, tkc and pm with options.correction have";
-    pub const NO_HOURGLASS: &str = "it has no hourglass stiffness; ts1 and ts2 have";
+    pub const NO_HOURGLASS: &str = "it has no hourglass stiffness; pm, tkc, ts1 and ts2 have";
     /// The reason of a key every family reads (never given).
     pub const EVERY_SCHEME: &str = "every scheme reads it";
 }

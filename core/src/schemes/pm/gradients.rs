@@ -215,6 +215,8 @@ pub(crate) fn gradient_pass<const D: usize, E: Effects, X: Executor>(
 ) {
     let objective = objective::<D, E>(params);
     let eps = params.options.det_epsilon;
+    // the pressure's slope also where the star carries the pressure only
+    let p_slope = !E::STRENGTH || super::split_stress::<D, E>(params);
     exec.run(
         (
             Optional(&mut *corr),
@@ -236,9 +238,10 @@ pub(crate) fn gradient_pass<const D: usize, E: Effects, X: Executor>(
                     }
                     let gw = pr.grad * vol;
                     acc.rho += gw * (sys.rho[j] - sys.rho[i]);
-                    if !E::STRENGTH {
-                        // the pressure's slope reconstructs the traction only without
-                        // strength (`pair_star`); with it the stress slopes do
+                    if p_slope {
+                        // the pressure's slope reconstructs the traction without strength
+                        // and where the star carries the pressure only (`pair_star`);
+                        // otherwise the stress slopes do
                         acc.p += gw * (sys.p[j] - sys.p[i]);
                     }
                     acc.cl += gw * (sys.cl[j] - sys.cl[i]);
@@ -287,7 +290,7 @@ pub(crate) fn gradient_pass<const D: usize, E: Effects, X: Executor>(
                 let m = if full { l_inv } else { out.l_inv };
                 let gk = &mut g[k];
                 gk.rho = m * gk.rho;
-                if !E::STRENGTH {
+                if p_slope {
                     gk.p = m * gk.p;
                 }
                 gk.cl = m * gk.cl;

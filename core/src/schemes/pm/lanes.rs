@@ -139,7 +139,8 @@ pub(crate) fn covers<const D: usize>(params: &StepParams<'_, D>) -> bool {
         artificial_stress: _,
         artificial_stress_exponent: _,
         constant_h: _,
-        // the hourglass stiffness's own passes (portable), not the star
+        // the hourglass stiffness: its own passes, and the star's pressure-only
+        // tractions, which the rows decline (the effect, below)
         hourglass: _,
         // the effects the step is compiled with (`E`), not read from here
         correction: _,
@@ -160,7 +161,12 @@ pub(crate) fn covers<const D: usize>(params: &StepParams<'_, D>) -> bool {
         Dissipation::Full => true,
         Dissipation::Compression => false,
     };
-    limiter && riemann && full(dissipation) && full(transverse_dissipation)
+    // with the hourglass stiffness the star carries the pressure only (the portable
+    // `pair_star`); the rows carry the full stress
+    let stiff = params
+        .effects
+        .contains(crate::effects::EffectSet::HOURGLASS);
+    limiter && riemann && full(dissipation) && full(transverse_dissipation) && !stiff
 }
 
 /// The star states of the pairs particle `i` owns (its neighbours `owned`, their stored

@@ -50,8 +50,14 @@ fn rates<const D: usize, E: Effects, X: Executor>(
         artificial_stress_tensors::<D, E, X>(sys, ws.art, params, exec);
     }
     pair_pass::<D, E, X, true, true>(sys, ws, params, exec);
+    super::stiffness_forces::<D, E, X>(sys, ws, params, exec);
     let sysr: &System<'_, D> = sys;
     let sums: &[PairSums<D>] = ws.sums;
+    let hg: &[crate::state::Hourglass<D>] = if super::split_stress::<D, E>(params) {
+        ws.hg
+    } else {
+        &[]
+    };
     exec.run(&mut *ws.av, |off, chunk: &mut [AvRates<D>]| {
         for (k, a) in chunk.iter_mut().enumerate() {
             let i = off + k;
@@ -61,8 +67,13 @@ fn rates<const D: usize, E: Effects, X: Executor>(
             a.de = ps.power;
             a.drho = ps.div;
             if E::STRENGTH {
-                a.ds = deviator_rate(&sysr.s[i], mat, &ps.grad_v);
-                a.rate = equivalent_strain_rate(&ps.grad_v);
+                // with the stiffness, its corrected gradient (`super::split_stress`)
+                let grad_v = match hg.get(i) {
+                    Some(r) => &r.l,
+                    None => &ps.grad_v,
+                };
+                a.ds = deviator_rate(&sysr.s[i], mat, grad_v);
+                a.rate = equivalent_strain_rate(grad_v);
             }
         }
     });

@@ -9,12 +9,12 @@ use crate::math::{Matrix, Real, Sym3, Vector};
 use crate::riemann::low_dissipation::central_vector;
 use crate::riemann::{acoustic_star_vector, elastic_star_vector, two_shock_star, ShockSide};
 use crate::schemes::artificial_stress::pair_acceleration;
-use crate::schemes::common::{cauchy, failed, outer};
+use crate::schemes::common::{cauchy, failed, outer, pair_pressure};
 use crate::schemes::options::{RiemannSolver, SpecificVolume};
 use crate::schemes::pairs::{for_each_pair, solve_pair_rows, Pair};
 use crate::schemes::pm::records::PmStar;
 use crate::schemes::workspace::{StepParams, Workspace};
-use crate::state::{Aux, Correction, Gradients, PairGeom, PairSums, System};
+use crate::state::{Aux, Correction, Gradients, Hourglass, PairGeom, PairSums, System};
 
 /// Reconstructed contact values of a pair: `Phi_l = Phi_i + phi(r) (grad Phi_i . r_ji)/2`
 /// with `r = (Phi_j - Phi_i)/(grad Phi_i . r_ji)` (and likewise for j), each side's
@@ -159,6 +159,11 @@ pub(super) fn pair_pass<
             Some(params.kernel.second_moment::<D>() / (4.0 * D as Real))
         }
     };
+    let hg: &[Hourglass<D>] = if E::STRENGTH && super::split_stress::<D, E>(params) {
+        ws.hg
+    } else {
+        &[]
+    };
     let ctx = GatherCtx {
         geom,
         aux,
@@ -168,6 +173,7 @@ pub(super) fn pair_pass<
         stars,
         grad,
         mu,
+        hg,
     };
     // the run-time flags chosen outside the pair loop, so that the loop without one has
     // none of its code (the energy equation's choice inside the loop cost pm's 2D impact
@@ -207,6 +213,9 @@ pub(super) struct GatherCtx<'a, const D: usize> {
     grad: &'a [Gradients<D>],
     /// `Some(<s^2>/(h_i h_j))` with `options.specific_volume = "interpolated"`.
     mu: Option<Real>,
+    /// The hourglass stiffness's records where the deviator acts through the central
+    /// adjoint force (`super::split_stress`); empty otherwise.
+    hg: &'a [Hourglass<D>],
 }
 
 /// The star state of pair (i, j) with `i` on the left (`pr` seen from `i`): MUSCL states
@@ -232,8 +241,18 @@ pub(crate) fn pair_star<const D: usize, E: Effects>(
     let j = pr.j;
     let (vi, rhoi, rhoj) = (sys.v[i], sys.rho[i], sys.rho[j]);
     let (ct_i, ct_j) = (aux[i].ct, aux[j].ct);
-    let sig_i = cauchy::<D, E>(sys, i);
-    let sig_j = cauchy::<D, E>(sys, j);
+    // with the hourglass stiffness the deviator acts through the central force of
+    // `gather` (the adjoint of the corrected gradient that advances it), and the Riemann
+    // problem carries the pressure (see the module `super`)
+    let split = E::STRENGTH && super::split_stress::<D, E>(params);
+    let (sig_i, sig_j) = if split {
+        (
+            Sym3::isotropic(-pair_pressure::<D, E>(sys, i)),
+            Sym3::isotropic(-pair_pressure::<D, E>(sys, j)),
+        )
+    } else {
+        (cauchy::<D, E>(sys, i), cauchy::<D, E>(sys, j))
+    };
     let (mut rho_l, mut rho_r) = (rhoi, rhoj);
     let (mut cl_l, mut cl_r) = (sys.cl[i], sys.cl[j]);
     let (mut ct_l, mut ct_r) = (ct_i, ct_j);
@@ -263,7 +282,11 @@ pub(crate) fn pair_star<const D: usize, E: Effects>(
         let dvj = (gj.v - spin) * rji;
         let (wi, wj) = (v_l, v_r);
         (v_l, v_r) = muscl_frame(lim, &pair_basis(&pr.n), &wi, &wj, &dvi, &dvj);
-        if E::STRENGTH {
+        if split {
+            // the pressure alone, from its own slope (`gradient_pass`)
+            let (pl, pr_) = muscl_pair(lim, -sig_i.xx, -sig_j.xx, gi.p.dot(&rji), gj.p.dot(&rji));
+            (t_l, t_r) = (axis * -pl, axis * -pr_);
+        } else if E::STRENGTH {
             // the tractions on the axis, reconstructed in the pair's frame like the
             // velocity: D reconstructions instead of the six stress components'
             let slope = |g: &[Vector<D>; 6]| {
@@ -376,7 +399,9 @@ pub(super) fn gather<
         stars,
         grad,
         mu,
+        hg,
     } = *ctx;
+    let split = E::STRENGTH && !hg.is_empty();
     let vi = sys.v[i];
     let inv_i = aux[i].inv_rho;
     let mut out = PairSums::<D>::default();
@@ -403,6 +428,17 @@ pub(super) fn gather<
             let f = -2.0 * mj * pr.dw * vv;
             out.acc += ts * f;
             out.power += f * ts.dot(if TOTAL { &vs } else { &dv });
+            if split {
+                // the deviator's central force, the adjoint of the corrected gradient
+                // that advances it: V_i V_j (S_i C_i + S_j C_j) grad_i W / m_i, its work
+                // at the pair's mean velocity
+                let a = (sys.s[i].dot_vec(&(hg[i].c * pr.grad))
+                    + sys.s[j].dot_vec(&(hg[j].c * pr.grad)))
+                    * (mj * inv_i * inv_j);
+                let vbar = (vi + sys.v[j]) * 0.5;
+                out.acc += a;
+                out.power += a.dot(&if TOTAL { vbar } else { vbar - vi });
+            }
             if ART {
                 // a pair force outside the Riemann problem: its work at the pair's mean
                 // velocity (total energy form with correction, internal otherwise)

@@ -14,11 +14,18 @@ pub(super) fn kinematic_update<const D: usize, E: Effects>(
     k: usize,
     mat: &crate::material::Material,
     ps: &PairSums<D>,
+    hg: &[crate::state::Hourglass<D>],
+    off: usize,
     dt: Real,
 ) {
     s.rho[k] *= crate::math::real::exp(-dt * ps.div);
     if E::STRENGTH {
-        advance_deviator::<D, E>(s, k, mat, &ps.grad_v, dt);
+        // with the hourglass stiffness, its corrected gradient (`super::split_stress`)
+        let grad_v = match hg.get(off + k) {
+            Some(r) => &r.l,
+            None => &ps.grad_v,
+        };
+        advance_deviator::<D, E>(s, k, mat, grad_v, dt);
     }
 }
 

@@ -18,9 +18,10 @@ use crate::schemes::av::records::AvRates;
 use crate::schemes::common::{
     artificial_stress_tensors, deviator_rate, equivalent_strain_rate, halo_exchange,
 };
+use crate::schemes::hourglass;
 use crate::schemes::leapfrog;
 use crate::schemes::workspace::{StepParams, Workspace};
-use crate::state::{PairGeom, PairSums, StepError, System};
+use crate::state::{Hourglass, PairGeom, PairSums, StepError, System};
 
 /// One leap-frog step of `ts1`/`ts2` (see the module).
 pub(super) fn step<const D: usize, E: Effects, X: Executor>(
@@ -46,9 +47,15 @@ fn rates<const D: usize, E: Effects, X: Executor>(
 ) {
     let [_, _, deviatoric, _] = &EXCHANGES;
     kinematics::<D, E, X>(sys, ws, params, exec, halo);
+    let stiff = hourglass::on::<D, E>(params);
+    if stiff {
+        let half = ws.primed.then_some(0.5 * params.dt);
+        hourglass::rates::<D, X>(sys, ws.geom, ws.aux, ws.hg, ws.av, params, half, exec);
+    }
     let (geom, fac): (&[PairGeom<D>], &[Real]) = (ws.geom, ws.fac);
-    // the deviatoric forces read S of the neighbours
+    // the deviatoric forces read S of the neighbours (and the stiffness's records)
     halo_exchange!(params, halo, deviatoric, sys, ws);
+    let hg: &[Hourglass<D>] = if stiff { ws.hg } else { &[] };
     let sysr: &System<'_, D> = sys;
     {
         let sums: &[PairSums<D>] = ws.sums;
@@ -61,8 +68,13 @@ fn rates<const D: usize, E: Effects, X: Executor>(
                 a.de = 0.0;
                 if E::STRENGTH {
                     let mat = &params.materials[sysr.mat[i] as usize];
-                    a.ds = deviator_rate(&sysr.s[i], mat, &ps.grad_v);
-                    a.rate = equivalent_strain_rate(&ps.grad_v);
+                    // with the stiffness, the corrected gradient (see the split)
+                    let grad_v = match hg.get(i) {
+                        Some(r) => &r.l,
+                        None => &ps.grad_v,
+                    };
+                    a.ds = deviator_rate(&sysr.s[i], mat, grad_v);
+                    a.rate = equivalent_strain_rate(grad_v);
                 }
             }
         });
@@ -72,7 +84,10 @@ fn rates<const D: usize, E: Effects, X: Executor>(
         artificial_stress_tensors::<D, E, X>(sys, ws.art, params, exec);
     }
     if E::STRENGTH || art_on {
-        deviatoric_pass::<D, E, X>(sys, geom, ws.aux, ws.art, fac, &[], ws.sums, params, exec);
+        deviatoric_pass::<D, E, X>(sys, geom, ws.aux, ws.art, fac, hg, ws.sums, params, exec);
+        if stiff {
+            hourglass::add_forces::<D, X, false>(sys, geom, hg, ws.sums, params, exec);
+        }
         add_forces(ws.av, ws.sums, exec);
     }
     hydro_pass::<D, E, X>(

@@ -206,7 +206,7 @@ impl SchemeFamily for Ts {
         if E::STRENGTH || art_on {
             deviatoric_pass::<D, E, X>(sys, geom, ws.aux, ws.art, fac, hg, ws.sums, params, exec);
             if stiff {
-                hourglass::add_forces::<D, X>(sys, geom, hg, ws.sums, params, exec);
+                hourglass::add_forces::<D, X, false>(sys, geom, hg, ws.sums, params, exec);
             }
             exec.run(
                 (sys.reborrow(), &ws.sums[..]),
