@@ -14,16 +14,24 @@
 # Sugiura & Inutsuka's interpolated specific volumes (`volume`:
 # `options.specific_volume = "interpolated"`; on the colliding rings also `volume_noas`,
 # the same in place of artificial stress).
+# Issue 46's hourglass stiffness (`options.hourglass = 2`): `stiff` with dissipation on
+# compression only, `stiff_full` with the full dissipation, `stiff_leapfrog` with
+# compression and the leap-frog (on the colliding rings in place of artificial stress).
 # The breathing ring runs on the rings' clipped square lattice and on a polar lattice
-# (smooth surfaces: `breathing_polar`). One Markdown table: out/elastic/table.md (rows
-# also as out/elastic/rows.csv).
+# (smooth surfaces: `breathing_polar`). SPHinXsys's clamped oscillating plate
+# (`plate`, cases/plate_oscillating.toml) at H/10, H/20 and H/40 (--quick: H/10): (KE+SE)/E0
+# at three periods, the period from the kinetic energy's minima and the smallest pair
+# distance; `python3 scripts/elastic_plot.py plate` draws (KE+SE)/E0(t) beside the peers'.
+# One Markdown table: out/elastic/table.md (rows also as out/elastic/rows.csv).
 #
-#   scripts/elastic.sh [--quick] [--parts breathing,breathing_polar,spin,rings,taylor] [--gsph BINARY]
+#   scripts/elastic.sh [--quick] [--parts breathing,breathing_polar,spin,rings,taylor,plate] [--gsph BINARY]
 #
 # --quick: the breathing rings at dx = 1e-3 only (no refinement) and the spin; no
 #          colliding rings (each run to 2.5e-4 s takes 4-12 minutes) and no Taylor test
 #          (about 10 minutes on 2 cores).
 # Full: the breathing ring at dx = 2e-3, 1e-3, 5e-4 (its loss must fall on refinement),
+#       the plate at H/10, H/20, H/40 (H/40: about 6,000 steps per 0.01 s, 20,800
+#       particles: hours),
 #       the spin, the colliding rings to 2.5e-4 s at dx = 1e-3 and 5e-4 (vx of the left
 #       ring over u0, and (KE+SE)/KE0 at 5e-5 s), the Taylor rod at D0/10 and D0/20.
 #       The peers' colliding-rings figures (scripts/peers.sh, out/peers/) stand beside
@@ -32,7 +40,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 GSPH=${GSPH:-target/release/gsph}
 QUICK=0
-PARTS=breathing,breathing_polar,spin,rings,taylor
+PARTS=breathing,breathing_polar,spin,rings,taylor,plate
 while [[ $# -gt 0 ]]; do
   case $1 in
     --quick) QUICK=1 ;;
@@ -62,7 +70,15 @@ run() {
     leapfrog) set+=(--set "options.integrator=leapfrog") ;;
     volume) set+=(--set "options.specific_volume=interpolated") ;;
     volume_noas) set+=(--set "options.specific_volume=interpolated" --unset options.artificial_stress) ;;
+    stiff) set+=(--set options.hourglass=2 --set options.dissipation=compression) ;;
+    stiff_full) set+=(--set options.hourglass=2) ;;
+    stiff_leapfrog) set+=(--set options.hourglass=2 --set options.dissipation=compression
+      --set options.integrator=leapfrog) ;;
   esac
+  # the stiffness stands in for artificial stress where a scene has it (the rings)
+  if [[ $diss == stiff* ]] && grep -q '^artificial_stress' "$scene"; then
+    set+=(--unset options.artificial_stress)
+  fi
   echo "== $name" >&2
   # a clumping variant can shrink its step for hours without collapsing it: each run
   # gets RUN_TIMEOUT seconds (default 3600) and its row is then NaN
@@ -93,9 +109,9 @@ PY
 dissipations() {
   case $1 in
     av) echo none ;;
-    ts1 | ts2) echo full compression leapfrog ;;
-    pm) echo full compression transverse seed volume ;;
-    *) echo full compression transverse seed slopes scan leapfrog volume ;;
+    ts1 | ts2) echo full compression leapfrog stiff stiff_full stiff_leapfrog ;;
+    pm) echo full compression transverse seed volume stiff stiff_full ;;
+    *) echo full compression transverse seed slopes scan leapfrog volume stiff stiff_full stiff_leapfrog ;;
   esac
 }
 has() { [[ ,$PARTS, == *,$1,* ]]; }
@@ -147,6 +163,20 @@ if has rings && [[ $QUICK == 0 ]]; then
           --set "bodies.0.spacing=$dx" --set "bodies.1.spacing=$dx" \
           --set monitor.mechanical_energy=true
         row rings "$dx" "$s" "$d" "$n" body0_vx mechanical_energy_ratio min_distance_min
+      done
+    done
+  done
+fi
+if has plate; then
+  # H/10, H/20, H/40: the lattice spacing of every body (plate and clamp)
+  if [[ $QUICK == 1 ]]; then SCALES="1"; else SCALES="1 2 4"; fi
+  for scale in $SCALES; do
+    for s in ts2 tkc pm; do
+      for d in full stiff stiff_full; do
+        [[ $s == pm && $d == full ]] && continue
+        n=plate-$scale-$s-$d
+        run "$n" cases/plate_oscillating.toml "$s" "$d" --set "resolution_scale=$scale"
+        python3 scripts/plate_measures.py "$OUT/runs/$n" "H/$((10 * scale))" "$s" "$d" >> "$ROWS" || true
       done
     done
   done
