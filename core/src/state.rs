@@ -222,6 +222,7 @@ macro_rules! scratch_records {
                 vol: Real = 0.0, scalar, "The volume `m/rho` the rate was summed with (the force pass uses the same), m³";
                 c: Matrix<D> = Matrix::<D>::identity(), matrix, "The kernel gradient correction `C_i` of the rate (the identity where `det C_i^-1 < det_epsilon`)";
                 l: Matrix<D> = Matrix::<D>::zeros(), matrix, "The corrected velocity gradient `L_i` the rate was summed with, 1/s (`ts` advances its deviator with it)";
+                p: Matrix<D> = Matrix::<D>::zeros(), matrix, "`S_i C_i - t/V_i` with the advanced deviator: the one tensor of `ts`'s fused deviatoric and stiffness force (`schemes::hourglass::stress_forces`), Pa";
             }
             Correction "Kernel gradient correction of one particle (`tkc`)" {
                 l_inv: Matrix<D> = Matrix::<D>::identity(), matrix, "The matrix `L^-1` applied to kernel gradients (identity near free surfaces)";

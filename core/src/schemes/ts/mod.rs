@@ -60,7 +60,7 @@ pub(crate) use options::reads;
 use pairs::{continuity_pass, deviatoric_pass, hydro_pass};
 
 use crate::effects::{EffectSet, Effects};
-use crate::exec::Executor;
+use crate::exec::{Executor, Optional};
 use crate::halo::{Exchange, Fields, Halo};
 use crate::math::{real, Real};
 use crate::schemes::common::{
@@ -176,20 +176,23 @@ impl SchemeFamily for Ts {
             hourglass::update::<D, X>(sys, ws.geom, ws.aux, ws.hg, params, exec);
         }
         let (geom, fac): (&[PairGeom<D>], &[Real]) = (ws.geom, ws.fac);
-        let hg: &[Hourglass<D>] = if stiff { ws.hg } else { &[] };
+        let hg_mut: &mut [Hourglass<D>] = if stiff { ws.hg } else { &mut [] };
         exec.run(
-            (sys.reborrow(), &ws.sums[..]),
-            |off, (mut s, sums): (System<'_, D>, &[PairSums<D>])| {
+            (sys.reborrow(), (&ws.sums[..], Optional(hg_mut))),
+            |_, (mut s, (sums, hg)): (System<'_, D>, (&[PairSums<D>], Optional<Hourglass<D>>))| {
                 for k in 0..s.len() {
                     let mat = &params.materials[s.mat[k] as usize];
                     s.rho[k] *= real::exp(-dt * sums[k].div);
                     if E::STRENGTH {
-                        // with the stiffness, the corrected gradient (module docs)
-                        let grad_v = match hg.get(off + k) {
-                            Some(r) => &r.l,
-                            None => &sums[k].grad_v,
-                        };
-                        advance_deviator::<D, E>(&mut s, k, mat, grad_v, dt);
+                        // with the stiffness, the corrected gradient (module docs), and
+                        // the tensor of the fused force from the advanced deviator
+                        match hg.0.get_mut(k) {
+                            Some(r) => {
+                                advance_deviator::<D, E>(&mut s, k, mat, &r.l, dt);
+                                hourglass::fuse_stress(r, &s.s[k]);
+                            }
+                            None => advance_deviator::<D, E>(&mut s, k, mat, &sums[k].grad_v, dt),
+                        }
                     }
                     refresh_pressure(&mut s, k, mat);
                 }
@@ -204,9 +207,16 @@ impl SchemeFamily for Ts {
             artificial_stress_tensors::<D, E, X>(sys, ws.art, params, exec);
         }
         if E::STRENGTH || art_on {
-            deviatoric_pass::<D, E, X>(sys, geom, ws.aux, ws.art, fac, hg, ws.sums, params, exec);
-            if stiff {
-                hourglass::add_forces::<D, X, false>(sys, geom, hg, ws.sums, params, exec);
+            if stiff && !art_on {
+                // the deviator's and the stiffness's forces in one pass
+                hourglass::stress_forces::<D, X>(sys, geom, hg, ws.sums, params, exec);
+            } else {
+                deviatoric_pass::<D, E, X>(
+                    sys, geom, ws.aux, ws.art, fac, hg, ws.sums, params, exec,
+                );
+                if stiff {
+                    hourglass::add_forces::<D, X, false>(sys, geom, hg, ws.sums, params, exec);
+                }
             }
             exec.run(
                 (sys.reborrow(), &ws.sums[..]),
