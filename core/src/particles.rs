@@ -129,14 +129,6 @@ macro_rules! particle_fields {
                 out[temperature "temperature"]
                 init(optional "the material's initial temperature")
             };
-            hg: Vector<D>, vector, HOURGLASS, mut, "m", "Hourglass displacement: the particle's displacement away from the affine motion of its neighbours, integrated in time and rotated with the spin (`schemes::hourglass`)", {
-                api("hourglass_displacement" [], write, any)
-                out[
-                    hgx "hourglass displacement x (effect hourglass; its stored energy is xi G V |d|^2/(2 h^2))",
-                    hgy "hourglass displacement y (0 in 1D)",
-                    hgz "hourglass displacement z (0 in 1D and 2D)"
-                ]
-            };
             h: Real, scalar, HYDRO, mut, "m", "Smoothing length `h = h_factor (m/rho)^(1/D)`", {
                 api("h" [smoothing_length], write, positive)
                 out[h "smoothing length"]
@@ -149,6 +141,14 @@ macro_rules! particle_fields {
                     z0 "reference (initial) position z (0 in 1D and 2D)"
                 ]
                 init(optional "its position")
+            };
+            hg: Vector<D>, vector, HOURGLASS, mut, "m", "Hourglass displacement: the particle's displacement away from the affine motion of its neighbours, integrated in time and rotated with the spin (`schemes::hourglass`)", {
+                api("hourglass_displacement" [], write, any)
+                out[
+                    hgx "hourglass displacement x (effect hourglass; its stored energy is xi G V |d|^2/(2 h^2))",
+                    hgy "hourglass displacement y (0 in 1D)",
+                    hgz "hourglass displacement z (0 in 1D and 2D)"
+                ]
             };
         }
     };

@@ -52,6 +52,7 @@
 use crate::effects::EffectSet;
 use crate::exec::Executor;
 use crate::math::{det, inverse, Matrix, Real, Vector};
+use crate::schemes::av::records::AvRates;
 use crate::schemes::common::outer;
 use crate::schemes::pairs::for_each_pair;
 use crate::schemes::workspace::StepParams;
@@ -124,7 +125,7 @@ pub fn rates<const D: usize, X: Executor>(
     geom: &[PairGeom<D>],
     aux: &[Aux],
     hg: &mut [Hourglass<D>],
-    rates: &mut [crate::schemes::AvRates<D>],
+    rates: &mut [AvRates<D>],
     params: &StepParams<'_, D>,
     half: Option<Real>,
     exec: &X,
@@ -132,11 +133,7 @@ pub fn rates<const D: usize, X: Executor>(
     let (x, v, h, mat, damage) = (&*sys.x, &*sys.v, &*sys.h, sys.mat, &*sys.damage);
     exec.run(
         (&mut *sys.hg, (rates, hg)),
-        |off,
-         (disp, (out, recs)): (
-            &mut [Vector<D>],
-            (&mut [crate::schemes::AvRates<D>], &mut [Hourglass<D>]),
-        )| {
+        |off, (disp, (out, recs)): (&mut [Vector<D>], (&mut [AvRates<D>], &mut [Hourglass<D>]))| {
             for (k, (d, (r, rec))) in disp
                 .iter_mut()
                 .zip(out.iter_mut().zip(recs.iter_mut()))
