@@ -57,7 +57,7 @@ use pairs::pair_pass;
 use particles::{dynamic_update, kinematic_update};
 
 use crate::effects::{EffectSet, Effects};
-use crate::exec::Executor;
+use crate::exec::{Executor, Optional};
 use crate::halo::{Exchange, Fields, Halo};
 use crate::schemes::common::{
     artificial_stress_tensors, halo_exchange, refresh_aux, refresh_eos, refresh_pressure,
@@ -166,17 +166,17 @@ impl SchemeFamily for Pm {
             // the old state, and the forces then use the new stresses (symplectic Euler);
             // the reconstruction slopes of the second pass are those of the first.
             pair_pass::<D, E, X, true, false>(sys, ws, params, exec);
-            let hg: &[Hourglass<D>] = if split_stress::<D, E>(params) {
+            let hg: &mut [Hourglass<D>] = if split_stress::<D, E>(params) {
                 ws.hg
             } else {
-                &[]
+                &mut []
             };
             exec.run(
-                (sys.reborrow(), &ws.sums[..]),
-                |off, (mut s, sums): (System<'_, D>, &[PairSums<D>])| {
+                (sys.reborrow(), (&ws.sums[..], Optional(hg))),
+                |_, (mut s, (sums, hg)): (System<'_, D>, (&[PairSums<D>], Optional<Hourglass<D>>))| {
                     for k in 0..s.len() {
                         let mat = &params.materials[s.mat[k] as usize];
-                        kinematic_update::<D, E>(&mut s, k, mat, &sums[k], hg, off, dt);
+                        kinematic_update::<D, E>(&mut s, k, mat, &sums[k], hg.0.get_mut(k).map(|r| (r, params.options.hourglass)), dt);
                         refresh_pressure(&mut s, k, mat);
                     }
                 },
@@ -204,19 +204,19 @@ impl SchemeFamily for Pm {
             }
             pair_pass::<D, E, X, true, true>(sys, ws, params, exec);
             stiffness_forces::<D, E, X>(sys, ws, params, exec);
-            let hg: &[Hourglass<D>] = if split_stress::<D, E>(params) {
+            let hg: &mut [Hourglass<D>] = if split_stress::<D, E>(params) {
                 ws.hg
             } else {
-                &[]
+                &mut []
             };
             exec.run(
-                (sys.reborrow(), &ws.sums[..]),
-                |off, (mut s, sums): (System<'_, D>, &[PairSums<D>])| {
+                (sys.reborrow(), (&ws.sums[..], Optional(hg))),
+                |_, (mut s, (sums, hg)): (System<'_, D>, (&[PairSums<D>], Optional<Hourglass<D>>))| {
                     for k in 0..s.len() {
                         let mat = &params.materials[s.mat[k] as usize];
                         // explicit Euler (seed 000): every rate from the same old state
                         dynamic_update::<D, E>(&mut s, k, &sums[k], params);
-                        kinematic_update::<D, E>(&mut s, k, mat, &sums[k], hg, off, dt);
+                        kinematic_update::<D, E>(&mut s, k, mat, &sums[k], hg.0.get_mut(k).map(|r| (r, params.options.hourglass)), dt);
                         refresh_eos(&mut s, k, mat, params);
                     }
                 },

@@ -14,18 +14,34 @@ pub(super) fn kinematic_update<const D: usize, E: Effects>(
     k: usize,
     mat: &crate::material::Material,
     ps: &PairSums<D>,
-    hg: &[crate::state::Hourglass<D>],
-    off: usize,
+    hg: Option<(&mut crate::state::Hourglass<D>, Real)>,
     dt: Real,
 ) {
     s.rho[k] *= crate::math::real::exp(-dt * ps.div);
     if E::STRENGTH {
-        // with the hourglass stiffness, its corrected gradient (`super::split_stress`)
-        let grad_v = match hg.get(off + k) {
-            Some(r) => &r.l,
-            None => &ps.grad_v,
-        };
-        advance_deviator::<D, E>(s, k, mat, grad_v, dt);
+        match hg {
+            // with the hourglass stiffness, its corrected gradient (`super::split_stress`),
+            // and the stiffness yields with the material
+            Some((r, xi)) => {
+                let s_old = s.s[k];
+                advance_deviator::<D, E>(s, k, mat, &r.l, dt);
+                if s.has_plasticity::<E>() {
+                    let s_new = s.s[k];
+                    let h = s.h[k];
+                    crate::schemes::hourglass::yield_with(
+                        r,
+                        &mut s.hg[k],
+                        &s_old,
+                        &s_new,
+                        mat,
+                        h,
+                        xi,
+                        dt,
+                    );
+                }
+            }
+            None => advance_deviator::<D, E>(s, k, mat, &ps.grad_v, dt),
+        }
     }
 }
 
