@@ -249,30 +249,41 @@ pub fn add_forces<const D: usize, X: Executor, const INTERNAL: bool>(
     params: &StepParams<'_, D>,
     exec: &X,
 ) {
-    let d_inv = 1.0 / D as Real;
     exec.run(sums, |off, chunk: &mut [PairSums<D>]| {
         for (k, out) in chunk.iter_mut().enumerate() {
             let i = off + k;
-            let vi = sys.v[i];
-            let ri = &hg[i];
-            let inv_m = 1.0 / sys.m[i];
-            let mut f = Vector::<D>::zeros();
-            let mut power = 0.0;
-            for_each_pair(params, geom, i, |pr, _| {
-                let rj = &hg[pr.j];
-                let omega = -pr.r * pr.dw * d_inv;
-                let fij = (rj.q * ri.vol - ri.q * rj.vol) * omega
-                    - (rj.t * ri.vol + ri.t * rj.vol) * pr.grad;
-                f += fij;
-                power += fij.dot(&((vi + sys.v[pr.j]) * 0.5));
+            // the stress-like term -(V_i T_j + V_j T_i) grad_i W
+            let (f, mut power) = pair_force(sys, geom, hg, params, i, |ri, rj, g| {
+                -((rj.t * ri.vol + ri.t * rj.vol) * g)
             });
             if INTERNAL {
-                power -= f.dot(&vi);
+                power -= f.dot(&sys.v[i]);
             }
+            let inv_m = 1.0 / sys.m[i];
             out.acc += f * inv_m;
             out.power += power * inv_m;
         }
     });
+}
+
+/// Advances the deviator of local particle `k` with the stiffness's corrected gradient
+/// (`rec.l`), and with plasticity returns its hourglass displacement ([`yield_with`]):
+/// the deviator update of every scheme that runs the stiffness.
+#[inline(always)]
+pub(crate) fn advance_deviator<const D: usize, E: crate::effects::Effects>(
+    s: &mut System<'_, D>,
+    k: usize,
+    mat: &crate::material::Material,
+    rec: &mut Hourglass<D>,
+    xi: Real,
+    dt: Real,
+) {
+    let s_old = s.s[k];
+    crate::schemes::common::advance_deviator::<D, E>(s, k, mat, &rec.l, dt);
+    if s.has_plasticity::<E>() {
+        let (s_new, h) = (s.s[k], s.h[k]);
+        yield_with(rec, &mut s.hg[k], &s_old, &s_new, mat, h, xi, dt);
+    }
 }
 
 /// The stiffness yields with the material: where the plastic return brought the trial
@@ -287,7 +298,7 @@ pub fn add_forces<const D: usize, X: Executor, const INTERNAL: bool>(
 /// the force's work was booked: it becomes heat, as plastic work does.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)] // the record, the state and the material's scale
-pub fn yield_with<const D: usize>(
+fn yield_with<const D: usize>(
     rec: &mut Hourglass<D>,
     d: &mut Vector<D>,
     s_old: &crate::math::Sym3,
@@ -345,27 +356,44 @@ pub fn stress_forces<const D: usize, X: Executor>(
     params: &StepParams<'_, D>,
     exec: &X,
 ) {
-    let d_inv = 1.0 / D as Real;
     exec.run(sums, |off, chunk: &mut [PairSums<D>]| {
         for (k, out) in chunk.iter_mut().enumerate() {
             let i = off + k;
-            let vi = sys.v[i];
-            let ri = &hg[i];
-            let mut f = Vector::<D>::zeros();
-            let mut power = 0.0;
-            for_each_pair(params, geom, i, |pr, _| {
-                let rj = &hg[pr.j];
-                let omega = -pr.r * pr.dw * d_inv;
-                let fij = (rj.q * ri.vol - ri.q * rj.vol) * omega
-                    + (ri.p + rj.p) * pr.grad * (ri.vol * rj.vol);
-                f += fij;
-                power += fij.dot(&((vi + sys.v[pr.j]) * 0.5));
+            let (f, power) = pair_force(sys, geom, hg, params, i, |ri, rj, g| {
+                (ri.p + rj.p) * g * (ri.vol * rj.vol)
             });
             let inv_m = 1.0 / sys.m[i];
             out.acc = f * inv_m;
             out.power = power * inv_m;
         }
     });
+}
+
+/// The force on particle `i` and its power at the pair-mean velocities: per pair
+/// `omega_ij (V_i q_j - V_j q_i)` plus the stress-like term `term(r_i, r_j, grad_i W_ij)`
+/// of [`add_forces`] or [`stress_forces`].
+#[inline(always)]
+fn pair_force<const D: usize>(
+    sys: &System<'_, D>,
+    geom: &[PairGeom<D>],
+    hg: &[Hourglass<D>],
+    params: &StepParams<'_, D>,
+    i: usize,
+    term: impl Fn(&Hourglass<D>, &Hourglass<D>, &Vector<D>) -> Vector<D>,
+) -> (Vector<D>, Real) {
+    let d_inv = 1.0 / D as Real;
+    let vi = sys.v[i];
+    let ri = &hg[i];
+    let mut f = Vector::<D>::zeros();
+    let mut power = 0.0;
+    for_each_pair(params, geom, i, |pr, _| {
+        let rj = &hg[pr.j];
+        let omega = -pr.r * pr.dw * d_inv;
+        let fij = (rj.q * ri.vol - ri.q * rj.vol) * omega + term(ri, rj, &pr.grad);
+        f += fij;
+        power += fij.dot(&((vi + sys.v[pr.j]) * 0.5));
+    });
+    (f, power)
 }
 
 /// True when the step of a run with `effects` runs the stiffness.

@@ -23,22 +23,7 @@ pub(super) fn kinematic_update<const D: usize, E: Effects>(
             // with the hourglass stiffness, its corrected gradient (`super::split_stress`),
             // and the stiffness yields with the material
             Some((r, xi)) => {
-                let s_old = s.s[k];
-                advance_deviator::<D, E>(s, k, mat, &r.l, dt);
-                if s.has_plasticity::<E>() {
-                    let s_new = s.s[k];
-                    let h = s.h[k];
-                    crate::schemes::hourglass::yield_with(
-                        r,
-                        &mut s.hg[k],
-                        &s_old,
-                        &s_new,
-                        mat,
-                        h,
-                        xi,
-                        dt,
-                    );
-                }
+                crate::schemes::hourglass::advance_deviator::<D, E>(s, k, mat, r, xi, dt)
             }
             None => advance_deviator::<D, E>(s, k, mat, &ps.grad_v, dt),
         }

@@ -188,22 +188,8 @@ impl SchemeFamily for Ts {
                         // the tensor of the fused force from the advanced deviator
                         match hg.0.get_mut(k) {
                             Some(r) => {
-                                let s_old = s.s[k];
-                                advance_deviator::<D, E>(&mut s, k, mat, &r.l, dt);
-                                if s.has_plasticity::<E>() {
-                                    let s_new = s.s[k];
-                                    let (h, xi) = (s.h[k], params.options.hourglass);
-                                    hourglass::yield_with(
-                                        r,
-                                        &mut s.hg[k],
-                                        &s_old,
-                                        &s_new,
-                                        mat,
-                                        h,
-                                        xi,
-                                        dt,
-                                    );
-                                }
+                                let xi = params.options.hourglass;
+                                hourglass::advance_deviator::<D, E>(&mut s, k, mat, r, xi, dt);
                                 hourglass::fuse_stress(r, &s.s[k]);
                             }
                             None => advance_deviator::<D, E>(&mut s, k, mat, &sums[k].grad_v, dt),
