@@ -21,6 +21,8 @@ fn plate(min: f64, max: f64, velocity: f64) -> BodySpec {
         shape: ShapeSpec::Segment { min, max },
         spacing: 1.0e-4,
         lattice: None,
+        layout: None,
+        relax_iterations: None,
         lattice_origin: None,
         velocity: Some(VelocitySpec::Uniform {
             value: vec![velocity],

@@ -66,14 +66,14 @@ impl Lists {
 }
 
 /// A cell grid over the particles (counting sort by cell).
-struct Grid<const D: usize> {
+pub(crate) struct Grid<const D: usize> {
     lo: [f64; D],
     size: [f64; D],
     ncell: [usize; D],
     /// Particles sorted by cell.
-    sorted: Vec<u32>,
+    pub(crate) sorted: Vec<u32>,
     /// Their positions, in the same order (a cell's candidates are read in one sweep).
-    xs: Vec<Vector<D>>,
+    pub(crate) xs: Vec<Vector<D>>,
     /// Cell offsets into `sorted`.
     start: Vec<u32>,
     /// Neighbour cell offsets (-1, 0, 1 along each axis).
@@ -84,7 +84,7 @@ struct Grid<const D: usize> {
 impl<const D: usize> Grid<D> {
     /// Cells at least `cell` wide; at most about 4 cells per particle in all (sparse or
     /// degenerate layouts get coarser cells instead of a huge grid).
-    fn new(x: &[Vector<D>], cell: f64, periodic: &Periodic<D>) -> Self {
+    pub(crate) fn new(x: &[Vector<D>], cell: f64, periodic: &Periodic<D>) -> Self {
         let n = x.len();
         let mut lo = [0.0; D];
         let mut extent = [0.0; D];
@@ -188,7 +188,7 @@ impl<const D: usize> Grid<D> {
     /// Calls `f(k)` for every particle `sorted[k]` (at `xs[k]`) in the cells around `xi`
     /// (each cell once, also when a periodic axis has fewer than 3 cells).
     #[inline]
-    fn for_candidates(&self, xi: &Vector<D>, mut f: impl FnMut(usize)) {
+    pub(crate) fn for_candidates(&self, xi: &Vector<D>, mut f: impl FnMut(usize)) {
         let ci = self.cell_of(xi);
         let mut seen: [usize; 27] = [usize::MAX; 27];
         let mut nseen = 0;

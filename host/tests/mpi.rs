@@ -263,6 +263,17 @@ fn the_hourglass_stiffness_is_rank_count_independent() {
     }
 }
 
+/// A relaxed (body-fitted) layout: every rank relaxes the whole body the same way, so the
+/// breathing ring (`layout = "relaxed"`) gives the serial bytes on any rank count.
+#[test]
+fn relaxed_layouts_are_rank_count_independent() {
+    same_everywhere(
+        "relaxed_ring",
+        "ring_breathing.toml",
+        &["max_steps=40", "bodies.0.relax_iterations=100"],
+    );
+}
+
 /// A checkpoint written on 2 ranks restarts on 3 ranks and in one process, and both end
 /// with the bytes of the uninterrupted serial run.
 #[test]

@@ -206,6 +206,12 @@ fn run_dim_logged<const D: usize>(
     // checkpoint); lock the folder, then replace an earlier run's results
     crate::interrupt::set_up_done();
     let mut files = Files::open(scene, scene_name, opts, ckpt, &run_id, &sim, frames, log)?;
+    if let (Some(log), None) = (log.as_ref(), resume) {
+        // the relaxed layouts (a restart's particles come from its checkpoint)
+        for line in &parts.layout {
+            log.append(line);
+        }
+    }
     let mut control = match (ckpt, &opts.out) {
         (Some(c), Some(dir)) if c.policy.active() => {
             Some(Control::new(c.policy, c.source.clone(), dir, &run_id))

@@ -290,6 +290,15 @@ pub struct BodySpec {
     /// Lattice: square (cartesian) or polar (concentric rings; disc and annulus only).
     #[serde(default)]
     pub lattice: Option<String>,
+    /// Layout: `lattice` (the lattice as built, the default) or `relaxed` (the lattice
+    /// relaxed against the shape's signed distance, so that its surface row follows the
+    /// shape: a body-fitted layout; 2D and 3D shapes, not a particle file; see
+    /// `setup::relax`).
+    #[serde(default)]
+    pub layout: Option<String>,
+    /// Iterations of the `relaxed` layout (default `setup::relax::DEFAULT_ITERATIONS`).
+    #[serde(default)]
+    pub relax_iterations: Option<usize>,
     /// Square lattice of a disc or annulus with a node at this point relative to the
     /// centre, m: sites at `center + lattice_origin + i spacing` (i = 0, 1, … up to the
     /// half-open extent `[lattice_origin, r_outer)` on each axis), kept where

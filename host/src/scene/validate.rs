@@ -565,6 +565,7 @@ fn check_lattice(s: &Scene, key: &str, b: &BodySpec) -> R {
             )
         }
     }
+    check_layout(s, key, b)?;
     if let Some(o) = &b.lattice_origin {
         let k = format!("{key}.lattice_origin");
         let r_out = match b.shape {
@@ -586,6 +587,47 @@ fn check_lattice(s: &Scene, key: &str, b: &BodySpec) -> R {
                 &k,
                 format!("{v} must lie within the outer radius {r_out} of the centre"),
             );
+        }
+    }
+    Ok(())
+}
+
+/// A body's layout and its relaxation's iterations.
+fn check_layout(s: &Scene, key: &str, b: &BodySpec) -> R {
+    let k = format!("{key}.layout");
+    match b.layout.as_deref() {
+        None | Some("lattice") => {
+            if b.relax_iterations.is_some() {
+                return fail(
+                    &format!("{key}.relax_iterations"),
+                    "only with layout = \"relaxed\" (the lattice is not relaxed)",
+                );
+            }
+        }
+        Some("relaxed") => {
+            if s.dim == 1 {
+                return fail(&k, "a relaxed layout needs 2 or 3 dimensions (a 1D lattice already ends half a spacing inside its segment)");
+            }
+            if matches!(b.shape, ShapeSpec::Particles { .. }) {
+                return fail(&k, "a particle file's layout is left as given");
+            }
+            if b.pores.is_some() {
+                return fail(&k, "not with pores (the relaxation sees the shape's surface only and would close them)");
+            }
+            if let Some(n) = b.relax_iterations {
+                if !(1..=100_000).contains(&n) {
+                    return fail(
+                        &format!("{key}.relax_iterations"),
+                        format!("must lie in 1..=100000 (got {n})"),
+                    );
+                }
+            }
+        }
+        Some(other) => {
+            return fail(
+                &k,
+                format!("unknown layout `{other}` (known: lattice, relaxed)"),
+            )
         }
     }
     Ok(())

@@ -23,7 +23,9 @@ fn at_most(v: f64, limit: f64) -> bool {
 /// Builds the particles once and checks that the run fits in memory (see [`MAX_PARTICLES`],
 /// [`MAX_CELLS`], [`MAX_NEIGHBOR_ENTRIES`]). Errors name the key.
 pub fn check_build(scene: &Scene) -> Result<(), SceneError> {
-    let parts = build_particles(scene)?;
+    // the relaxation moves particles within their shape and keeps their count: the checks
+    // need the lattice only
+    let parts = build(scene, false)?;
     // bodies read from a file without a `spacing`: the periodic length against the
     // spacing their particles have
     super::periodic::check_length_built(scene, &parts)?;
@@ -65,8 +67,12 @@ pub fn check_particles(scene: &Scene, parts: &InitialParticles) -> Result<(), Sc
     Ok(())
 }
 
-/// Builds the particles of every body.
+/// Builds the particles of every body (relaxing the `relaxed` layouts).
 pub fn build_particles(scene: &Scene) -> Result<InitialParticles, SceneError> {
+    build(scene, true)
+}
+
+fn build(scene: &Scene, relax: bool) -> Result<InitialParticles, SceneError> {
     let mut out = InitialParticles {
         dim: scene.dim,
         ..Default::default()
@@ -110,12 +116,13 @@ pub fn build_particles(scene: &Scene) -> Result<InitialParticles, SceneError> {
             }
         };
         check_count(scene, &key, &count_key, &source, dx, total)?;
+        let mut mesh = None;
         let mut pts = match source {
             Source::File(src) => {
                 file_body(&mut out, scene, b, mi, &mat, src)?;
                 continue;
             }
-            Source::Mesh(mesh) => mesh.fill(dx),
+            Source::Mesh(m) => mesh.insert(m).fill(dx),
             Source::Lattice => lattice(
                 scene.dim,
                 &body.shape,
@@ -135,10 +142,65 @@ pub fn build_particles(scene: &Scene) -> Result<InitialParticles, SceneError> {
                 "{key}: the shape holds no particle at spacing {dx:e} m (spacing / resolution_scale); the shape must be at least half a spacing across"
             )));
         }
+        if relax && body.layout.as_deref() == Some("relaxed") {
+            let line = relaxed(scene, b, dx, mesh.as_ref(), &mut pts);
+            out.layout.push(line);
+        }
         push_sites(&mut out, scene, b, mi, &mat, dx, pts)?;
     }
     crate::scene::validate_parts::check_step_count(scene)?;
     Ok(out)
+}
+
+/// Relaxes the sites `pts` of body `b` (spacing `dx`; `mesh`: an STL body's surface)
+/// against its shape's signed distance, with a progress line on stderr (rank 0) at the
+/// progress interval, and returns what it did as a line for the run log.
+fn relaxed(
+    scene: &Scene,
+    b: usize,
+    dx: f64,
+    mesh: Option<&import::Mesh>,
+    pts: &mut [([f64; 3], f64)],
+) -> String {
+    use super::relax;
+    use std::time::Instant;
+    let body = &scene.bodies[b];
+    let iterations = body.relax_iterations.unwrap_or(relax::DEFAULT_ITERATIONS);
+    let surface = super::sdf::Surface::of(&body.shape, scene.dim, mesh, relax::reach(dx))
+        .expect("validated: a relaxed body has a surface");
+    let mut x: Vec<[f64; 3]> = pts.iter().map(|p| p.0).collect();
+    let show = crate::dist_rank() == 0;
+    let start = Instant::now();
+    let mut last = start;
+    let every = crate::progress::interval();
+    let mut progress = |k: usize, residual: f64| {
+        if show && (k == 1 || last.elapsed() >= every) && k < iterations {
+            last = Instant::now();
+            eprintln!(
+                "gsph: bodies[{b}]: relaxing the layout: iteration {k} of {iterations}, imbalance {residual:.2e}, elapsed {}",
+                crate::progress::hms(start.elapsed().as_secs_f64())
+            );
+        }
+    };
+    let r = relax::relax(scene.dim, &mut x, dx, &surface, iterations, &mut progress);
+    for (p, y) in pts.iter_mut().zip(x) {
+        p.0 = y;
+    }
+    let line = format!(
+        "bodies[{b}]: relaxed layout, {} particles, {} iterations in {}: surface roughness {:.3} -> {:.3} spacings, imbalance {:.2e} -> {:.2e}, nearest pair {:.3} spacings",
+        pts.len(),
+        r.iterations,
+        crate::progress::hms(start.elapsed().as_secs_f64()),
+        r.roughness[0],
+        r.roughness[1],
+        r.residual[0],
+        r.residual[1],
+        r.nearest
+    );
+    if show {
+        eprintln!("gsph: {line}");
+    }
+    line
 }
 
 /// Appends the lattice sites `pts` (position, volume) of body `b` of material `mi`, in the

@@ -527,4 +527,4 @@ pub(super) fn file_body(
 
 #[cfg(test)]
 #[path = "import_tests.rs"]
-mod tests;
+pub(super) mod tests;

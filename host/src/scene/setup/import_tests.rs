@@ -7,10 +7,10 @@ use crate::memory::MAX_PARTICLES;
 use crate::scene::{build_particles, load, InitialParticles, Scene};
 use std::collections::HashMap;
 
-type Tri = [[f32; 3]; 3];
+pub(in crate::scene::setup) type Tri = [[f32; 3]; 3];
 
 /// Writes `tris` as a binary STL file (normals left 0: they are not read).
-fn write_stl(path: &Path, tris: &[Tri]) {
+pub(in crate::scene::setup) fn write_stl(path: &Path, tris: &[Tri]) {
     let mesh: Vec<stl_io::Triangle> = tris
         .iter()
         .map(|t| stl_io::Triangle {
@@ -38,7 +38,7 @@ fn ascii_stl(tris: &[Tri]) -> String {
 
 /// The 12 facets of the box `[lo, hi]`, normals outward (each face split along a
 /// diagonal).
-fn cube(lo: [f32; 3], hi: [f32; 3]) -> Vec<Tri> {
+pub(in crate::scene::setup) fn cube(lo: [f32; 3], hi: [f32; 3]) -> Vec<Tri> {
     let c = |i: usize| {
         [
             if i & 1 == 0 { lo[0] } else { hi[0] },
@@ -63,7 +63,7 @@ fn cube(lo: [f32; 3], hi: [f32; 3]) -> Vec<Tri> {
 
 /// A sphere of radius `r` at `c`: an icosahedron subdivided `levels` times, its vertices
 /// pushed onto the sphere (20 × 4^levels facets).
-fn icosphere(c: [f64; 3], r: f64, levels: u32) -> Vec<Tri> {
+pub(in crate::scene::setup) fn icosphere(c: [f64; 3], r: f64, levels: u32) -> Vec<Tri> {
     let g = (1.0 + 5f64.sqrt()) / 2.0;
     let mut v: Vec<[f64; 3]> = vec![
         [-1.0, g, 0.0],
@@ -142,7 +142,11 @@ eos = { type = "linear", c0 = 5000.0 }
 "#;
 
 /// A scene in `dir` (written to `scene.toml`, so relative files resolve there), loaded.
-fn scene_in(dir: &Path, text: &str, set: &[&str]) -> Result<Scene, String> {
+pub(in crate::scene::setup) fn scene_in(
+    dir: &Path,
+    text: &str,
+    set: &[&str],
+) -> Result<Scene, String> {
     let p = dir.join("scene.toml");
     std::fs::write(&p, text).unwrap();
     let set: Vec<String> = set.iter().map(|s| s.to_string()).collect();

@@ -100,6 +100,9 @@ macro_rules! define_initial {
             /// pores): the volume of the whole lattice over that of the particles kept
             /// outside the pores.
             pub porosity: Vec<f64>,
+            /// What the relaxation of each `relaxed` body did, a line each (for the run
+            /// log).
+            pub layout: Vec<String>,
         }
 
         impl InitialParticles {

@@ -1,4 +1,5 @@
 //! From a checked scene to its initial particles: lattices clipped to shapes (`build`),
+//! body-fitted layouts (`relax` against the shapes' signed distances, `sdf`),
 //! pores (`pores`), particle files (`import`, CSV and HDF5) and STL solids (`stl`), the
 //! periodic lengths against the kernel's reach (`periodic`) and the moving window's geometry
 //! (`window`).
@@ -14,5 +15,9 @@ pub mod import;
 pub mod initial;
 pub mod periodic;
 pub mod pores;
+pub mod relax;
+#[cfg(test)]
+mod relax_tests;
+mod sdf;
 pub mod stl;
 pub mod window;
