@@ -17,14 +17,15 @@
 # Issue 46's hourglass stiffness (`options.hourglass = 2`): `stiff` with dissipation on
 # compression only, `stiff_full` with the full dissipation, `stiff_leapfrog` with
 # compression and the leap-frog (on the colliding rings in place of artificial stress).
-# The breathing ring runs on the rings' clipped square lattice and on a polar lattice
-# (smooth surfaces: `breathing_polar`). SPHinXsys's clamped oscillating plate
+# The breathing ring runs on the case's relaxed (body-fitted) layout (`breathing`,
+# docs/layouts.md), on the clipped square lattice of issue 27 (`breathing_lattice`) and on
+# a polar lattice (smooth surfaces: `breathing_polar`). SPHinXsys's clamped oscillating plate
 # (`plate`, cases/plate_oscillating.toml) at H/10, H/20 and H/40 (--quick: H/10): (KE+SE)/E0
 # at three periods, the period from the kinetic energy's minima and the smallest pair
 # distance; `python3 scripts/elastic_plot.py plate` draws (KE+SE)/E0(t) beside the peers'.
 # One Markdown table: out/elastic/table.md (rows also as out/elastic/rows.csv).
 #
-#   scripts/elastic.sh [--quick] [--parts breathing,breathing_polar,spin,rings,taylor,plate] [--gsph BINARY]
+#   scripts/elastic.sh [--quick] [--parts breathing,breathing_lattice,breathing_polar,spin,rings,taylor,plate] [--gsph BINARY]
 #
 # --quick: the breathing rings at dx = 1e-3 only (no refinement) and the spin; no
 #          colliding rings (each run to 2.5e-4 s takes 4-12 minutes) and no Taylor test
@@ -40,7 +41,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 GSPH=${GSPH:-target/release/gsph}
 QUICK=0
-PARTS=breathing,breathing_polar,spin,rings,taylor,plate
+PARTS=breathing,breathing_lattice,breathing_polar,spin,rings,taylor,plate
 while [[ $# -gt 0 ]]; do
   case $1 in
     --quick) QUICK=1 ;;
@@ -128,6 +129,19 @@ if has breathing; then
     done
   done
 fi
+if has breathing_lattice; then
+  if [[ $QUICK == 1 ]]; then DXS="1e-3"; else DXS="2e-3 1e-3 5e-4"; fi
+  for dx in $DXS; do
+    for s in $SCHEMES; do
+      for d in $(dissipations $s); do
+        n=breathing_lattice-$dx-$s-$d
+        run "$n" cases/ring_breathing.toml "$s" "$d" --set "bodies.0.spacing=$dx" \
+          --set bodies.0.layout=lattice
+        row breathing_lattice "$dx" "$s" "$d" "$n" mechanical_energy_ratio min_distance_min
+      done
+    done
+  done
+fi
 if has breathing_polar; then
   if [[ $QUICK == 1 ]]; then DXS="1e-3"; else DXS="2e-3 1e-3 5e-4"; fi
   for dx in $DXS; do
@@ -136,7 +150,7 @@ if has breathing_polar; then
         [[ $d == compression ]] && continue
         n=breathing_polar-$dx-$s-$d
         run "$n" cases/ring_breathing.toml "$s" "$d" --set "bodies.0.spacing=$dx" \
-          --set bodies.0.lattice=polar --unset bodies.0.lattice_origin
+          --set bodies.0.lattice=polar --unset bodies.0.lattice_origin --set bodies.0.layout=lattice
         row breathing_polar "$dx" "$s" "$d" "$n" mechanical_energy_ratio min_distance_min
       done
     done
