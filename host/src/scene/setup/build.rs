@@ -189,7 +189,7 @@ fn relaxed(
     let line = format!(
         "bodies[{b}]: relaxed layout, {} particles, {} iterations in {}: surface roughness {:.3} -> {:.3} spacings, imbalance {:.2e} -> {:.2e}, nearest pair {:.3} spacings",
         pts.len(),
-        r.iterations,
+        iterations,
         crate::progress::hms(start.elapsed().as_secs_f64()),
         r.roughness[0],
         r.roughness[1],

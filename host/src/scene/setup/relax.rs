@@ -52,8 +52,6 @@ pub struct Report {
     pub residual: [f64; 2],
     /// The nearest pair after, in spacings.
     pub nearest: f64,
-    /// Iterations run.
-    pub iterations: usize,
 }
 
 /// Relaxes the positions `x` (the first `dim` components; `dim` 2 or 3) of one body of
@@ -229,6 +227,5 @@ fn relax_d<const D: usize>(
         roughness: [before, roughness(x, dx, surface)],
         residual,
         nearest,
-        iterations,
     }
 }

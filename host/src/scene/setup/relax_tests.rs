@@ -36,18 +36,13 @@ fn surface(sc: &crate::scene::Scene) -> Surface {
     Surface::of(&sc.bodies[0].shape, sc.dim, None, 1.0).unwrap()
 }
 
+/// The nearest pair, in spacings `dx`.
 fn nearest(parts: &InitialParticles, dx: f64) -> f64 {
-    let mut best = f64::INFINITY;
-    for i in 0..parts.len() {
-        for j in 0..i {
-            let d: f64 = (0..3)
-                .map(|a| (parts.x[i][a] - parts.x[j][a]).powi(2))
-                .sum::<f64>()
-                .sqrt();
-            best = best.min(d);
-        }
-    }
-    best / dx
+    let x: Vec<gsph_core::math::Vector<3>> = parts.x.iter().map(|p| (*p).into()).collect();
+    crate::neighbors::nearest_distances(&x, 2.0 * dx)
+        .into_iter()
+        .fold(f64::INFINITY, f64::min)
+        / dx
 }
 
 #[test]

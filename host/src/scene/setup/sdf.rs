@@ -350,6 +350,11 @@ impl MeshDistance {
     }
 }
 
+/// `a + t d`.
+fn along(a: [f64; 3], d: [f64; 3], t: f64) -> [f64; 3] {
+    [a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2]]
+}
+
 /// The point of triangle `t` nearest to `p` (Ericson, Real-Time Collision Detection §5.1.5).
 fn closest_on_triangle(p: &[f64; 3], t: &[[f64; 3]; 3]) -> [f64; 3] {
     let (a, b, c) = (t[0], t[1], t[2]);
@@ -365,8 +370,7 @@ fn closest_on_triangle(p: &[f64; 3], t: &[[f64; 3]; 3]) -> [f64; 3] {
     }
     let vc = d1 * d4 - d3 * d2;
     if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
-        let v = d1 / (d1 - d3);
-        return [a[0] + v * ab[0], a[1] + v * ab[1], a[2] + v * ab[2]];
+        return along(a, ab, d1 / (d1 - d3));
     }
     let cp = sub(*p, c);
     let (d5, d6) = (dot(ab, cp), dot(ac, cp));
@@ -375,14 +379,11 @@ fn closest_on_triangle(p: &[f64; 3], t: &[[f64; 3]; 3]) -> [f64; 3] {
     }
     let vb = d5 * d2 - d1 * d6;
     if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
-        let w = d2 / (d2 - d6);
-        return [a[0] + w * ac[0], a[1] + w * ac[1], a[2] + w * ac[2]];
+        return along(a, ac, d2 / (d2 - d6));
     }
     let va = d3 * d6 - d5 * d4;
     if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
-        let w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-        let bc = sub(c, b);
-        return [b[0] + w * bc[0], b[1] + w * bc[1], b[2] + w * bc[2]];
+        return along(b, sub(c, b), (d4 - d3) / ((d4 - d3) + (d5 - d6)));
     }
     let denom = 1.0 / (va + vb + vc);
     let (v, w) = (vb * denom, vc * denom);
