@@ -611,6 +611,9 @@ fn check_layout(s: &Scene, key: &str, b: &BodySpec) -> R {
             if matches!(b.shape, ShapeSpec::Particles { .. }) {
                 return fail(&k, "a particle file's layout is left as given");
             }
+            if matches!(b.shape, ShapeSpec::Box { .. }) {
+                return fail(&k, "a box's lattice already fits it (its sites sit at the centres of equal cells, the surface rows half a cell inside): there is nothing to relax");
+            }
             if b.pores.is_some() {
                 return fail(&k, "not with pores (the relaxation sees the shape's surface only and would close them)");
             }
