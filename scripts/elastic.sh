@@ -124,7 +124,7 @@ if has breathing; then
       for d in $(dissipations $s); do
         n=breathing-$dx-$s-$d
         run "$n" cases/ring_breathing.toml "$s" "$d" --set "bodies.0.spacing=$dx"
-        row breathing "$dx" "$s" "$d" "$n" mechanical_energy_ratio min_distance_min
+        row breathing "$dx" "$s" "$d" "$n" mechanical_energy_ratio min_distance_min energy_rel_error
       done
     done
   done
@@ -137,7 +137,7 @@ if has breathing_lattice; then
         n=breathing_lattice-$dx-$s-$d
         run "$n" cases/ring_breathing.toml "$s" "$d" --set "bodies.0.spacing=$dx" \
           --set bodies.0.layout=lattice
-        row breathing_lattice "$dx" "$s" "$d" "$n" mechanical_energy_ratio min_distance_min
+        row breathing_lattice "$dx" "$s" "$d" "$n" mechanical_energy_ratio min_distance_min energy_rel_error
       done
     done
   done
@@ -151,7 +151,7 @@ if has breathing_polar; then
         n=breathing_polar-$dx-$s-$d
         run "$n" cases/ring_breathing.toml "$s" "$d" --set "bodies.0.spacing=$dx" \
           --set bodies.0.lattice=polar --unset bodies.0.lattice_origin --set bodies.0.layout=lattice
-        row breathing_polar "$dx" "$s" "$d" "$n" mechanical_energy_ratio min_distance_min
+        row breathing_polar "$dx" "$s" "$d" "$n" mechanical_energy_ratio min_distance_min energy_rel_error
       done
     done
   done
@@ -161,7 +161,7 @@ if has spin; then
     for d in $(dissipations $s); do
       n=spin-$s-$d
       run "$n" cases/ring_spin.toml "$s" "$d"
-      row spin 1e-3 "$s" "$d" "$n" mechanical_energy_ratio angular_momentum_change min_distance_min
+      row spin 1e-3 "$s" "$d" "$n" mechanical_energy_ratio angular_momentum_change min_distance_min energy_rel_error
     done
   done
 fi
@@ -176,7 +176,7 @@ if has rings && [[ $QUICK == 0 ]]; then
         run "$n" cases/rings.toml "$s" "$d" --set t_end=2.5e-4 \
           --set "bodies.0.spacing=$dx" --set "bodies.1.spacing=$dx" \
           --set monitor.mechanical_energy=true
-        row rings "$dx" "$s" "$d" "$n" body0_vx mechanical_energy_ratio min_distance_min
+        row rings "$dx" "$s" "$d" "$n" body0_vx mechanical_energy_ratio min_distance_min energy_rel_error
       done
     done
   done

@@ -502,3 +502,44 @@ fn batch_runs_print_progress_lines_and_record_who_ran_what() {
     let id = summary["run_id"].as_str().unwrap();
     assert!(log.contains(&format!("run {id}")));
 }
+
+/// A relaxed layout reports itself: progress lines and the result on stderr, the result in
+/// run.log; `--quiet` keeps stderr free of them and run.log keeps the result.
+#[test]
+fn a_relaxed_layout_reports_on_stderr_and_in_the_run_log() {
+    let tmp = tempfile::tempdir().unwrap();
+    for quiet in [false, true] {
+        let dir = tmp.path().join(format!("q{quiet}"));
+        let d = s(&dir);
+        let mut args = vec![
+            "run".to_string(),
+            case("ring_breathing.toml"),
+            "--out".into(),
+            d,
+            "--set".into(),
+            "max_steps=2".into(),
+            "--set".into(),
+            "bodies.0.relax_iterations=30".into(),
+        ];
+        if quiet {
+            args.push("--quiet".into());
+        }
+        let a: Vec<&str> = args.iter().map(|x| x.as_str()).collect();
+        let o = gsph(&a);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let err = String::from_utf8_lossy(&o.stderr);
+        let done = "bodies[0]: relaxed layout, 2208 particles, 30 iterations in ";
+        assert_eq!(
+            err.contains("gsph: bodies[0]: relaxing the layout: iteration 1 of 30, imbalance "),
+            !quiet,
+            "{err}"
+        );
+        assert_eq!(err.contains(done), !quiet, "{err}");
+        let log = std::fs::read_to_string(dir.join("run.log")).unwrap();
+        let line = log.lines().find(|l| l.starts_with(done)).expect(&log);
+        assert!(
+            line.contains("surface roughness 0.301 -> ") && line.contains("nearest pair "),
+            "{line}"
+        );
+    }
+}

@@ -9,7 +9,7 @@ use crate::output::{write_atomic, write_csv, Frame, OutputError, SnapshotWriter}
 use crate::progress::Progress;
 use crate::reference::Reference;
 use crate::runlog::{RunLog, SceneInfo};
-use crate::scene::{build_particles, InitialParticles, Scene, SceneError};
+use crate::scene::{build_particles_reporting, InitialParticles, Scene, SceneError};
 use crate::sim::{Sim, SimError};
 use crate::window::Window;
 use serde_json::{json, Map, Value};
@@ -127,7 +127,7 @@ pub struct RunResult {
 
 /// Runs a validated scene.
 pub fn run(scene: &Scene, scene_name: &str, opts: &RunOptions) -> Result<RunResult, RunError> {
-    let parts = build_particles(scene)?;
+    let parts = build_particles_reporting(scene, opts.progress)?;
     run_particles(scene, scene_name, parts, opts)
 }
 
@@ -206,7 +206,7 @@ pub fn run_checkpointed(
             )));
         }
     }
-    let parts = build_particles(scene)?;
+    let parts = build_particles_reporting(scene, opts.progress)?;
     match scene.dim {
         1 => run_dim::<1>(scene, scene_name, &parts, opts, Some(ckpt)),
         2 => run_dim::<2>(scene, scene_name, &parts, opts, Some(ckpt)),

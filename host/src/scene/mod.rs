@@ -18,7 +18,9 @@ mod validate_parts;
 pub mod walls;
 mod window;
 
-pub use setup::build::{build_particles, check_particles, InitialParticles, MAX_PARTICLES};
+pub use setup::build::{
+    build_particles, build_particles_reporting, check_particles, InitialParticles, MAX_PARTICLES,
+};
 pub use setup::window::WindowGeometry;
 use setup::{build, periodic};
 pub use setup::{import, pores, stl};

@@ -25,7 +25,7 @@ fn at_most(v: f64, limit: f64) -> bool {
 pub fn check_build(scene: &Scene) -> Result<(), SceneError> {
     // the relaxation moves particles within their shape and keeps their count: the checks
     // need the lattice only
-    let parts = build(scene, false)?;
+    let parts = build(scene, false, false)?;
     // bodies read from a file without a `spacing`: the periodic length against the
     // spacing their particles have
     super::periodic::check_length_built(scene, &parts)?;
@@ -67,12 +67,22 @@ pub fn check_particles(scene: &Scene, parts: &InitialParticles) -> Result<(), Sc
     Ok(())
 }
 
-/// Builds the particles of every body (relaxing the `relaxed` layouts).
+/// Builds the particles of every body (relaxing the `relaxed` layouts, silently: what the
+/// relaxation did is in [`InitialParticles::layout`]).
 pub fn build_particles(scene: &Scene) -> Result<InitialParticles, SceneError> {
-    build(scene, true)
+    build(scene, true, false)
 }
 
-fn build(scene: &Scene, relax: bool) -> Result<InitialParticles, SceneError> {
+/// [`build_particles`], with the relaxation's progress lines on stderr (MPI rank 0) if
+/// `report`: a run's progress display (`gsph run` without `--quiet`).
+pub fn build_particles_reporting(
+    scene: &Scene,
+    report: bool,
+) -> Result<InitialParticles, SceneError> {
+    build(scene, true, report)
+}
+
+fn build(scene: &Scene, relax: bool, report: bool) -> Result<InitialParticles, SceneError> {
     let mut out = InitialParticles {
         dim: scene.dim,
         ..Default::default()
@@ -143,7 +153,7 @@ fn build(scene: &Scene, relax: bool) -> Result<InitialParticles, SceneError> {
             )));
         }
         if relax && body.layout.as_deref() == Some("relaxed") {
-            let line = relaxed(scene, b, dx, mesh.as_ref(), &mut pts);
+            let line = relaxed(scene, b, dx, mesh.as_ref(), &mut pts, report);
             out.layout.push(line);
         }
         push_sites(&mut out, scene, b, mi, &mat, dx, pts)?;
@@ -153,14 +163,15 @@ fn build(scene: &Scene, relax: bool) -> Result<InitialParticles, SceneError> {
 }
 
 /// Relaxes the sites `pts` of body `b` (spacing `dx`; `mesh`: an STL body's surface)
-/// against its shape's signed distance, with a progress line on stderr (rank 0) at the
-/// progress interval, and returns what it did as a line for the run log.
+/// against its shape's signed distance, with (if `report`) a progress line on stderr
+/// (rank 0) at the progress interval, and returns what it did as a line for the run log.
 fn relaxed(
     scene: &Scene,
     b: usize,
     dx: f64,
     mesh: Option<&import::Mesh>,
     pts: &mut [([f64; 3], f64)],
+    report: bool,
 ) -> String {
     use super::relax;
     use std::time::Instant;
@@ -169,7 +180,7 @@ fn relaxed(
     let surface = super::sdf::Surface::of(&body.shape, scene.dim, mesh, relax::reach(dx))
         .expect("validated: a relaxed body has a surface");
     let mut x: Vec<[f64; 3]> = pts.iter().map(|p| p.0).collect();
-    let show = crate::dist_rank() == 0;
+    let show = report && crate::dist_rank() == 0;
     let start = Instant::now();
     let mut last = start;
     let every = crate::progress::interval();
