@@ -49,8 +49,9 @@ def measures(run):
         if t[-1] >= three * 0.99:
             out["mechanical_energy_ratio_3T"] = mech[last]
             peaks = [k for k in range(1, last) if ke[k] >= ke[k - 1] and ke[k] > ke[k + 1]]
-            if peaks:
-                out["ke_peak_ratio_3T"] = max(ke[k] for k in peaks if t[k] > three - period / 2) / ke0
+            late = [ke[k] for k in peaks if t[k] > three - period / 2]
+            if late:
+                out["ke_peak_ratio_3T"] = max(late) / ke0
     out["mechanical_energy_ratio_max"] = max(mech)
     out["min_distance_min"] = min(dmin)
     return out

@@ -6,7 +6,7 @@
 //! [`CATALOGUE`], the list of all specialisations with whether this build contains them.
 //!
 //! Only the effects that change the arithmetic of the pairs are compiled: strength,
-//! kernel correction and MUSCL, so 3 dimensions × (av 2 + ts 4 + pm 8) = 42 steps. The
+//! kernel correction and MUSCL, so 3 dimensions × (av 2 + ts 4 + pm 8 + tl 2) = 48 steps. The
 //! others (plasticity, damage, heat, periodic boundaries, artificial stress) are run-time
 //! flags of every step (`crate::effects`).
 //!
@@ -17,7 +17,7 @@
 
 gsph_macros::specialise! {
     dims: [1, 2, 3];
-    families: [av => crate::schemes::av::Av, pm => crate::schemes::pm::Pm, ts => crate::schemes::ts::Ts];
+    families: [av => crate::schemes::av::Av, pm => crate::schemes::pm::Pm, ts => crate::schemes::ts::Ts, tl => crate::schemes::tl::Tl];
     effects: [
         strength: STRENGTH feature "effects-strength",
         correction: CORRECTION only [pm] feature "effects-correction",

@@ -69,6 +69,11 @@ impl EffectSet {
     /// non-dissipative restoring force on each particle's displacement away from the
     /// affine motion of its neighbours (only with strength; a scene without is refused).
     pub const HOURGLASS: EffectSet = EffectSet(1 << 9);
+    /// The reference configuration of the total-Lagrangian scheme `tl` (brought by the
+    /// scheme, like `tkc`'s correction): each particle's reference position and volume,
+    /// where its kernel, neighbours and gradient correction stay fixed, and the energy its
+    /// hourglass stiffness stores (`crate::schemes::tl`).
+    pub const REFERENCE: EffectSet = EffectSet(1 << 10);
     /// The run-time effects: flags of every step ([`Effects::RUNTIME`]).
     pub const RUNTIME: EffectSet = EffectSet(
         Self::PLASTICITY.0
@@ -83,7 +88,7 @@ impl EffectSet {
         EffectSet(Self::STRENGTH.0 | Self::CORRECTION.0 | Self::MUSCL.0);
 
     /// Every named effect with its bit, in display order.
-    pub const NAMED: [(&'static str, EffectSet); 10] = [
+    pub const NAMED: [(&'static str, EffectSet); 11] = [
         ("strength", Self::STRENGTH),
         ("plasticity", Self::PLASTICITY),
         ("damage", Self::DAMAGE),
@@ -93,6 +98,7 @@ impl EffectSet {
         ("periodic", Self::PERIODIC),
         ("artificial_stress", Self::ARTIFICIAL_STRESS),
         ("hourglass", Self::HOURGLASS),
+        ("reference", Self::REFERENCE),
         ("moving_window", Self::MOVING_WINDOW),
     ];
 

@@ -65,6 +65,16 @@ pub fn split_opt<T>(s: &mut [T], mid: usize) -> (&mut [T], &mut [T]) {
     }
 }
 
+/// [`split_opt`] of a shared slice: an empty (optional) slice splits into two empty halves.
+#[inline]
+pub fn split_opt_ref<T>(s: &[T], mid: usize) -> (&[T], &[T]) {
+    if s.is_empty() {
+        (&[], &[])
+    } else {
+        s.split_at(mid)
+    }
+}
+
 /// Runs a loop body over chunks of particles.
 pub trait Executor: Sync {
     /// Calls `f(first_index, chunk)` on disjoint chunks that together cover `data`.

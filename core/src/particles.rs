@@ -150,6 +150,18 @@ macro_rules! particle_fields {
                     hgz "hourglass displacement z (0 in 1D and 2D)"
                 ]
             };
+            xr: Vector<D>, point, REFERENCE, ref, "m", "Reference position of the total-Lagrangian scheme `tl`: where the particle was at the start of the run; its kernel, neighbours and gradient correction stay fixed there (`schemes::tl`)", {
+                api("tl_reference_position" [], read, any)
+                out[]
+            };
+            vr: Real, scalar, REFERENCE, ref, "m^3", "Reference volume `m/rho` of the particle in tl's reference configuration (in 2D per unit length, m^2; in 1D per unit area, m)", {
+                api("tl_reference_volume" [], read, positive)
+                out[]
+            };
+            phi: Real, scalar, REFERENCE, mut, "J", "The energy tl's hourglass stiffness stores in the particle's pairs, `sum_j k_ij |F_i dX_ij - dx_ij|^2 / 2` (part of its internal energy; J/m in 2D, J/m^2 in 1D)", {
+                api("tl_hourglass_energy" [], read, any)
+                out[phi "energy stored by tl's hourglass stiffness (scheme tl; part of the internal energy)"]
+            };
         }
     };
 }

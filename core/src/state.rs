@@ -10,7 +10,7 @@
 //! scheme family and effect set needs.
 
 use crate::effects::{EffectSet, Effects};
-use crate::exec::{split_opt, Split};
+use crate::exec::{split_opt, split_opt_ref, Split};
 use crate::math::{real, Matrix, Real, Sym3, Vector};
 
 /// The slice type of a field of [`System`]: `&'a mut [T]` or `&'a [T]`.
@@ -52,6 +52,9 @@ macro_rules! split_field {
     };
     (mut, $when:ident, $v:expr, $mid:expr) => {
         split_opt($v, $mid)
+    };
+    (ref, $when:ident, $v:expr, $mid:expr) => {
+        split_opt_ref($v, $mid)
     };
 }
 
@@ -216,13 +219,15 @@ macro_rules! scratch_records {
                 w: Matrix<D> = Matrix::<D>::zeros(), matrix, "The spin `W = (G - G^T)/2` of the velocity gradient `G` corrected with the full `L^-1` (no free-surface switch; exact for an affine velocity field wherever `L` is invertible): the rigid rotation the contact family's transverse Riemann problems leave out with `options.objective` (`pm`, `tkc`)";
                 sv: Vector<D> = Vector::<D>::zeros(), vector, "The gradient of the specific volume `1/rho` from the plain kernel sum, `-(1/rho^2) sum_j m_j grad W_ij`, with `options.specific_volume = \"interpolated\"` (`pm`, `tkc`; `schemes::pm::volume`)";
             }
-            Hourglass "What the hourglass stiffness's force pass reads of a particle and its neighbours (`schemes::hourglass`)" {
-                q: Vector<D> = Vector::<D>::zeros(), vector, "The restoring force `k_i d_i` of the particle's hourglass displacement, N (per unit length in 2D)";
-                t: Matrix<D> = Matrix::<D>::zeros(), matrix, "`(q_i ⊗ y_i) C_i`: the first moment `y_i` of the particle's neighbour weights and its gradient correction `C_i`, the tensor of the force that the affine part of the rate brings, N";
-                vol: Real = 0.0, scalar, "The volume `m/rho` the rate was summed with (the force pass uses the same), m³";
-                c: Matrix<D> = Matrix::<D>::identity(), matrix, "The kernel gradient correction `C_i` of the rate (the identity where `det C_i^-1 < det_epsilon`)";
-                l: Matrix<D> = Matrix::<D>::zeros(), matrix, "The corrected velocity gradient `L_i` the rate was summed with, 1/s (`ts` advances its deviator with it)";
-                p: Matrix<D> = Matrix::<D>::zeros(), matrix, "`S_i C_i - t/V_i` with the advanced deviator: the one tensor of `ts`'s fused deviatoric and stiffness force (`schemes::hourglass::stress_forces`), Pa";
+            Hourglass "What the hourglass stiffness's force pass reads of a particle and its neighbours (`schemes::hourglass`; the total-Lagrangian scheme `tl` keeps its per-particle record here too, with the meanings its fields' docs give after `tl:`)" {
+                q: Vector<D> = Vector::<D>::zeros(), vector, "The restoring force `k_i d_i` of the particle's hourglass displacement, N (per unit length in 2D). tl: unused (zero)";
+                t: Matrix<D> = Matrix::<D>::zeros(), matrix, "`(q_i ⊗ y_i) C_i`: the first moment `y_i` of the particle's neighbour weights and its gradient correction `C_i`, the tensor of the force that the affine part of the rate brings, N. tl: the displacement gradient `H_i = F_i - I` (reference configuration)";
+                vol: Real = 0.0, scalar, "The volume `m/rho` the rate was summed with (the force pass uses the same), m³. tl: the reference volume `V0_i`";
+                c: Matrix<D> = Matrix::<D>::identity(), matrix, "The kernel gradient correction `C_i` of the rate (the identity where `det C_i^-1 < det_epsilon`). tl: the same in the reference configuration";
+                l: Matrix<D> = Matrix::<D>::zeros(), matrix, "The corrected velocity gradient `L_i` the rate was summed with, 1/s (`ts` advances its deviator with it). tl: the rate `dF_i/dt`, the velocity gradient in the reference configuration (the slopes of its reconstruction)";
+                p: Matrix<D> = Matrix::<D>::zeros(), matrix, "`S_i C_i - t/V_i` with the advanced deviator: the one tensor of `ts`'s fused deviatoric and stiffness force (`schemes::hourglass::stress_forces`), Pa. tl: `P_i + A_i/V0_i`, the first Piola–Kirchhoff stress and the hourglass stiffness's stress of the force pass";
+                k: Real = 0.0, scalar, "tl: the stiffness factor `kappa_i = xi G (1 - damage) V0_i / h_i^2` of the particle's pairs (`k_ij = kappa_i V0_j omega_ij`), N/m^(D+1)";
+                zp: Real = 0.0, scalar, "tl: the longitudinal impedance `rho0 c_l` of the pairs' acoustic Riemann problems, kg/(m² s)";
             }
             Correction "Kernel gradient correction of one particle (`tkc`)" {
                 l_inv: Matrix<D> = Matrix::<D>::identity(), matrix, "The matrix `L^-1` applied to kernel gradients (identity near free surfaces)";

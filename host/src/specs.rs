@@ -21,6 +21,7 @@ pub fn family_name(family: Family) -> &'static str {
         Family::Av => "av",
         Family::Pm => "pm",
         Family::Ts => "ts",
+        Family::Tl => "tl",
     }
 }
 
@@ -36,6 +37,7 @@ pub fn features(dim: usize, family: Family, effects: EffectSet) -> Vec<&'static 
         Family::Av => "scheme-av",
         Family::Pm => "scheme-pm",
         Family::Ts => "scheme-ts",
+        Family::Tl => "scheme-tl",
     };
     let mut f = vec![dim, family];
     for (e, name) in EFFECT_FEATURES {

@@ -210,6 +210,17 @@ fn restart_is_bitwise_with_the_hourglass_stiffness() {
     }
 }
 
+#[test]
+fn restart_is_bitwise_with_the_total_lagrangian_scheme() {
+    // tl's reference positions and volumes and its stiffness's energy are particle state;
+    // its lists are rebuilt from the reference positions
+    restart_matches(
+        &case("ring_breathing.toml"),
+        &["scheme=tl", "resolution_scale=0.5", "t_end=1e-5"],
+        &[19],
+    );
+}
+
 /// A splitmix64 step: the delays of the kill loop, reproducible.
 #[test]
 fn restart_is_bitwise_with_walls_a_symmetry_plane_and_friction() {

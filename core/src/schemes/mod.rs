@@ -9,6 +9,7 @@
 //! | `tkc` | [`pm::Pm`] | correction + MUSCL (minmod) | 004 §1–2 |
 //! | `ts1` | [`ts::Ts`] | – | 000 §3.3–3.4 |
 //! | `ts2` | [`ts::Ts`] | MUSCL (limiter selectable) | 000 §3.3.1 |
+//! | `tl`  | [`tl::Tl`] | reference configuration | issue 47 (Lee et al. 2019) |
 
 // Per-particle updates index several structure-of-arrays slices with one index.
 #![allow(clippy::needless_range_loop)]
@@ -25,6 +26,7 @@ pub mod pm;
 pub mod scheme;
 #[cfg(all(test, target_arch = "x86_64", not(feature = "f32")))]
 mod star_tests;
+pub mod tl;
 pub mod ts;
 pub mod workspace;
 
@@ -49,6 +51,7 @@ impl Family {
             Family::Av => av::Av::SUPPORTED,
             Family::Pm => pm::Pm::SUPPORTED,
             Family::Ts => ts::Ts::SUPPORTED,
+            Family::Tl => tl::Tl::SUPPORTED,
         }
     }
 
@@ -58,6 +61,7 @@ impl Family {
             Family::Av => av::Av::EXCHANGES,
             Family::Pm => pm::Pm::EXCHANGES,
             Family::Ts => ts::Ts::EXCHANGES,
+            Family::Tl => tl::Tl::EXCHANGES,
         }
     }
 
@@ -68,6 +72,7 @@ impl Family {
             Family::Av => av::Av::layout(effects, options),
             Family::Pm => pm::Pm::layout(effects, options),
             Family::Ts => ts::Ts::layout(effects, options),
+            Family::Tl => tl::Tl::layout(effects, options),
         }
     }
 }
@@ -107,6 +112,7 @@ impl Scheme {
             Family::Av => av::reads(self, key),
             Family::Pm => pm::reads(self, key, self.effects().union(asked)),
             Family::Ts => ts::reads(self, key),
+            Family::Tl => tl::reads(self, key),
         };
         family.unwrap_or_else(|| key.table_reads(self))
     }
@@ -118,6 +124,7 @@ impl Scheme {
             Family::Av => SchemeOptions::default(),
             Family::Pm => pm::defaults(self),
             Family::Ts => SchemeOptions::default(),
+            Family::Tl => SchemeOptions::default(),
         }
     }
 }

@@ -14,6 +14,9 @@ pub enum Family {
     Pm,
     /// Time-split Godunov SPH: deviatoric step, then hydrodynamic Riemann step.
     Ts,
+    /// Total-Lagrangian Godunov SPH: kernel, neighbours and correction fixed in the
+    /// reference configuration; momentum and deformation gradient from pair fluxes.
+    Tl,
 }
 
 /// The scheme names of the CLI and scenes.
@@ -29,16 +32,19 @@ pub enum Scheme {
     Ts2,
     /// TKC-MUSCL-SPH: contact SPH with kernel correction and MUSCL.
     Tkc,
+    /// Total-Lagrangian Godunov SPH for solids.
+    Tl,
 }
 
 impl Scheme {
     /// All schemes, in the order tables list them.
-    pub const ALL: [Scheme; 5] = [
+    pub const ALL: [Scheme; 6] = [
         Scheme::Av,
         Scheme::Pm,
         Scheme::Ts1,
         Scheme::Ts2,
         Scheme::Tkc,
+        Scheme::Tl,
     ];
 
     /// The CLI/scene name.
@@ -49,6 +55,7 @@ impl Scheme {
             Scheme::Ts1 => "ts1",
             Scheme::Ts2 => "ts2",
             Scheme::Tkc => "tkc",
+            Scheme::Tl => "tl",
         }
     }
     /// Parses a CLI/scene name.
@@ -61,6 +68,7 @@ impl Scheme {
             Scheme::Av => Family::Av,
             Scheme::Pm | Scheme::Tkc => Family::Pm,
             Scheme::Ts1 | Scheme::Ts2 => Family::Ts,
+            Scheme::Tl => Family::Tl,
         }
     }
     /// The effects the scheme itself brings (on top of the scene's).
@@ -69,6 +77,7 @@ impl Scheme {
             Scheme::Av | Scheme::Pm | Scheme::Ts1 => EffectSet::HYDRO,
             Scheme::Ts2 => EffectSet::MUSCL,
             Scheme::Tkc => EffectSet::CORRECTION.union(EffectSet::MUSCL),
+            Scheme::Tl => EffectSet::REFERENCE,
         }
     }
 }

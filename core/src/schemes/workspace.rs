@@ -21,6 +21,8 @@ pub const fn record_len(family: Family, d: usize) -> usize {
         Family::Av => super::av::records::record_len(d),
         Family::Ts => super::ts::records::record_len(d),
         Family::Pm => super::pm::records::record_len(d),
+        // no vectorised loops
+        Family::Tl => 0,
     }
 }
 

@@ -25,6 +25,9 @@ fn check(temp: &mut [Real], damage: &mut [Real], eps_p: &mut [Real]) -> Result<(
         damage,
         temp,
         hg: &mut [],
+        xr: &[],
+        vr: &[],
+        phi: &mut [],
     };
     check_finite(&sys)
 }

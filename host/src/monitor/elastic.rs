@@ -191,7 +191,7 @@ impl Elastic {
 
     /// The elastic strain energy `sum V (p²/(2K) + S:S/(4G))`, J, with the energy the
     /// hourglass stiffness stores (`gsph_core::schemes::hourglass::stored_energy`) where
-    /// the run has it.
+    /// the run has it, and the energy tl's stiffness stores (the particle field `phi`).
     fn strain_energy(&self, t: &ParticleTable) -> f64 {
         let mut se = 0.0;
         for i in 0..t.len() {
@@ -204,6 +204,8 @@ impl Elastic {
                 let d = Vector::<3>::new(t.hgx[i], t.hgy[i], t.hgz[i]);
                 se += hourglass::stored_energy(kh, &d);
             }
+            // tl's stiffness keeps its energy per particle (0 in other schemes)
+            se += t.phi[i];
         }
         se
     }

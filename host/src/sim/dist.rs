@@ -6,6 +6,7 @@ use super::Sim;
 use crate::dist::{self, rcb::Rcb, Dist, Plan, REBALANCE_THRESHOLD};
 use crate::sim::SimError;
 use crate::words::Words;
+use gsph_core::effects::EffectSet;
 use gsph_core::math::Vector;
 use gsph_core::schemes::AvRates;
 use std::time::Instant;
@@ -19,6 +20,11 @@ impl<const D: usize> Sim<D> {
         let size = dist::size();
         if size <= 1 || self.dist.is_some() {
             return Ok(());
+        }
+        if self.effects.contains(EffectSet::REFERENCE) {
+            return Err(SimError::Distributed(
+                "scheme tl runs on one rank for now: its reference neighbours do not yet cross ranks (issue 47)".into(),
+            ));
         }
         let rank = dist::rank();
         let mut order: Vec<usize> = (0..self.len()).collect();

@@ -96,6 +96,10 @@ impl<const D: usize> Sim<D> {
                 hg: Vector::<D>::zeros(),
                 // where it was created, or the reference a particle file gives
                 x0: parts.x0.get(i).map_or(x, vec_of::<D>),
+                // tl's reference configuration: the particle as it enters the run
+                xr: x,
+                vr: parts.m[i] / parts.rho[i],
+                phi: 0.0,
             });
             if layout.av {
                 self.av.push(AvRates::default());

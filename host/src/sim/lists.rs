@@ -20,7 +20,8 @@ impl<const D: usize> Sim<D> {
             let order = morton_order(&self.x, &self.ids, hmax, &self.periodic);
             self.permute(&order);
         }
-        self.build_x.clone_from(&self.x);
+        // tl's neighbours are those of its reference configuration
+        self.build_x = self.list_positions().clone();
         self.build_h.clone_from(&self.h);
         self.add_mirrors()?;
         self.build_lists()?;
@@ -103,6 +104,17 @@ impl<const D: usize> Sim<D> {
         Ok(())
     }
 
+    /// The positions the neighbour lists are built at: the reference positions of the
+    /// total-Lagrangian scheme (fixed during a run, so its lists never go stale), the
+    /// positions now otherwise.
+    fn list_positions(&self) -> &Vec<Vector<D>> {
+        if self.effects.contains(EffectSet::REFERENCE) {
+            &self.xr
+        } else {
+            &self.x
+        }
+    }
+
     /// True when some pair may have entered the kernel support since the last build.
     pub(super) fn lists_stale(&self) -> bool {
         if self.build_x.len() != self.x.len() {
@@ -118,7 +130,9 @@ impl<const D: usize> Sim<D> {
             .into_par_iter()
             .with_min_len(1024)
             .map(|i| {
-                let d = self.periodic.min_image(self.x[i] - self.build_x[i]);
+                let d = self
+                    .periodic
+                    .min_image(self.list_positions()[i] - self.build_x[i]);
                 (
                     d.norm_squared(),
                     self.h[i] / self.build_h[i] - 1.0,

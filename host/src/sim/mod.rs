@@ -93,7 +93,8 @@ pub fn resolve_effects(scene: &Scene, materials: &[Material]) -> EffectSet {
     if scene.options.artificial_stress.is_some() {
         e = e.union(EffectSet::ARTIFICIAL_STRESS);
     }
-    if scene.options.hourglass.is_some() {
+    // tl reads options.hourglass as the xi of its own stiffness (always on)
+    if scene.options.hourglass.is_some() && scene.scheme.family() != Family::Tl {
         e = e.union(EffectSet::HOURGLASS);
     }
     e.closed()

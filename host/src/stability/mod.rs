@@ -34,6 +34,9 @@ pub fn energy_bound(scheme: Scheme) -> f64 {
         Scheme::Ts1 | Scheme::Ts2 | Scheme::Tkc => 1e-10,
         Scheme::Av => 1e-1,
         Scheme::Pm => 5e-1,
+        // symplectic Euler with Riemann dissipation booked at the start-of-step velocity:
+        // first order in dt, as av's
+        Scheme::Tl => 1e-1,
     }
 }
 

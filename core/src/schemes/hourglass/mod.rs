@@ -231,7 +231,7 @@ impl<const D: usize> Kinematics<D> {
             vol: aux[i].vol,
             c: self.c,
             l: self.l,
-            p: Matrix::<D>::zeros(),
+            ..Hourglass::default()
         }
     }
 }

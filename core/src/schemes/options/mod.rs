@@ -61,7 +61,7 @@ macro_rules! scheme_options {
                 "Slope limiter of the MUSCL reconstruction (tkc starts from minmod, Rublev & Murzov's)";
             riemann: RiemannSolver = RiemannSolver::Acoustic, Riemann, "", Any, [Pm, Ts], NO_RIEMANN,
                 "Riemann solver of the pairs: linearised acoustic, or Dukowicz's two-shock solver (pm, tkc: the longitudinal wave)";
-            dissipation: Dissipation = Dissipation::Full, Dissipation, "", Any, [Pm, Ts], NO_RIEMANN,
+            dissipation: Dissipation = Dissipation::Full, Dissipation, "", Any, [Pm, Ts, Tl], NO_RIEMANN,
                 "Where the Riemann solver's dissipation acts: on every pair, or only where a pair compresses";
             transverse_dissipation: Dissipation = Dissipation::Full, TransverseDissipation, "", Any, [Pm], NO_TRANSVERSE,
                 "Where the transverse Riemann problems' dissipation acts, on top of `dissipation`";
@@ -79,7 +79,7 @@ macro_rules! scheme_options {
                 "A particle below `surface_lambda` is a free-surface particle only if the umbrella scan finds its neighbourhood open";
             specific_volume: SpecificVolume = SpecificVolume::Product, SpecificVolume, "", Any, [Pm], NO_SPECIFIC_VOLUME,
                 "The specific volumes of the pair force: the seeds' 1/(rho_i rho_j), or Sugiura & Inutsuka's interpolation";
-            det_epsilon: Real = 0.05, DetEpsilon, "1", NonNegative, [Pm, Ts], NO_SURFACE,
+            det_epsilon: Real = 0.05, DetEpsilon, "1", NonNegative, [Pm, Ts, Tl], NO_SURFACE,
                 "L is not inverted where det L is below this";
             energy_equation: EnergyEquation = EnergyEquation::Internal, EnergyEquation, "", Any, [Pm], NO_ENERGY_EQUATION,
                 "pm's energy equation: the seed's internal-energy rate at the start-of-step velocity, or the total-energy rate (exact total energy; tkc's)";
@@ -89,8 +89,8 @@ macro_rules! scheme_options {
                 "MUSCL reconstruction for scheme pm (tkc always has it)";
             artificial_stress: Real = 0.3, ArtificialStress, "1", Positive, [Av, Pm, Ts], EVERY_SCHEME,
                 "Monaghan's artificial stress against the tensile instability: its epsilon (at most 1; setting it turns the effect on)";
-            hourglass: Real = 1.0, Hourglass, "1", Positive, [Pm, Ts], NO_HOURGLASS,
-                "The hourglass stiffness of solids, non-dissipative and stored: its xi (stiffness xi G V/h^2 on each particle's displacement from its neighbours' affine motion; setting it turns the effect on)";
+            hourglass: Real = 1.0, Hourglass, "1", Positive, [Pm, Ts, Tl], NO_HOURGLASS,
+                "The hourglass stiffness of solids, non-dissipative and stored: its xi (stiffness xi G V/h^2 on each particle's displacement from its neighbours' affine motion; setting it turns the effect on; tl always has its own, on each pair's error of the F-predicted separation)";
             artificial_stress_exponent: u32 = 4, ArtificialStressExponent, "", Any, [Av, Pm, Ts], EVERY_SCHEME,
                 "The exponent n of the artificial stress's factor f_ij^n (1 to 16)";
         }
