@@ -10,7 +10,7 @@
 //! others (plasticity, damage, heat, periodic boundaries, artificial stress) are run-time
 //! flags of every step (`crate::effects`).
 //!
-//! Cargo features of this crate (`dim1..3`, `scheme-av/pm/ts`, `effects-*`) choose what is
+//! Cargo features of this crate (`dim1..3`, `scheme-av/pm/ts/tl`, `effects-*`) choose what is
 //! compiled: a benchmarking build can contain a single specialisation. The expansion is
 //! checked in, pretty-printed, at `macros/tests/expand/gsph.expanded.rs`.
 #![allow(missing_docs)]

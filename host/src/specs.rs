@@ -135,9 +135,9 @@ mod tests {
         assert_eq!(s.name, "step_2d_pm_strength_correction_muscl");
     }
 
-    /// 3 dimensions × (av: hydro, strength; ts: × MUSCL; pm: × MUSCL × correction).
+    /// 3 dimensions × (av and tl: hydro, strength; ts: × MUSCL; pm: × MUSCL × correction).
     #[test]
-    fn the_catalogue_holds_42_steps() {
-        assert_eq!(CATALOGUE.len(), 3 * (2 + 4 + 8));
+    fn the_catalogue_holds_48_steps() {
+        assert_eq!(CATALOGUE.len(), 3 * (2 + 4 + 8 + 2));
     }
 }

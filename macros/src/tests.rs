@@ -112,16 +112,16 @@ fn chain_model() -> Model {
 #[test]
 fn gsph_counts() {
     // strength on/off (2); per family the extras: av none (1), pm correction x muscl (4),
-    // ts muscl (2). Sets valid for some family: 2 * 4 = 8. Step functions per dimension:
-    // 2 * (1 + 4 + 2) = 14; over three dimensions 42.
+    // ts muscl (2), tl none (1). Sets valid for some family: 2 * 4 = 8. Step functions per
+    // dimension: 2 * (1 + 4 + 2 + 1) = 16; over three dimensions 48.
     let m = model("gsph");
     assert_eq!(m.sets().len(), 8);
     let specs = m.specialisations();
-    assert_eq!(specs.len(), 42);
+    assert_eq!(specs.len(), 48);
     for d in 1..=3 {
-        assert_eq!(specs.iter().filter(|s| s.dim == d).count(), 14);
+        assert_eq!(specs.iter().filter(|s| s.dim == d).count(), 16);
     }
-    for (f, n) in [("av", 2), ("pm", 8), ("ts", 4)] {
+    for (f, n) in [("av", 2), ("pm", 8), ("ts", 4), ("tl", 2)] {
         let f = family(&m, f);
         assert_eq!(
             specs.iter().filter(|s| s.dim == 2 && s.family == f).count(),

@@ -2,7 +2,7 @@
 //!
 //! The steps are generic over the executor, so they are compiled (monomorphised) in the
 //! crate that names the executor. Naming it here, in non-generic functions, compiles the
-//! up to 42 specialisations once in this crate: the `gsph` host crate calls
+//! up to 48 specialisations once in this crate: the `gsph` host crate calls
 //! [`select_1d`], [`select_2d`] and [`select_3d`] and changes to it do not recompile
 //! them.
 

@@ -372,6 +372,42 @@ pub fn step_1d_ts_strength_muscl<X: crate::exec::Executor>(
         X,
     >(sys, ws, params, exec, halo)
 }
+/// One step of the 1D [`tl`](crate::schemes::tl::Tl) family with effects `hydro` ([`FxHydro`]).
+///
+/// Compiled when the features `dim1`, `scheme-tl` are enabled.
+#[cfg(all(feature = "dim1", feature = "scheme-tl"))]
+#[inline(never)]
+pub fn step_1d_tl_hydro<X: crate::exec::Executor>(
+    sys: &mut crate::state::System<'_, 1>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 1>,
+    params: &crate::schemes::workspace::StepParams<'_, 1>,
+    exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
+) -> ::core::result::Result<(), crate::state::StepError> {
+    <crate::schemes::tl::Tl as crate::schemes::family::SchemeFamily>::checked_step::<
+        1,
+        FxHydro,
+        X,
+    >(sys, ws, params, exec, halo)
+}
+/// One step of the 1D [`tl`](crate::schemes::tl::Tl) family with effects `strength` ([`FxStrength`]).
+///
+/// Compiled when the features `dim1`, `scheme-tl`, `effects-strength` are enabled.
+#[cfg(all(feature = "dim1", feature = "scheme-tl", feature = "effects-strength"))]
+#[inline(never)]
+pub fn step_1d_tl_strength<X: crate::exec::Executor>(
+    sys: &mut crate::state::System<'_, 1>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 1>,
+    params: &crate::schemes::workspace::StepParams<'_, 1>,
+    exec: &X,
+    halo: &mut dyn crate::halo::Halo<1>,
+) -> ::core::result::Result<(), crate::state::StepError> {
+    <crate::schemes::tl::Tl as crate::schemes::family::SchemeFamily>::checked_step::<
+        1,
+        FxStrength,
+        X,
+    >(sys, ws, params, exec, halo)
+}
 /// The compiled 1D step function of `family` with exactly `effects`.
 ///
 /// `None` when the combination is not valid for the family or was not compiled into
@@ -528,6 +564,22 @@ pub fn select_1d<X: crate::exec::Executor>(
     {
         return ::core::option::Option::Some(
             step_1d_ts_strength_muscl::<X> as crate::schemes::family::StepFn<1, X>,
+        );
+    }
+    #[cfg(all(feature = "dim1", feature = "scheme-tl"))]
+    if family == crate::schemes::scheme::Family::Tl
+        && effects == <FxHydro as crate::effects::Effects>::SET
+    {
+        return ::core::option::Option::Some(
+            step_1d_tl_hydro::<X> as crate::schemes::family::StepFn<1, X>,
+        );
+    }
+    #[cfg(all(feature = "dim1", feature = "scheme-tl", feature = "effects-strength"))]
+    if family == crate::schemes::scheme::Family::Tl
+        && effects == <FxStrength as crate::effects::Effects>::SET
+    {
+        return ::core::option::Option::Some(
+            step_1d_tl_strength::<X> as crate::schemes::family::StepFn<1, X>,
         );
     }
     ::core::option::Option::None
@@ -820,6 +872,42 @@ pub fn step_2d_ts_strength_muscl<X: crate::exec::Executor>(
         X,
     >(sys, ws, params, exec, halo)
 }
+/// One step of the 2D [`tl`](crate::schemes::tl::Tl) family with effects `hydro` ([`FxHydro`]).
+///
+/// Compiled when the features `dim2`, `scheme-tl` are enabled.
+#[cfg(all(feature = "dim2", feature = "scheme-tl"))]
+#[inline(never)]
+pub fn step_2d_tl_hydro<X: crate::exec::Executor>(
+    sys: &mut crate::state::System<'_, 2>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 2>,
+    params: &crate::schemes::workspace::StepParams<'_, 2>,
+    exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
+) -> ::core::result::Result<(), crate::state::StepError> {
+    <crate::schemes::tl::Tl as crate::schemes::family::SchemeFamily>::checked_step::<
+        2,
+        FxHydro,
+        X,
+    >(sys, ws, params, exec, halo)
+}
+/// One step of the 2D [`tl`](crate::schemes::tl::Tl) family with effects `strength` ([`FxStrength`]).
+///
+/// Compiled when the features `dim2`, `scheme-tl`, `effects-strength` are enabled.
+#[cfg(all(feature = "dim2", feature = "scheme-tl", feature = "effects-strength"))]
+#[inline(never)]
+pub fn step_2d_tl_strength<X: crate::exec::Executor>(
+    sys: &mut crate::state::System<'_, 2>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 2>,
+    params: &crate::schemes::workspace::StepParams<'_, 2>,
+    exec: &X,
+    halo: &mut dyn crate::halo::Halo<2>,
+) -> ::core::result::Result<(), crate::state::StepError> {
+    <crate::schemes::tl::Tl as crate::schemes::family::SchemeFamily>::checked_step::<
+        2,
+        FxStrength,
+        X,
+    >(sys, ws, params, exec, halo)
+}
 /// The compiled 2D step function of `family` with exactly `effects`.
 ///
 /// `None` when the combination is not valid for the family or was not compiled into
@@ -976,6 +1064,22 @@ pub fn select_2d<X: crate::exec::Executor>(
     {
         return ::core::option::Option::Some(
             step_2d_ts_strength_muscl::<X> as crate::schemes::family::StepFn<2, X>,
+        );
+    }
+    #[cfg(all(feature = "dim2", feature = "scheme-tl"))]
+    if family == crate::schemes::scheme::Family::Tl
+        && effects == <FxHydro as crate::effects::Effects>::SET
+    {
+        return ::core::option::Option::Some(
+            step_2d_tl_hydro::<X> as crate::schemes::family::StepFn<2, X>,
+        );
+    }
+    #[cfg(all(feature = "dim2", feature = "scheme-tl", feature = "effects-strength"))]
+    if family == crate::schemes::scheme::Family::Tl
+        && effects == <FxStrength as crate::effects::Effects>::SET
+    {
+        return ::core::option::Option::Some(
+            step_2d_tl_strength::<X> as crate::schemes::family::StepFn<2, X>,
         );
     }
     ::core::option::Option::None
@@ -1268,6 +1372,42 @@ pub fn step_3d_ts_strength_muscl<X: crate::exec::Executor>(
         X,
     >(sys, ws, params, exec, halo)
 }
+/// One step of the 3D [`tl`](crate::schemes::tl::Tl) family with effects `hydro` ([`FxHydro`]).
+///
+/// Compiled when the features `dim3`, `scheme-tl` are enabled.
+#[cfg(all(feature = "dim3", feature = "scheme-tl"))]
+#[inline(never)]
+pub fn step_3d_tl_hydro<X: crate::exec::Executor>(
+    sys: &mut crate::state::System<'_, 3>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 3>,
+    params: &crate::schemes::workspace::StepParams<'_, 3>,
+    exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
+) -> ::core::result::Result<(), crate::state::StepError> {
+    <crate::schemes::tl::Tl as crate::schemes::family::SchemeFamily>::checked_step::<
+        3,
+        FxHydro,
+        X,
+    >(sys, ws, params, exec, halo)
+}
+/// One step of the 3D [`tl`](crate::schemes::tl::Tl) family with effects `strength` ([`FxStrength`]).
+///
+/// Compiled when the features `dim3`, `scheme-tl`, `effects-strength` are enabled.
+#[cfg(all(feature = "dim3", feature = "scheme-tl", feature = "effects-strength"))]
+#[inline(never)]
+pub fn step_3d_tl_strength<X: crate::exec::Executor>(
+    sys: &mut crate::state::System<'_, 3>,
+    ws: &mut crate::schemes::workspace::Workspace<'_, 3>,
+    params: &crate::schemes::workspace::StepParams<'_, 3>,
+    exec: &X,
+    halo: &mut dyn crate::halo::Halo<3>,
+) -> ::core::result::Result<(), crate::state::StepError> {
+    <crate::schemes::tl::Tl as crate::schemes::family::SchemeFamily>::checked_step::<
+        3,
+        FxStrength,
+        X,
+    >(sys, ws, params, exec, halo)
+}
 /// The compiled 3D step function of `family` with exactly `effects`.
 ///
 /// `None` when the combination is not valid for the family or was not compiled into
@@ -1426,6 +1566,22 @@ pub fn select_3d<X: crate::exec::Executor>(
             step_3d_ts_strength_muscl::<X> as crate::schemes::family::StepFn<3, X>,
         );
     }
+    #[cfg(all(feature = "dim3", feature = "scheme-tl"))]
+    if family == crate::schemes::scheme::Family::Tl
+        && effects == <FxHydro as crate::effects::Effects>::SET
+    {
+        return ::core::option::Option::Some(
+            step_3d_tl_hydro::<X> as crate::schemes::family::StepFn<3, X>,
+        );
+    }
+    #[cfg(all(feature = "dim3", feature = "scheme-tl", feature = "effects-strength"))]
+    if family == crate::schemes::scheme::Family::Tl
+        && effects == <FxStrength as crate::effects::Effects>::SET
+    {
+        return ::core::option::Option::Some(
+            step_3d_tl_strength::<X> as crate::schemes::family::StepFn<3, X>,
+        );
+    }
     ::core::option::Option::None
 }
 /// One specialisation declared to `specialise!`: a dimension, a scheme family and
@@ -1571,6 +1727,22 @@ pub const CATALOGUE: &[Specialisation] = &[
         ),
     },
     Specialisation {
+        dim: 1,
+        family: crate::schemes::scheme::Family::Tl,
+        effects: <FxHydro as crate::effects::Effects>::SET,
+        name: "step_1d_tl_hydro",
+        compiled: cfg!(all(feature = "dim1", feature = "scheme-tl")),
+    },
+    Specialisation {
+        dim: 1,
+        family: crate::schemes::scheme::Family::Tl,
+        effects: <FxStrength as crate::effects::Effects>::SET,
+        name: "step_1d_tl_strength",
+        compiled: cfg!(
+            all(feature = "dim1", feature = "scheme-tl", feature = "effects-strength")
+        ),
+    },
+    Specialisation {
         dim: 2,
         family: crate::schemes::scheme::Family::Av,
         effects: <FxHydro as crate::effects::Effects>::SET,
@@ -1696,6 +1868,22 @@ pub const CATALOGUE: &[Specialisation] = &[
         ),
     },
     Specialisation {
+        dim: 2,
+        family: crate::schemes::scheme::Family::Tl,
+        effects: <FxHydro as crate::effects::Effects>::SET,
+        name: "step_2d_tl_hydro",
+        compiled: cfg!(all(feature = "dim2", feature = "scheme-tl")),
+    },
+    Specialisation {
+        dim: 2,
+        family: crate::schemes::scheme::Family::Tl,
+        effects: <FxStrength as crate::effects::Effects>::SET,
+        name: "step_2d_tl_strength",
+        compiled: cfg!(
+            all(feature = "dim2", feature = "scheme-tl", feature = "effects-strength")
+        ),
+    },
+    Specialisation {
         dim: 3,
         family: crate::schemes::scheme::Family::Av,
         effects: <FxHydro as crate::effects::Effects>::SET,
@@ -1818,6 +2006,22 @@ pub const CATALOGUE: &[Specialisation] = &[
         compiled: cfg!(
             all(feature = "dim3", feature = "scheme-ts", feature = "effects-strength",
             feature = "effects-muscl")
+        ),
+    },
+    Specialisation {
+        dim: 3,
+        family: crate::schemes::scheme::Family::Tl,
+        effects: <FxHydro as crate::effects::Effects>::SET,
+        name: "step_3d_tl_hydro",
+        compiled: cfg!(all(feature = "dim3", feature = "scheme-tl")),
+    },
+    Specialisation {
+        dim: 3,
+        family: crate::schemes::scheme::Family::Tl,
+        effects: <FxStrength as crate::effects::Effects>::SET,
+        name: "step_3d_tl_strength",
+        compiled: cfg!(
+            all(feature = "dim3", feature = "scheme-tl", feature = "effects-strength")
         ),
     },
 ];
