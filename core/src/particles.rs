@@ -150,7 +150,7 @@ macro_rules! particle_fields {
                     hgz "hourglass displacement z (0 in 1D and 2D)"
                 ]
             };
-            xr: Vector<D>, point, REFERENCE, ref, "m", "Reference position of the total-Lagrangian scheme `tl`: where the particle was at the start of the run; its kernel, neighbours and gradient correction stay fixed there (`schemes::tl`)", {
+            xr: Vector<D>, point, REFERENCE, mut, "m", "Reference position of the total-Lagrangian scheme `tl`: where the particle was at the start of the run; its kernel, neighbours and gradient correction stay fixed there (`schemes::tl`)", {
                 api("tl_reference_position" [], read, any)
                 out[]
             };

@@ -99,6 +99,7 @@ mod tests {
             "scheme-av" => cfg!(feature = "scheme-av"),
             "scheme-pm" => cfg!(feature = "scheme-pm"),
             "scheme-ts" => cfg!(feature = "scheme-ts"),
+            "scheme-tl" => cfg!(feature = "scheme-tl"),
             "effects-strength" => cfg!(feature = "effects-strength"),
             "effects-muscl" => cfg!(feature = "effects-muscl"),
             "effects-correction" => cfg!(feature = "effects-correction"),

@@ -25,7 +25,7 @@ fn check(temp: &mut [Real], damage: &mut [Real], eps_p: &mut [Real]) -> Result<(
         damage,
         temp,
         hg: &mut [],
-        xr: &[],
+        xr: &mut [],
         vr: &[],
         phi: &mut [],
     };

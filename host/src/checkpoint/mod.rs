@@ -22,7 +22,8 @@
 //! the spin of the gradients (`Gradients::w`, `options.objective`); version 6 the specific
 //! volume's slope (`Gradients::sv`, `options.specific_volume`); version 7 the same bytes,
 //! with a `checkpoint.h5` that carries the run id (a restart checks it: the snapshots of a
-//! version-6 checkpoint carry none).
+//! version-6 checkpoint carry none); version 8 tl's reference-update count after the
+//! rebuild count (and the particle table's `xr`, `vr`, `phi`).
 //!
 //! The snapshots written so far are kept in `DIR/checkpoint.h5`, a copy of the snapshot
 //! file taken at the checkpoint (only when a snapshot was added since the last one).
@@ -46,7 +47,7 @@ pub const CHECKPOINT_H5: &str = "checkpoint.h5";
 /// Magic bytes at the start of a checkpoint.
 pub const MAGIC: &[u8; 8] = b"GSPHCKPT";
 /// The format version this build writes and reads.
-pub const FORMAT_VERSION: u32 = 7;
+pub const FORMAT_VERSION: u32 = 8;
 const HEADER: usize = 32;
 
 /// A checkpoint problem; `Display` is one line.

@@ -77,6 +77,9 @@ pub struct Summary {
     pub wall_friction_work: Option<f64>,
     /// Neighbour-list rebuilds.
     pub neighbor_rebuilds: u64,
+    /// tl's reference updates (`options.reference_update`; scheme tl only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub reference_updates: Option<u64>,
     /// Memory of the particle state and workspace per particle, bytes.
     pub bytes_per_particle: usize,
     /// The same by array (`Sim::memory`), bytes per particle; arrays the run does not
@@ -194,6 +197,8 @@ pub(super) fn summary<const D: usize>(x: Summed<'_, D>) -> Summary {
         wall_crossings: walls.map(|w| w.0),
         wall_friction_work: walls.map(|w| w.1),
         neighbor_rebuilds: sim.rebuilds,
+        reference_updates: (sim.scheme == gsph_core::schemes::Scheme::Tl)
+            .then_some(sim.reference_updates),
         bytes_per_particle: sim.bytes_per_particle(),
         bytes_per_particle_by_array: sim
             .memory()

@@ -79,6 +79,8 @@ pub enum SimError {
     Distributed(String),
     /// A wall cannot be set up (a particle starts behind it).
     Walls(String),
+    /// A scene tl cannot run as it is (bodies apart at the start).
+    Reference(String),
     /// The instruction-set level asked for (`GSPH_SIMD`, `--simd`) cannot run here.
     Simd(String),
     /// The scheme family cannot run an effect the scene needs.
@@ -95,6 +97,7 @@ impl std::fmt::Display for SimError {
         match self {
             SimError::Neighbors(e) => write!(f, "{e}"),
             SimError::Walls(e) => write!(f, "{e}"),
+            SimError::Reference(e) => write!(f, "{e}"),
             SimError::Simd(e) => write!(f, "{e}"),
             SimError::Overlap { i, j, distance, at } if *distance == 0.0 => write!(
                 f,

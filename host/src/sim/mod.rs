@@ -35,6 +35,7 @@ mod edit;
 mod error;
 mod lists;
 mod measure;
+mod reference;
 mod state_io;
 pub mod values;
 pub mod walls;
@@ -169,6 +170,8 @@ pub struct Sim {
     pub pair_interactions: u64,
     /// Neighbour-list rebuilds so far.
     pub rebuilds: u64,
+    /// tl's reference updates so far ([`reference`]).
+    pub reference_updates: u64,
     /// The particles this process owns: the first `owned` of the arrays. The rest are
     /// ghost copies of other ranks' particles (feature `mpi`) or the mirrors of walls.
     pub owned: usize,
@@ -285,6 +288,7 @@ impl<const D: usize> Sim<D> {
             step: 0,
             pair_interactions: 0,
             rebuilds: 0,
+            reference_updates: 0,
             owned: 0,
             mirrors: walls::Mirrors::new(&scene.walls).map_err(SimError::Walls)?,
             #[cfg(feature = "mpi")]
@@ -295,6 +299,7 @@ impl<const D: usize> Sim<D> {
         sim.append(parts);
         sim.check_walls().map_err(SimError::Walls)?;
         sim.first_rebuild(&parts.spacing)?;
+        sim.check_bodies_bonded(&parts.body)?;
         Ok(sim)
     }
 
@@ -578,6 +583,6 @@ impl<const D: usize> Sim<D> {
         self.t += dt;
         self.step = step;
         self.pair_interactions += pairs;
-        Ok(())
+        self.update_reference()
     }
 }

@@ -41,6 +41,7 @@ impl<const D: usize> Sim<D> {
         e.put(&self.step);
         e.put(&self.pair_interactions);
         e.put(&self.rebuilds);
+        e.put(&self.reference_updates);
         e.put(&self.primed);
         e.put(&(self.capacity as u64));
         e.put(&self.ids);
@@ -73,6 +74,7 @@ impl<const D: usize> Sim<D> {
         self.step = d.get()?;
         self.pair_interactions = d.get()?;
         self.rebuilds = d.get()?;
+        self.reference_updates = d.get()?;
         self.primed = d.get()?;
         let capacity: u64 = d.get()?;
         if capacity != self.capacity as u64 {

@@ -74,8 +74,14 @@ fn every_quick_override_names_a_hard_case() {
         // every hard case parses with its quick overrides and every scheme
         for sc in Scheme::ALL {
             let set: Vec<String> = quick_overrides(s).iter().map(|x| x.to_string()).collect();
-            scene::load_for_scheme(&dir.join(format!("{s}.toml")), &set, sc.name())
-                .unwrap_or_else(|e| panic!("{s} {}: {e}", sc.name()));
+            match scene::load_for_scheme(&dir.join(format!("{s}.toml")), &set, sc.name()) {
+                Ok(_) => {}
+                // tl's one refusal of a scene shape: periodic boundaries, by key and scheme
+                Err(e)
+                    if sc == Scheme::Tl
+                        && e.to_string().contains("periodic: not yet with scheme tl") => {}
+                Err(e) => panic!("{s} {}: {e}", sc.name()),
+            }
         }
     }
 }

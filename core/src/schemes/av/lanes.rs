@@ -36,6 +36,8 @@ pub(crate) fn covers(o: &SchemeOptions) -> bool {
         constant_h: _,
         // the Godunov families'
         hourglass: _,
+        // tl's, refused by the table
+        reference_update: _,
         limiter: _,
         riemann: _,
         dissipation: _,

@@ -91,6 +91,8 @@ macro_rules! scheme_options {
                 "Monaghan's artificial stress against the tensile instability: its epsilon (at most 1; setting it turns the effect on)";
             hourglass: Real = 1.0, Hourglass, "1", Positive, [Pm, Ts, Tl], NO_HOURGLASS,
                 "The hourglass stiffness of solids, non-dissipative and stored: its xi (stiffness xi G V/h^2 on each particle's displacement from its neighbours' affine motion; setting it turns the effect on; tl always has its own, on each pair's error of the F-predicted separation)";
+            reference_update: Real = 0.0, ReferenceUpdate, "1", NonNegative, [Tl], NO_REFERENCE,
+                "tl's updated reference: the reference configuration is re-based on the current one after a step in which some pair's stretch |r/R - 1| exceeds this (0: never)";
             artificial_stress_exponent: u32 = 4, ArtificialStressExponent, "", Any, [Av, Pm, Ts], EVERY_SCHEME,
                 "The exponent n of the artificial stress's factor f_ij^n (1 to 16)";
         }
@@ -361,7 +363,9 @@ pub(crate) mod why {
         "its pair force's specific volumes are not interpolated; pm and tkc interpolate them";
     pub const NO_SURFACE: &str =
         "it has no free-surface rule; ts1, ts2, tkc and pm with options.correction have";
-    pub const NO_HOURGLASS: &str = "it has no hourglass stiffness; pm, tkc, ts1 and ts2 have";
+    pub const NO_HOURGLASS: &str = "it has no hourglass stiffness; pm, tkc, ts1, ts2 and tl have";
+    pub const NO_REFERENCE: &str =
+        "its kernel and neighbours follow the particles: it has no reference configuration to update; tl has";
     /// The reason of a key every family reads (never given).
     pub const EVERY_SCHEME: &str = "every scheme reads it";
 }
@@ -398,7 +402,11 @@ mod tests {
             .is_ok());
         assert!(read(Scheme::Pm, Correction) && !read(Scheme::Tkc, Muscl));
         for s in Scheme::ALL {
-            assert!(read(s, ArtificialStress) && read(s, ArtificialStressExponent));
+            // every scheme but tl, which has no tensile instability to delay
+            let reads = read(s, ArtificialStress) && read(s, ArtificialStressExponent);
+            assert_eq!(reads, s != Scheme::Tl, "{}", s.name());
+            // the updated reference is tl's alone
+            assert_eq!(read(s, ReferenceUpdate), s == Scheme::Tl, "{}", s.name());
         }
         let mut buf = [0u8; 128];
         let msg = |e: NotRead, buf: &mut [u8; 128]| {

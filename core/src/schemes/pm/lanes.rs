@@ -142,6 +142,8 @@ pub(crate) fn covers<const D: usize>(params: &StepParams<'_, D>) -> bool {
         // the hourglass stiffness: its own passes, and the star's pressure-only
         // tractions, which the rows decline (the effect, below)
         hourglass: _,
+        // tl's, refused by the table
+        reference_update: _,
         // the effects the step is compiled with (`E`), not read from here
         correction: _,
         muscl: _,

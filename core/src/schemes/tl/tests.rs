@@ -74,7 +74,7 @@ struct Out {
 /// force pass.
 fn passes(x: &[Vector<2>; N], v: &[Vector<2>; N], stress: Option<&[Sym3; N]>) -> Out {
     let mats = [material()];
-    let xr = reference();
+    let mut xr = reference();
     let (mut x, mut v) = (*x, *v);
     let m = [1000.0 * DX * DX; N];
     let vr = [DX * DX; N];
@@ -99,7 +99,7 @@ fn passes(x: &[Vector<2>; N], v: &[Vector<2>; N], stress: Option<&[Sym3; N]>) ->
         .cl(&mut cl)
         .h(&mut h)
         .s(&mut s)
-        .xr(&xr)
+        .xr(&mut xr)
         .vr(&vr)
         .phi(&mut phi)
         .build()

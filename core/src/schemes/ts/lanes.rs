@@ -59,6 +59,8 @@ pub(crate) fn covers<const D: usize>(params: &StepParams<'_, D>) -> bool {
         constant_h: _,
         // the hourglass stiffness's own passes (portable), not the star
         hourglass: _,
+        // tl's, refused by the table
+        reference_update: _,
         // the effects the step is compiled with (`E`), not read from here
         correction: _,
         muscl: _,

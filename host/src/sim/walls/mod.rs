@@ -136,9 +136,16 @@ impl<const D: usize> Halo<D> for Mirrors<D> {
             let pl = &self.planes[w];
             if f.contains(Fields::X) {
                 sys.x[g] = pl.reflect_point(&sys.x[o]);
+                // tl's pairs see the reference positions: its mirrors carry theirs
+                if !sys.xr.is_empty() {
+                    sys.xr[g] = pl.reflect_point(&sys.xr[o]);
+                }
                 if pl.unilateral && !pressed(pl, sys, o) {
                     // released: out of reach, the particle sees a free surface
                     sys.x[g] -= pl.normal * (4.0 * self.reach);
+                    if !sys.xr.is_empty() {
+                        sys.xr[g] -= pl.normal * (4.0 * self.reach);
+                    }
                 }
             }
             if f.contains(Fields::H) {
