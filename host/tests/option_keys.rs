@@ -274,7 +274,7 @@ fn the_keys_tested_here_are_the_tables() {
     // the keys shown elsewhere: transverse_dissipation and objective act only in 2D/3D
     // (host/tests/elastic_monitor.rs), surface_scan above and host/tests/correction_flags.rs,
     // artificial stress tests/tests/artificial_stress.rs, the hourglass stiffness
-    // tests/tests/hourglass.rs
+    // tests/tests/hourglass.rs, tl's updated reference host/tests/tl.rs
     for other in [
         "transverse_dissipation",
         "objective",
@@ -282,6 +282,7 @@ fn the_keys_tested_here_are_the_tables() {
         "artificial_stress",
         "artificial_stress_exponent",
         "hourglass",
+        "reference_update",
     ] {
         tested.insert(other);
     }

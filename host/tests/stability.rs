@@ -25,9 +25,15 @@ fn quick_suite_passes_every_case_with_every_scheme() {
     let csv = std::fs::read_to_string(out.path().join("stability.csv")).unwrap();
     assert_eq!(csv.lines().count(), rows.len() + 1);
     assert!(rows.len() >= 8 * Scheme::ALL.len(), "{} runs", rows.len());
+    // tl cannot run a periodic box (n/a, with its refusal); every other run passes
     let bad: Vec<String> = rows
         .iter()
-        .filter(|r| r.verdict != Verdict::Pass)
+        .filter(|r| {
+            r.verdict != Verdict::Pass
+                && !(r.verdict == Verdict::NotApplicable
+                    && r.scheme == "tl"
+                    && r.note.contains("periodic"))
+        })
         .map(|r| format!("{} {}: {} {}", r.case, r.scheme, r.verdict.label(), r.note))
         .collect();
     assert!(bad.is_empty(), "{bad:#?}");

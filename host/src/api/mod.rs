@@ -253,9 +253,10 @@ impl Simulation {
         self.scene.dim
     }
 
-    /// Number of particles.
+    /// Number of particles (the walls' mirror images, which the simulation keeps after
+    /// them, are not particles of the scene).
     pub fn len(&self) -> usize {
-        with_sim!(&self.sim, s => s.len())
+        with_sim!(&self.sim, s => s.owned)
     }
 
     /// True without particles (never, for a simulation that was built).

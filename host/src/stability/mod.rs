@@ -34,9 +34,10 @@ pub fn energy_bound(scheme: Scheme) -> f64 {
         Scheme::Ts1 | Scheme::Ts2 | Scheme::Tkc => 1e-10,
         Scheme::Av => 1e-1,
         Scheme::Pm => 5e-1,
-        // symplectic Euler with Riemann dissipation booked at the start-of-step velocity:
-        // first order in dt, as av's
-        Scheme::Tl => 1e-1,
+        // velocity Verlet: the energy of its stress and Riemann terms is booked at the
+        // half-step velocities, not exactly the work of the forces; largest measured on
+        // the hard cases 7.9e-2 (steel_sic_800, quick), 9.7e-3 on the elastic vibration
+        Scheme::Tl => 2e-1,
     }
 }
 
@@ -244,6 +245,15 @@ pub fn run_case(path: &Path, scheme: Scheme, quick: bool) -> Row {
         }
         Err(e) => {
             row.note = e.to_string();
+            // a case other schemes run, refused by this one (tl's periodic box): the
+            // scheme cannot run it, which is not a failure
+            let others = Scheme::ALL.iter().filter(|&&s| s != scheme);
+            if others
+                .into_iter()
+                .any(|s| scene::load_for_scheme(path, &set, s.name()).is_ok())
+            {
+                row.verdict = Verdict::NotApplicable;
+            }
             return row;
         }
     };
@@ -274,7 +284,11 @@ pub fn run_case(path: &Path, scheme: Scheme, quick: bool) -> Row {
             row.wall_s = started.elapsed().as_secs_f64();
             row.note = e.to_string();
             match &e {
-                RunError::Sim(SimError::Unsupported { .. } | SimError::NotCompiled { .. }) => {
+                RunError::Sim(
+                    SimError::Unsupported { .. }
+                    | SimError::NotCompiled { .. }
+                    | SimError::Reference(_),
+                ) => {
                     row.verdict = Verdict::NotApplicable;
                 }
                 RunError::Sim(SimError::Step { step, t, cause }) => {
