@@ -118,13 +118,13 @@ impl Scheme {
     }
 
     /// The options before a scene's keys: the table's defaults, with the family's choices
-    /// per scheme name (tkc's minmod limiter).
+    /// per scheme name (tkc's minmod limiter, tl's det_epsilon).
     pub fn default_options(self) -> SchemeOptions {
         match self.family() {
             Family::Av => SchemeOptions::default(),
             Family::Pm => pm::defaults(self),
             Family::Ts => SchemeOptions::default(),
-            Family::Tl => SchemeOptions::default(),
+            Family::Tl => tl::defaults(),
         }
     }
 }

@@ -446,12 +446,17 @@ pub enum VelocitySpec {
         center: Vec<f64>,
     },
     /// Rigid rotation about the z axis through `center`: `v = omega e_z × (x - center)`
-    /// (2D and 3D).
+    /// (2D and 3D); with `twist_height = H` (3D) a twist instead, the angular velocity
+    /// `omega sin(pi (z - center_z) / (2 H))` growing from 0 at `z = center_z` (Lee, Gil,
+    /// Ghavamian & Bonet's twisting column).
     Rotation {
         /// Angular velocity, rad/s (positive: counter-clockwise seen from +z).
         omega: f64,
-        /// A point of the axis, m (its x and y; a third component is ignored).
+        /// A point of the axis, m (its x and y; its z is the twist's base).
         center: Vec<f64>,
+        /// The twist's height H, m (3D; absent: a rigid rotation).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        twist_height: Option<f64>,
     },
     /// Gaussian pulse along an axis: `v_axis = amplitude exp(-k (x - center)²)`.
     Pulse {

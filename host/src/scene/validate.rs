@@ -675,7 +675,11 @@ fn check_motion(s: &Scene, key: &str, b: &BodySpec) -> R {
             positive(&format!("{key}.velocity.r_ref"), *r_ref)?;
             dims(&format!("{key}.velocity.center"), center, s.dim)?;
         }
-        Some(VelocitySpec::Rotation { omega, center }) => {
+        Some(VelocitySpec::Rotation {
+            omega,
+            center,
+            twist_height,
+        }) => {
             if s.dim == 1 {
                 return fail(
                     &format!("{key}.velocity"),
@@ -684,6 +688,15 @@ fn check_motion(s: &Scene, key: &str, b: &BodySpec) -> R {
             }
             finite(&format!("{key}.velocity.omega"), *omega)?;
             dims(&format!("{key}.velocity.center"), center, s.dim)?;
+            if let Some(h) = twist_height {
+                if s.dim != 3 {
+                    return fail(
+                        &format!("{key}.velocity.twist_height"),
+                        "a twist varies along z: use it in 3D",
+                    );
+                }
+                positive(&format!("{key}.velocity.twist_height"), *h)?;
+            }
         }
         Some(VelocitySpec::Cantilever {
             root,

@@ -579,6 +579,14 @@ impl<const D: usize> Sim<D> {
             self.x[i] = self.periodic.wrap(x0 + v0 * dt);
         }
         self.primed = ws.primed;
+        // tl's velocity Verlet carries the acceleration into the next step's first half
+        // kick: a driven particle's is zero, so it moves at its velocity within the step
+        // too (F and the stresses of its neighbours see it where it is prescribed)
+        if self.effects.contains(EffectSet::REFERENCE) {
+            for &(i, _) in &self.driven {
+                self.av[i].acc = Vector::<D>::zeros();
+            }
+        }
         self.enforce_walls(dt);
         self.t += dt;
         self.step = step;

@@ -80,7 +80,7 @@ pub(crate) mod pairs;
 #[cfg(test)]
 mod tests;
 
-pub(crate) use options::reads;
+pub(crate) use options::{defaults, reads};
 
 use crate::effects::{EffectSet, Effects};
 use crate::exec::Executor;

@@ -616,9 +616,19 @@ fn velocity(spec: Option<&VelocitySpec>, x: &[f64; 3]) -> [f64; 3] {
                 }
             }
         }
-        Some(VelocitySpec::Rotation { omega, center }) => {
-            v[0] = -omega * (x[1] - center[1]);
-            v[1] = omega * (x[0] - center[0]);
+        Some(VelocitySpec::Rotation {
+            omega,
+            center,
+            twist_height,
+        }) => {
+            let w = match twist_height {
+                Some(h) => {
+                    omega * (std::f64::consts::PI * (x[2] - center[2]) / (2.0 * h)).sin()
+                }
+                None => *omega,
+            };
+            v[0] = -w * (x[1] - center[1]);
+            v[1] = w * (x[0] - center[0]);
         }
         Some(VelocitySpec::Pulse {
             amplitude,
