@@ -263,6 +263,33 @@ fn the_hourglass_stiffness_is_rank_count_independent() {
     }
 }
 
+/// The total-Lagrangian scheme (issue 47): its sub-domains and ghosts are those of the
+/// reference positions, its reference update is decided from the largest stretch over
+/// every rank; the 3D Taylor rod on symmetry planes with updates, and the steel -> SiC
+/// impact (bonded bodies), give the serial bytes on any rank count, and a checkpoint of
+/// the rod restarts on another.
+#[test]
+fn the_total_lagrangian_scheme_is_rank_count_independent() {
+    let rod = [
+        "scheme=tl",
+        "walls.0.type=symmetry",
+        "t_end=1.5e-5",
+        "options.reference_update=0.1",
+    ];
+    same_everywhere("tl_rod", "taylor_copper.toml", &rod);
+    same_everywhere(
+        "tl_impact",
+        "steel_sic_impact.toml",
+        &[
+            "scheme=tl",
+            "!options.riemann",
+            "resolution_scale=0.25",
+            "t_end=3.0e-6",
+        ],
+    );
+    restarts_on_other_rank_counts("tl_restart", "taylor_copper.toml", &rod);
+}
+
 /// A relaxed (body-fitted) layout: every rank relaxes the whole body the same way, so the
 /// breathing ring (`layout = "relaxed"`) gives the serial bytes on any rank count.
 #[test]

@@ -6,7 +6,6 @@ use super::Sim;
 use crate::dist::{self, rcb::Rcb, Dist, Plan, REBALANCE_THRESHOLD};
 use crate::sim::SimError;
 use crate::words::Words;
-use gsph_core::effects::EffectSet;
 use gsph_core::math::Vector;
 use gsph_core::schemes::AvRates;
 use std::time::Instant;
@@ -20,11 +19,6 @@ impl<const D: usize> Sim<D> {
         let size = dist::size();
         if size <= 1 || self.dist.is_some() {
             return Ok(());
-        }
-        if self.effects.contains(EffectSet::REFERENCE) {
-            return Err(SimError::Distributed(
-                "scheme tl runs on one rank for now: its reference neighbours do not yet cross ranks (issue 47)".into(),
-            ));
         }
         let rank = dist::rank();
         let mut order: Vec<usize> = (0..self.len()).collect();
@@ -164,12 +158,18 @@ impl<const D: usize> Sim<D> {
         let mean = total as f64 / size as f64;
         let max = counts.iter().copied().max().unwrap_or(0) as f64;
         if d.rcb.is_none() || max > mean * (1.0 + REBALANCE_THRESHOLD) {
-            d.rcb = Some(Rcb::build(&self.x, size));
+            d.rcb = Some(Rcb::build(self.list_positions(), size));
             d.rebalances += 1;
         }
         let rcb = d.rcb.as_ref().expect("sub-domains");
         // 3. migration
-        let dest: Vec<usize> = self.x.iter().map(|x| rcb.rank_of(x)).collect();
+        // tl's sub-domains and ghosts are those of its reference positions (where its
+        // lists are built): its particles migrate only when the reference is updated
+        let dest: Vec<usize> = self
+            .list_positions()
+            .iter()
+            .map(|x| rcb.rank_of(x))
+            .collect();
         let parts: Vec<Vec<f64>> = (0..size)
             .map(|r| {
                 if r == rank {
@@ -189,7 +189,12 @@ impl<const D: usize> Sim<D> {
         // 4. memory order (results do not depend on it)
         if self.reorder {
             let hmax = self.h.iter().cloned().fold(0.0, f64::max);
-            let order = crate::neighbors::morton_order(&self.x, &self.ids, hmax, &self.periodic);
+            let order = crate::neighbors::morton_order(
+                self.list_positions(),
+                &self.ids,
+                hmax,
+                &self.periodic,
+            );
             self.permute(&order);
         }
         self.owned = self.len();
@@ -202,7 +207,7 @@ impl<const D: usize> Sim<D> {
                     return Vec::new();
                 }
                 (0..self.owned)
-                    .filter(|&i| rcb.near(r, &self.x[i], reach, &self.periodic))
+                    .filter(|&i| rcb.near(r, &self.list_positions()[i], reach, &self.periodic))
                     .map(|i| i as u32)
                     .collect()
             })
@@ -226,7 +231,7 @@ impl<const D: usize> Sim<D> {
         self.dist = Some(d);
         // 6. the walls' mirrors of owned and ghost particles (collective), then lists
         // over all of them; a failure on one rank fails all
-        self.build_x.clone_from(&self.x);
+        self.build_x = self.list_positions().clone();
         self.build_h.clone_from(&self.h);
         self.add_mirrors()?;
         let built = self.build_lists();
@@ -259,9 +264,10 @@ impl<const D: usize> Sim<D> {
         s.owned = s.len();
         (s.mirrors.crossings, s.mirrors.friction_work) = self.wall_totals();
         // a checkpoint of it rebuilds its lists at these positions on restore
-        s.build_x.clone_from(&s.x);
+        s.build_x = s.list_positions().clone();
         s.build_h.clone_from(&s.h);
         s.rebuilds = dist::all_max(self.rebuilds as f64) as u64;
+        s.reference_updates = dist::all_max(self.reference_updates as f64) as u64;
         s.pair_interactions = dist::all_sum_u64(self.pair_interactions);
         Some(s)
     }

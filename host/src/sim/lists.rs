@@ -107,7 +107,7 @@ impl<const D: usize> Sim<D> {
     /// The positions the neighbour lists are built at: the reference positions of the
     /// total-Lagrangian scheme (fixed during a run, so its lists never go stale), the
     /// positions now otherwise.
-    fn list_positions(&self) -> &Vec<Vector<D>> {
+    pub(super) fn list_positions(&self) -> &Vec<Vector<D>> {
         if self.effects.contains(EffectSet::REFERENCE) {
             &self.xr
         } else {

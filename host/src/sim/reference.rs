@@ -14,8 +14,8 @@
 //! zero in the new reference; `phi` is reset and the internal energy kept, so the stored
 //! energy becomes heat and total energy is unchanged by the update.
 //!
-//! The largest stretch is a maximum (exact in any order), so the decision, and the run,
-//! are the same on any thread count.
+//! The largest stretch is a maximum (exact in any order, reduced over the MPI ranks), so
+//! the decision, and the run, are the same on any thread and rank count.
 
 use super::*;
 
@@ -83,7 +83,15 @@ impl<const D: usize> Sim<D> {
         if !self.effects.contains(EffectSet::REFERENCE) || threshold <= 0.0 {
             return Ok(());
         }
-        if self.largest_pair_stretch() <= threshold {
+        let most = self.largest_pair_stretch();
+        // every rank decides as one process would (a maximum: exact)
+        #[cfg(feature = "mpi")]
+        let most = if self.dist.is_some() {
+            crate::dist::all_max(most)
+        } else {
+            most
+        };
+        if most <= threshold {
             return Ok(());
         }
         for i in 0..self.owned {

@@ -622,9 +622,7 @@ fn velocity(spec: Option<&VelocitySpec>, x: &[f64; 3]) -> [f64; 3] {
             twist_height,
         }) => {
             let w = match twist_height {
-                Some(h) => {
-                    omega * (std::f64::consts::PI * (x[2] - center[2]) / (2.0 * h)).sin()
-                }
+                Some(h) => omega * (std::f64::consts::PI * (x[2] - center[2]) / (2.0 * h)).sin(),
                 None => *omega,
             };
             v[0] = -w * (x[1] - center[1]);
