@@ -14,11 +14,14 @@
 //! P~_i  = P_i + A_i/V0_i,  P_i = J_i sigma_i F_i^-T (first Piola–Kirchhoff)
 //! ```
 //!
-//! **Stress.** The rate form of every strength model gsph has (elastic, von Mises,
-//! Johnson–Cook, JH1 with damage): the spatial velocity gradient `L = dF/dt F^-1` (F at
-//! mid-step) advances the deviator with Hooke's law, the Jaumann terms and the plastic
-//! return (`common::advance_deviator`), the density is `rho0/det F`, and the pressure
-//! comes from the equation of state. The internal energy gains the stress power: the
+//! **Stress.** An elastic material's deviator is hyperelastic, a function of F: the
+//! compressible neo-Hookean `G J^(-5/3) dev(F F^T)` ([`pairs::neo_hookean_deviator`],
+//! Hooke's law at small strain; the rate form's Jaumann integration let the twisting
+//! column's corners invert at four times its rate). The plastic models (von Mises,
+//! Johnson–Cook, JH1 with damage) are in rate form: the spatial velocity gradient `L =
+//! dF/dt F^-1` (F at mid-step) advances the deviator with Hooke's law, the Jaumann terms
+//! and the plastic return (`common::advance_deviator`). The density is `rho0/det F`, and
+//! the pressure comes from the equation of state. The internal energy gains the stress power: the
 //! exact volume change `-p (1/rho^{n+1} - 1/rho^n)` (trapezoidal in p) and `S:D dt/rho`
 //! (trapezoidal in S). The force is the exact adjoint of `dF/dt` (its power is `-sum V0
 //! P:dF/dt`); it conserves linear momentum to round-off, and angular momentum where `P_i

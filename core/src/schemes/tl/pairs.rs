@@ -12,7 +12,8 @@
 use crate::effects::Effects;
 use crate::exec::Executor;
 use crate::limiter::bounded_extrapolation;
-use crate::math::{det, inverse, Matrix, Real, Sym3, Vector};
+use crate::material::Strength;
+use crate::math::{det, inverse, real, Matrix, Real, Sym3, Vector};
 use crate::schemes::av::records::AvRates;
 use crate::schemes::common::{advance_deviator, cauchy, outer, refresh_pressure};
 use crate::schemes::pairs::for_each_pair;
@@ -118,7 +119,12 @@ pub(crate) fn constitutive<const D: usize, E: Effects, X: Executor>(
                 let mut dev_work = 0.0;
                 if E::STRENGTH {
                     let s_old = s.s[k];
-                    advance_deviator::<D, E>(&mut s, k, mat, &l, dt);
+                    if matches!(mat.strength, Strength::Elastic) {
+                        // hyperelastic: the deviator is a function of F
+                        s.s[k] = neo_hookean_deviator(&f, mat.shear_modulus);
+                    } else {
+                        advance_deviator::<D, E>(&mut s, k, mat, &l, dt);
+                    }
                     let s_mid = (s_old + s.s[k]) * 0.5;
                     dev_work = s_mid.ddot(&Sym3::sym_of(&l)) * dt / (0.5 * (rho_old + rho_new));
                 }
@@ -131,6 +137,25 @@ pub(crate) fn constitutive<const D: usize, E: Effects, X: Executor>(
             }
         },
     );
+}
+
+/// The deviatoric Cauchy stress of a compressible neo-Hookean solid, `G J^(-5/3) dev(F
+/// F^T)` (the isochoric part of `W = G/2 (tr(J^(-2/3) F F^T) - 3)`), with `F` embedded in
+/// 3D as the identity out of the run's plane or line (plane strain, uniaxial strain). At
+/// small strain it is Hooke's `2 G dev(eps)`; it is objective and stores its work exactly
+/// in the continuum, where the rate form's Jaumann integration of large rotations and
+/// shears does not.
+#[inline(always)]
+pub(crate) fn neo_hookean_deviator<const D: usize>(f: &Matrix<D>, g: Real) -> Sym3 {
+    let j = det(f);
+    let mut b = Sym3::sym_of(&(f * f.transpose()));
+    if D < 3 {
+        b.zz = 1.0;
+    }
+    if D < 2 {
+        b.yy = 1.0;
+    }
+    b.deviator() * (g * real::powf(j, -5.0 / 3.0))
 }
 
 /// The force pass's stress of particle `k` from its state as it is (the first step of a

@@ -238,3 +238,33 @@ fn the_forces_conserve_momentum_and_without_dissipation_angular_momentum() {
         }
     }
 }
+
+/// The neo-Hookean deviator is Hooke's at small strain, objective under rotation, and
+/// zero for any volume change alone.
+#[test]
+fn the_hyperelastic_deviator_is_hookes_at_small_strain_and_objective() {
+    use super::pairs::neo_hookean_deviator;
+    let g = 3.0e9;
+    let eps = 1e-7;
+    let h = Matrix::<3>::new(0.3, 0.2, -0.1, 0.2, -0.5, 0.4, -0.1, 0.4, 0.1) * eps;
+    let s = neo_hookean_deviator(&(Matrix::<3>::identity() + h), g);
+    let hooke = Sym3::sym_of(&h).deviator() * (2.0 * g);
+    for (a, b) in [(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)] {
+        assert!(
+            (s.get(a, b) - hooke.get(a, b)).abs() < 1e-6 * g * eps,
+            "{a}{b}"
+        );
+    }
+    // a large stretch, then rotated: sigma(R U) = R sigma(U) R^T
+    let u = Matrix::<3>::new(1.4, 0.2, 0.0, 0.2, 0.8, 0.1, 0.0, 0.1, 1.1);
+    let (c, sn) = (0.6f64, 0.8f64);
+    let r = Matrix::<3>::new(c, -sn, 0.0, sn, c, 0.0, 0.0, 0.0, 1.0);
+    let su = neo_hookean_deviator(&u, g).block::<3>();
+    let sru = neo_hookean_deviator(&(r * u), g).block::<3>();
+    assert!((sru - r * su * r.transpose()).norm() < 1e-9 * g);
+    let dil = neo_hookean_deviator(&(Matrix::<3>::identity() * 1.3), g);
+    assert!(dil.block::<3>().norm() < 1e-9 * g);
+    // plane strain: F's out-of-plane stretch is 1
+    let s2 = neo_hookean_deviator(&Matrix::<2>::new(1.2, 0.0, 0.0, 1.0), g);
+    assert!(s2.zz < 0.0 && s2.xx > 0.0 && (s2.trace()).abs() < 1e-6);
+}
