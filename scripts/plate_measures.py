@@ -48,7 +48,9 @@ def measures(run):
         last = max((k for k in range(len(t)) if t[k] <= three), default=len(t) - 1)
         if t[-1] >= three * 0.99:
             out["mechanical_energy_ratio_3T"] = mech[last]
-            peaks = [k for k in range(1, last) if ke[k] >= ke[k - 1] and ke[k] > ke[k + 1]]
+            # a peak at the last sample before 3 T counts (it has a later sample)
+            peaks = [k for k in range(1, min(last + 1, len(t) - 1))
+                     if ke[k] >= ke[k - 1] and ke[k] > ke[k + 1]]
             late = [ke[k] for k in peaks if t[k] > three - period / 2]
             if late:
                 out["ke_peak_ratio_3T"] = max(late) / ke0
