@@ -41,12 +41,12 @@ section "one-specialisation build: runs what it contains, refuses the rest in on
 cargo build -q -p gsph --no-default-features --features cli,dim1,scheme-ts,effects-strength --target-dir target/one-spec
 one=target/one-spec/debug/gsph
 ok=$("$one" check cases/flyer_plate.toml --set scheme=ts1)
-grep -qx 'kernel    step_1d_ts_strength (compiled; this build contains 2 of 42 specialisations)' <<<"$ok"
+grep -qx 'kernel    step_1d_ts_strength (compiled; this build contains 2 of 48 specialisations)' <<<"$ok"
 if refused=$("$one" check cases/riemann_al_2d.toml 2>&1); then
     echo "the one-specialisation build accepted cases/riemann_al_2d.toml"; exit 1
 fi
 echo "$refused"
-grep -qx 'error: cases/riemann_al_2d.toml: this gsph was built without the specialisation 2D tkc (strength+correction+muscl) `step_2d_pm_strength_correction_muscl` (it contains 2 of 42); rebuild with `--features dim2,scheme-pm,effects-strength,effects-correction,effects-muscl` or the default features' <<<"$refused"
+grep -qx 'error: cases/riemann_al_2d.toml: this gsph was built without the specialisation 2D tkc (strength+correction+muscl) `step_2d_pm_strength_correction_muscl` (it contains 2 of 48); rebuild with `--features dim2,scheme-pm,effects-strength,effects-correction,effects-muscl` or the default features' <<<"$refused"
 section "target/release/gsph: the default build (no MPI), as the README says; several copies under mpirun refuse"
 # ffi.sh and python.sh built it with the default features; this is a no-op then
 cargo build --release -q -p gsph

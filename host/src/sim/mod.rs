@@ -170,7 +170,7 @@ pub struct Sim {
     pub pair_interactions: u64,
     /// Neighbour-list rebuilds so far.
     pub rebuilds: u64,
-    /// tl's reference updates so far ([`reference`]).
+    /// tl's reference updates so far (`options.reference_update`, `sim/reference.rs`).
     pub reference_updates: u64,
     /// The particles this process owns: the first `owned` of the arrays. The rest are
     /// ghost copies of other ranks' particles (feature `mpi`) or the mirrors of walls.

@@ -15,7 +15,7 @@
 //! ```
 //!
 //! **Stress.** An elastic material's deviator is hyperelastic, a function of F: the
-//! compressible neo-Hookean `G J^(-5/3) dev(F F^T)` ([`pairs::neo_hookean_deviator`],
+//! compressible neo-Hookean `G J^(-5/3) dev(F F^T)` (`pairs::neo_hookean_deviator`,
 //! Hooke's law at small strain; the rate form's Jaumann integration let the twisting
 //! column's corners invert at four times its rate). The plastic models (von Mises,
 //! Johnson–Cook, JH1 with damage) are in rate form: the spatial velocity gradient `L =
@@ -74,9 +74,10 @@
 //! the new state, their Riemann dissipation from the half-step velocities and slopes;
 //! `v += a dt/2`.
 //!
-//! What the step keeps where (`PairSums` and the `Hourglass` records): see
-//! [`pairs`]. Walls, periodic boundaries, the moving window and several ranks are not
-//! yet run with it (the host refuses them).
+//! What the step keeps where (`PairSums` and the `Hourglass` records): see the module
+//! `pairs`. The host runs it with symmetry planes and on any number of MPI ranks; it
+//! refuses rigid walls, periodic boundaries, the moving window and bodies that share no
+//! pair at the start, and updates the reference on `options.reference_update`.
 
 mod options;
 pub(crate) mod pairs;
