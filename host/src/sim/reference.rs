@@ -20,25 +20,29 @@
 use super::*;
 
 impl<const D: usize> Sim<D> {
+    /// The neighbours `j` of particle `i` within the kernel's support in the reference
+    /// configuration, with their reference distance `R > 0` (the pairs tl's passes weigh).
+    fn reference_pairs(&self, i: usize) -> impl Iterator<Item = (usize, Real)> + '_ {
+        let support = self.kernel.support();
+        let nbrs = self.lists.view();
+        let row = &nbrs.index[nbrs.start[i] as usize..nbrs.start[i + 1] as usize];
+        row.iter().filter_map(move |&j| {
+            let j = j as usize;
+            let big_r = (self.xr[j] - self.xr[i]).norm();
+            (big_r > 0.0 && big_r < support * 0.5 * (self.h[i] + self.h[j])).then_some((j, big_r))
+        })
+    }
+
     /// The largest `|r/R - 1|` over the owned particles' pairs within the kernel's
     /// support in the reference configuration (0 without pairs).
     pub fn largest_pair_stretch(&self) -> Real {
-        let support = self.kernel.support();
-        let nbrs = self.lists.view();
         (0..self.owned)
             .into_par_iter()
             .with_min_len(1024)
             .map(|i| {
-                let mut most: Real = 0.0;
-                for &j in &nbrs.index[nbrs.start[i] as usize..nbrs.start[i + 1] as usize] {
-                    let j = j as usize;
-                    let big_r = (self.xr[j] - self.xr[i]).norm();
-                    if big_r > 0.0 && big_r < support * 0.5 * (self.h[i] + self.h[j]) {
-                        let r = (self.x[j] - self.x[i]).norm();
-                        most = most.max((r / big_r - 1.0).abs());
-                    }
-                }
-                most
+                self.reference_pairs(i)
+                    .map(|(j, big_r)| ((self.x[j] - self.x[i]).norm() / big_r - 1.0).abs())
+                    .fold(0.0, Real::max)
             })
             .reduce(|| 0.0, Real::max)
     }
@@ -51,19 +55,11 @@ impl<const D: usize> Sim<D> {
         if !self.effects.contains(EffectSet::REFERENCE) || bodies < 2 {
             return Ok(());
         }
-        let support = self.kernel.support();
-        let nbrs = self.lists.view();
         let mut bonded = vec![false; bodies];
         for i in 0..self.owned {
             let bi = body[self.ids[i] as usize];
-            for &j in &nbrs.index[nbrs.start[i] as usize..nbrs.start[i + 1] as usize] {
-                let j = j as usize;
-                if j >= self.owned {
-                    continue;
-                }
-                let bj = body[self.ids[j] as usize];
-                let r = (self.xr[j] - self.xr[i]).norm();
-                if bi != bj && r < support * 0.5 * (self.h[i] + self.h[j]) {
+            for (j, _) in self.reference_pairs(i) {
+                if j < self.owned && body[self.ids[j] as usize] != bi {
                     bonded[bi as usize] = true;
                 }
             }
